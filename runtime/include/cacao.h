@@ -1,0 +1,278 @@
+/* cacao.h - screen-space ambient occlusion for Vulkan, after AMD FidelityFX CACAO.
+ *
+ * Read top to bottom, this header is the manual.
+ *
+ * The engine owns its instance, device, queue, images and their memory. cacao owns only its
+ * intermediates, pipelines and layouts, all created by cacao_context_create/_resize and freed by
+ * cacao_context_destroy. cacao_record() records barriers and dispatches into the caller's command
+ * buffer; it never submits, waits or allocates.
+ *
+ * Typical use:
+ *     cacao_context *ctx;
+ *     cacao_context_create(&(cacao_context_desc){.physical_device = pd, .device = dev}, &ctx);
+ *     cacao_context_set_settings(ctx, &(cacao_settings){.quality = CACAO_QUALITY_HIGH});
+ *     cacao_context_resize(ctx, width, height, NULL);
+ *     per frame: cacao_record(ctx, cmd, &(cacao_inputs){...});
+ *     cacao_context_destroy(ctx);
+ *
+ * Device requirements: Vulkan 1.1, VK_KHR_push_descriptor enabled on the device,
+ * shaderStorageImageWriteWithoutFormat (the output is written by its view's format),
+ * shaderStorageImageExtendedFormats (R16F, RG8, R8 intermediates). The fp16 permutations also need
+ * shaderFloat16; without it cacao falls back to fp32 (cacao_context_precision tells which ran).
+ *
+ * Threading: a context is used by one thread at a time; distinct contexts are independent.
+ * Structs follow one rule: zero means default. Fields whose zero is a meaningful value say how to
+ * ask for it (CACAO_ZERO, CACAO_BLUR_NONE).
+ */
+#ifndef CACAO_H
+#define CACAO_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <vulkan/vulkan.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define CACAO_VERSION_MAJOR 0
+#define CACAO_VERSION_MINOR 1
+#define CACAO_VERSION_PATCH 0
+
+/* ---- Results ------------------------------------------------------------------------------- */
+
+typedef enum cacao_result {
+    CACAO_SUCCESS = 0,
+    CACAO_ERROR_INVALID_ARGUMENT,    /* NULL where a value is required, NaN/Inf or out-of-range field */
+    CACAO_ERROR_INVALID_SIZE,        /* width/height zero or above CACAO_MAX_SIZE */
+    CACAO_ERROR_UNSUPPORTED_FORMAT,  /* an image of a format cacao cannot read or write */
+    CACAO_ERROR_PERMUTATION_MISSING, /* the settings need a shader this build did not embed */
+    CACAO_ERROR_UNSUPPORTED_DEVICE,  /* a required extension or feature is missing */
+    CACAO_ERROR_NOT_READY,           /* cacao_record before cacao_context_resize */
+    CACAO_ERROR_OUT_OF_MEMORY,       /* host or device allocation failed */
+    CACAO_ERROR_VULKAN,              /* another Vulkan call failed */
+} cacao_result;
+
+/* Short English description of a result code ("invalid argument", ...). Never NULL. */
+const char *cacao_result_string(cacao_result result);
+
+/* Largest accepted width or height. */
+#define CACAO_MAX_SIZE 16384
+
+/* ---- Settings (spec: constants.md section 6) ----------------------------------------------- */
+
+typedef enum cacao_quality {
+    CACAO_QUALITY_DEFAULT = 0, /* = HIGHEST */
+    CACAO_QUALITY_LOWEST,      /* 3 taps, 2 of 4 slices */
+    CACAO_QUALITY_LOW,         /* 3 taps */
+    CACAO_QUALITY_MEDIUM,      /* 5 taps, depth edges, detail AO */
+    CACAO_QUALITY_HIGH,        /* 12 taps, depth mips, normal edges */
+    CACAO_QUALITY_HIGHEST,     /* adaptive: 5 base taps + up to 27 more where the image needs them */
+} cacao_quality;
+
+typedef enum cacao_precision {
+    CACAO_PRECISION_DEFAULT = 0, /* = FP32 */
+    CACAO_PRECISION_FP32,
+    CACAO_PRECISION_FP16,        /* blur, apply and upsample in half precision (needs shaderFloat16) */
+} cacao_precision;
+
+/* Asks for an explicit 0 in a float field whose 0 would otherwise mean "default". */
+#define CACAO_ZERO (-1.0f)
+/* Asks for no blur (blur_pass_count 0 means the default, 2). */
+#define CACAO_BLUR_NONE (-1)
+
+typedef struct cacao_settings {
+    float radius;                   /* world-space AO radius; 0 = 1.2 */
+    float shadow_multiplier;        /* AO strength; 0 = 1.0 (range 0..5) */
+    float shadow_power;             /* AO contrast exponent; 0 = 1.5 (range 0..10) */
+    float shadow_clamp;             /* max occlusion before shaping; 0 = 0.98 (range 0..1) */
+    float horizon_angle_threshold;  /* ignores samples this close to the surface plane; 0 = 0.06, CACAO_ZERO */
+    float fade_out_from;            /* view distance where AO starts fading; 0 = 50, CACAO_ZERO */
+    float fade_out_to;              /* view distance where AO is gone; 0 = 300 (must exceed fade_out_from) */
+    float sharpness;                /* blur edge sharpness; 0 = 0.98, CACAO_ZERO (range 0..1) */
+    float detail_shadow_strength;   /* small-scale detail AO; 0 = 0.5, CACAO_ZERO (range 0..5) */
+    float adaptive_quality_limit;   /* HIGHEST: mean importance budget; 0 = 0.45, CACAO_ZERO (range 0..1) */
+    float bilateral_sigma_squared;  /* downsampled upsample: spatial variance; 0 = 5.0 */
+    float bilateral_similarity_distance_sigma; /* downsampled upsample: depth variance; 0 = 0.01 */
+    int blur_pass_count;            /* edge-aware blur iterations 1..8; 0 = 2; CACAO_BLUR_NONE = none */
+    cacao_quality quality;          /* 0 = HIGHEST */
+    cacao_precision precision;      /* 0 = FP32 */
+    bool generate_normals;          /* true: reconstruct normals from depth; false: inputs.normals */
+    bool downsample;                /* true: AO at quarter resolution, bilateral upsample */
+} cacao_settings;
+
+/* Fills every defaulted field of *in into *out and checks every field. On error returns
+ * CACAO_ERROR_INVALID_ARGUMENT and, when error is not NULL, writes a message naming the field. */
+cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *out, char *error,
+                                    size_t error_size);
+
+/* ---- The pass plan: what one frame dispatches, as pure data (no Vulkan) ------------------- */
+
+/* Resources a pass can touch. The first three belong to the caller. */
+typedef enum cacao_resource {
+    CACAO_RES_DEPTH_INPUT = 0,  /* caller's depth image */
+    CACAO_RES_NORMALS_INPUT,    /* caller's normals image */
+    CACAO_RES_OUTPUT,           /* caller's AO output image */
+    CACAO_RES_CONSTANTS,        /* uniform buffer, updated in the command buffer each frame */
+    CACAO_RES_LOAD_COUNTER,     /* storage buffer (HIGHEST) */
+    CACAO_RES_DEPTHS,           /* deinterleaved view-space depth, R16F, mips at HIGH+ */
+    CACAO_RES_NORMALS,          /* deinterleaved normals, RGBA8 SNORM */
+    CACAO_RES_SSAO_PING,        /* AO + edges, RG8 */
+    CACAO_RES_SSAO_PONG,        /* Q3 base result / blur output, RG8 */
+    CACAO_RES_IMPORTANCE,       /* importance map, R8 (HIGHEST) */
+    CACAO_RES_IMPORTANCE_PONG,  /* importance ping-pong, R8 (HIGHEST) */
+    CACAO_RES_COUNT
+} cacao_resource;
+
+/* Name of a resource ("depths", "ssao_ping", ...). */
+const char *cacao_resource_name(cacao_resource resource);
+
+/* One intermediate the plan needs (only those are allocated). */
+typedef struct cacao_plan_image {
+    cacao_resource resource;
+    VkFormat format;
+    uint32_t width, height, layers, mips;
+    uint64_t bytes;             /* tightly packed size, all layers and mips */
+} cacao_plan_image;
+
+#define CACAO_PLAN_MAX_STEPS 12
+#define CACAO_PLAN_MAX_BINDINGS 10
+
+/* One binding of a step: descriptor binding number -> resource (and mip level for depth writes). */
+typedef struct cacao_plan_binding {
+    uint8_t binding;            /* CACAO_BINDING_* of cacao_shared.h */
+    uint8_t resource;           /* cacao_resource */
+    uint8_t mip;                /* mip level for per-mip storage views */
+    uint8_t write;              /* 1 if the pass writes it */
+} cacao_plan_binding;
+
+typedef struct cacao_plan_step {
+    char key_name[48];          /* permutation key, e.g. "generate.q2" */
+    uint8_t key[5];             /* pass, variant, downsampled, blur_passes, fp16 (cacao_keys.h) */
+    uint32_t dispatch[3];       /* workgroups */
+    uint32_t binding_count;
+    cacao_plan_binding bindings[CACAO_PLAN_MAX_BINDINGS];
+    bool barrier_before;        /* a compute->compute barrier precedes this step */
+    uint32_t barrier_resources; /* bit mask of cacao_resource the barrier orders */
+} cacao_plan_step;
+
+typedef struct cacao_plan {
+    cacao_settings settings;    /* resolved */
+    uint32_t width, height;     /* full resolution */
+    uint32_t slice_width, slice_height;           /* deinterleaved (SSAO) size */
+    uint32_t importance_width, importance_height; /* 0 unless HIGHEST */
+    uint32_t slice_count;       /* 2 at LOWEST, else 4 */
+    uint32_t step_count;
+    cacao_plan_step steps[CACAO_PLAN_MAX_STEPS];
+    uint32_t image_count;
+    cacao_plan_image images[CACAO_RES_COUNT];
+    bool uses_load_counter;
+    uint64_t total_bytes;       /* all intermediates, buffers included */
+} cacao_plan;
+
+/* Builds the plan for these settings and size. Pure: no Vulkan calls, no allocation. */
+cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, uint32_t height,
+                              cacao_plan *plan, char *error, size_t error_size);
+
+/* Writes a human-readable plan (one line per step, then the intermediates). */
+void cacao_plan_print(const cacao_plan *plan, FILE *out);
+
+/* ---- Context -------------------------------------------------------------------------------- */
+
+typedef struct cacao_context cacao_context;
+
+typedef struct cacao_context_desc {
+    VkPhysicalDevice physical_device;               /* required */
+    VkDevice device;                                /* required; VK_KHR_push_descriptor enabled */
+    const VkAllocationCallbacks *allocation_callbacks; /* optional */
+    VkPipelineCache pipeline_cache;                 /* optional */
+    bool shader_float16_enabled;                    /* the device was created with shaderFloat16 on */
+} cacao_context_desc;
+
+/* Creates a context. Creates no pipelines and allocates no images yet. */
+cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context **out_context);
+
+/* Destroys everything the context created. The caller makes sure the GPU is done with it. */
+void cacao_context_destroy(cacao_context *context);
+
+/* Replaces the settings (validated; see cacao_settings_resolve). Takes effect at the next
+ * cacao_context_resize, which must follow before the next cacao_record. */
+cacao_result cacao_context_set_settings(cacao_context *context, const cacao_settings *settings);
+
+/* Memory the context holds for its intermediates. */
+typedef struct cacao_memory_info {
+    uint64_t total_bytes;       /* device memory allocated for intermediates and buffers */
+    uint32_t image_count;       /* intermediate images */
+    uint32_t pipeline_count;    /* compute pipelines (one per distinct permutation of the plan) */
+} cacao_memory_info;
+
+/* (Re)builds the plan for width x height and the current settings, then creates exactly the
+ * intermediates and pipelines it uses (nothing else). The GPU must be done with earlier frames.
+ * out_info may be NULL. */
+cacao_result cacao_context_resize(cacao_context *context, uint32_t width, uint32_t height,
+                                  cacao_memory_info *out_info);
+
+/* The plan the context records (valid after a successful resize; NULL before). */
+const cacao_plan *cacao_context_plan(const cacao_context *context);
+
+/* Message of the last error on this context, naming the offending field; "" if none. */
+const char *cacao_context_last_error(const cacao_context *context);
+
+/* ---- Recording ------------------------------------------------------------------------------ */
+
+/* One of the caller's images as cacao sees it. */
+typedef struct cacao_image {
+    VkImage image;
+    VkImageView view;           /* 2D view, one mip, one layer */
+    VkFormat format;            /* the view's format */
+    VkImageLayout layout;       /* its layout when the commands run; cacao leaves it there */
+} cacao_image;
+
+typedef struct cacao_inputs {
+    /* Depth: D32_SFLOAT, D16_UNORM, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT, D32_SFLOAT_S8_UINT, R32_SFLOAT
+     * or R16_SFLOAT; width x height of the resize. Layout: SHADER_READ_ONLY_OPTIMAL,
+     * DEPTH(_STENCIL)_READ_ONLY_OPTIMAL or GENERAL. */
+    cacao_image depth;
+    /* Normals (required unless settings.generate_normals): any sampled float or UNORM colour
+     * format; rgb unpacked as rgb * normals_unpack_mul + normals_unpack_add. */
+    cacao_image normals;
+    /* Output: R32_SFLOAT, R16_SFLOAT, R8_UNORM or R16_UNORM with STORAGE usage. AO visibility in
+     * [0,1], 1 = unoccluded. Layout: GENERAL, or any layout cacao transitions from and back to. */
+    cacao_image output;
+    /* Projection in math convention (clip = P * v), depth to [0,1] standard or reversed, clip y up
+     * (P(1,1) > 0), left- or right-handed. Stored row-major when matrices_row_major, else
+     * column-major (GLM). */
+    float projection[16];
+    /* Maps the caller's normals to cacao's view space (x right, y up, z forward; camera-facing
+     * normals have negative z): n' = N * n (upper 3x3). All zero = identity. Same storage rule. */
+    float normals_to_view[16];
+    bool matrices_row_major;
+    float normals_unpack_mul;   /* both 0: 2 and -1 (UNORM-packed normals) */
+    float normals_unpack_add;
+    /* Optional GPU timing: when set, cacao writes plan.step_count + 1 timestamps (compute stage)
+     * starting at timestamp_first_query: one before the first step and one after each step. The
+     * caller resets those queries before and reads them after. */
+    VkQueryPool timestamp_query_pool;
+    uint32_t timestamp_first_query;
+} cacao_inputs;
+
+/* Records one frame: constant update, barriers and dispatches. Makes the caller's earlier writes
+ * to depth/normals visible and prior accesses to output safe (barriers from ALL_COMMANDS);
+ * afterwards the output has been written by COMPUTE_SHADER stage with SHADER_WRITE access, and
+ * the caller orders its own reads after that. */
+cacao_result cacao_record(cacao_context *context, VkCommandBuffer command_buffer,
+                          const cacao_inputs *inputs);
+
+/* The precision that actually runs (FP32 when FP16 was asked but the device lacks it). */
+cacao_precision cacao_context_precision(const cacao_context *context);
+
+/* Number of permutations embedded in this build. */
+uint32_t cacao_embedded_permutation_count(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* CACAO_H */

@@ -1,0 +1,350 @@
+/* context.c - context lifetime, intermediates and pipelines, all driven by the plan. */
+#include <assert.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vulkan_internal.h"
+
+uint32_t cacao_embedded_permutation_count(void) { return cacao_embedded_table.permutation_count; }
+
+const char *cacao_context_last_error(const cacao_context *ctx) { return ctx ? ctx->last_error : ""; }
+
+const cacao_plan *cacao_context_plan(const cacao_context *ctx) {
+    return ctx && ctx->ready ? &ctx->plan : NULL;
+}
+
+cacao_precision cacao_context_precision(const cacao_context *ctx) {
+    return ctx && ctx->ready ? ctx->plan.settings.precision : CACAO_PRECISION_DEFAULT;
+}
+
+cacao_result cacao_fail(cacao_context *ctx, cacao_result result, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(ctx->last_error, sizeof ctx->last_error, fmt, ap);
+    va_end(ap);
+    return result;
+}
+
+static cacao_result vk_fail(cacao_context *ctx, VkResult vr, const char *what) {
+    cacao_result r = (vr == VK_ERROR_OUT_OF_HOST_MEMORY || vr == VK_ERROR_OUT_OF_DEVICE_MEMORY)
+                         ? CACAO_ERROR_OUT_OF_MEMORY
+                         : CACAO_ERROR_VULKAN;
+    return cacao_fail(ctx, r, "%s failed (VkResult %d)", what, (int)vr);
+}
+
+/* Descriptor type of each binding of the one set layout. */
+VkDescriptorType cacao_binding_type(unsigned binding) {
+    if (binding == CACAO_BINDING_CONSTANTS) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    if (binding == CACAO_BINDING_LOAD_COUNTER) return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    if (binding < CACAO_BINDING_DEPTHS_OUT0) return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+}
+
+static bool binding_is_linear(unsigned binding) {
+    return binding == CACAO_BINDING_SSAO_IN || binding == CACAO_BINDING_IMPORTANCE_IN;
+}
+
+static cacao_result create_layouts(cacao_context *ctx) {
+    const VkSamplerCreateInfo nearest_info = {
+        .sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+        .magFilter = VK_FILTER_NEAREST,
+        .minFilter = VK_FILTER_NEAREST,
+        .mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST,
+        .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+        .maxLod = VK_LOD_CLAMP_NONE,
+    };
+    VkSamplerCreateInfo linear_info = nearest_info;
+    linear_info.magFilter = linear_info.minFilter = VK_FILTER_LINEAR;
+    VkResult vr = vkCreateSampler(ctx->device, &nearest_info, ctx->alloc, &ctx->nearest_sampler);
+    if (vr == VK_SUCCESS) vr = vkCreateSampler(ctx->device, &linear_info, ctx->alloc, &ctx->linear_sampler);
+    if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateSampler");
+
+    VkDescriptorSetLayoutBinding bindings[CACAO_BINDING_COUNT];
+    for (unsigned b = 0; b < CACAO_BINDING_COUNT; ++b) {
+        VkDescriptorType type = cacao_binding_type(b);
+        bindings[b] = (VkDescriptorSetLayoutBinding){
+            .binding = b,
+            .descriptorType = type,
+            .descriptorCount = 1,
+            .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT,
+            .pImmutableSamplers = type != VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER ? NULL
+                                  : binding_is_linear(b)                            ? &ctx->linear_sampler
+                                                                                    : &ctx->nearest_sampler,
+        };
+    }
+    const VkDescriptorSetLayoutCreateInfo set_info = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+        .flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR,
+        .bindingCount = CACAO_BINDING_COUNT,
+        .pBindings = bindings,
+    };
+    vr = vkCreateDescriptorSetLayout(ctx->device, &set_info, ctx->alloc, &ctx->set_layout);
+    if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateDescriptorSetLayout");
+    const VkPipelineLayoutCreateInfo layout_info = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+        .setLayoutCount = 1,
+        .pSetLayouts = &ctx->set_layout,
+    };
+    vr = vkCreatePipelineLayout(ctx->device, &layout_info, ctx->alloc, &ctx->pipeline_layout);
+    return vr == VK_SUCCESS ? CACAO_SUCCESS : vk_fail(ctx, vr, "vkCreatePipelineLayout");
+}
+
+cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context **out) {
+    if (!out) return CACAO_ERROR_INVALID_ARGUMENT;
+    *out = NULL;
+    if (!desc || !desc->physical_device || !desc->device) return CACAO_ERROR_INVALID_ARGUMENT;
+    cacao_context *ctx = calloc(1, sizeof *ctx);
+    if (!ctx) return CACAO_ERROR_OUT_OF_MEMORY;
+    ctx->physical_device = desc->physical_device;
+    ctx->device = desc->device;
+    ctx->alloc = desc->allocation_callbacks;
+    ctx->pipeline_cache = desc->pipeline_cache;
+
+    ctx->push_descriptor =
+        (PFN_vkCmdPushDescriptorSetKHR)vkGetDeviceProcAddr(ctx->device, "vkCmdPushDescriptorSetKHR");
+    cacao_result r = CACAO_SUCCESS;
+    if (!ctx->push_descriptor)
+        r = cacao_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
+                       "context_desc.device: VK_KHR_push_descriptor is not enabled on this device");
+    VkPhysicalDeviceShaderFloat16Int8Features f16 = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES};
+    VkPhysicalDeviceFeatures2 features = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f16};
+    vkGetPhysicalDeviceFeatures2(ctx->physical_device, &features);
+    ctx->fp16_available = desc->shader_float16_enabled && f16.shaderFloat16;
+    if (r == CACAO_SUCCESS && !features.features.shaderStorageImageWriteWithoutFormat)
+        r = cacao_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
+                       "context_desc.physical_device lacks shaderStorageImageWriteWithoutFormat");
+    if (r == CACAO_SUCCESS) r = create_layouts(ctx);
+    if (r != CACAO_SUCCESS) {
+        cacao_context_destroy(ctx);
+        return r;
+    }
+    *out = ctx;
+    return CACAO_SUCCESS;
+}
+
+/* Frees everything resize created (not the layouts). */
+static void release_frame_resources(cacao_context *ctx) {
+    VkDevice d = ctx->device;
+    for (uint32_t i = 0; i < CACAO_PLAN_MAX_STEPS; ++i) {
+        if (ctx->pipelines[i]) vkDestroyPipeline(d, ctx->pipelines[i], ctx->alloc);
+        ctx->pipelines[i] = VK_NULL_HANDLE;
+    }
+    for (unsigned r = 0; r < CACAO_RES_COUNT; ++r) {
+        cacao_intermediate *im = &ctx->images[r];
+        for (unsigned m = 0; m < CACAO_DEPTH_MIP_COUNT; ++m)
+            if (im->mip_views[m]) vkDestroyImageView(d, im->mip_views[m], ctx->alloc);
+        if (im->view) vkDestroyImageView(d, im->view, ctx->alloc);
+        if (im->image) vkDestroyImage(d, im->image, ctx->alloc);
+        if (im->memory) vkFreeMemory(d, im->memory, ctx->alloc);
+        memset(im, 0, sizeof *im);
+    }
+    for (unsigned b = 0; b < 2; ++b) {
+        if (ctx->buffers[b]) vkDestroyBuffer(d, ctx->buffers[b], ctx->alloc);
+        if (ctx->buffer_memory[b]) vkFreeMemory(d, ctx->buffer_memory[b], ctx->alloc);
+        ctx->buffers[b] = VK_NULL_HANDLE;
+        ctx->buffer_memory[b] = VK_NULL_HANDLE;
+    }
+    ctx->ready = false;
+    ctx->memory = (cacao_memory_info){0};
+}
+
+void cacao_context_destroy(cacao_context *ctx) {
+    if (!ctx) return;
+    release_frame_resources(ctx);
+    VkDevice d = ctx->device;
+    if (ctx->pipeline_layout) vkDestroyPipelineLayout(d, ctx->pipeline_layout, ctx->alloc);
+    if (ctx->set_layout) vkDestroyDescriptorSetLayout(d, ctx->set_layout, ctx->alloc);
+    if (ctx->nearest_sampler) vkDestroySampler(d, ctx->nearest_sampler, ctx->alloc);
+    if (ctx->linear_sampler) vkDestroySampler(d, ctx->linear_sampler, ctx->alloc);
+    free(ctx);
+}
+
+cacao_result cacao_context_set_settings(cacao_context *ctx, const cacao_settings *settings) {
+    if (!ctx) return CACAO_ERROR_INVALID_ARGUMENT;
+    cacao_settings resolved;
+    cacao_result r = cacao_settings_resolve(settings, &resolved, ctx->last_error, sizeof ctx->last_error);
+    if (r != CACAO_SUCCESS) return r;
+    ctx->settings = *settings;
+    ctx->ready = false; /* takes effect at the next resize */
+    return CACAO_SUCCESS;
+}
+
+static cacao_result allocate_memory(cacao_context *ctx, VkMemoryRequirements req, VkMemoryPropertyFlags flags,
+                                    VkDeviceMemory *out) {
+    VkPhysicalDeviceMemoryProperties props;
+    vkGetPhysicalDeviceMemoryProperties(ctx->physical_device, &props);
+    for (uint32_t i = 0; i < props.memoryTypeCount; ++i) {
+        if (!(req.memoryTypeBits & (1u << i)) || (props.memoryTypes[i].propertyFlags & flags) != flags) continue;
+        const VkMemoryAllocateInfo info = {
+            .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size, .memoryTypeIndex = i};
+        VkResult vr = vkAllocateMemory(ctx->device, &info, ctx->alloc, out);
+        if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkAllocateMemory");
+        ctx->memory.total_bytes += req.size;
+        return CACAO_SUCCESS;
+    }
+    return cacao_fail(ctx, CACAO_ERROR_OUT_OF_MEMORY, "no device-local memory type fits an intermediate");
+}
+
+static cacao_result check_format(cacao_context *ctx, VkFormat format, bool linear, const char *what) {
+    VkFormatProperties props;
+    vkGetPhysicalDeviceFormatProperties(ctx->physical_device, format, &props);
+    VkFormatFeatureFlags need = VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
+    if (linear) need |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+    if ((props.optimalTilingFeatures & need) != need)
+        return cacao_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
+                          "the device cannot use format %d for %s as a storage and sampled image", (int)format, what);
+    return CACAO_SUCCESS;
+}
+
+static cacao_result create_image(cacao_context *ctx, const cacao_plan_image *pi) {
+    cacao_intermediate *im = &ctx->images[pi->resource];
+    const bool linear = pi->resource == CACAO_RES_SSAO_PING || pi->resource == CACAO_RES_SSAO_PONG ||
+                        pi->resource == CACAO_RES_IMPORTANCE || pi->resource == CACAO_RES_IMPORTANCE_PONG;
+    cacao_result r = check_format(ctx, pi->format, linear, cacao_resource_name(pi->resource));
+    if (r != CACAO_SUCCESS) return r;
+    const VkImageCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
+        .imageType = VK_IMAGE_TYPE_2D,
+        .format = pi->format,
+        .extent = {pi->width, pi->height, 1},
+        .mipLevels = pi->mips,
+        .arrayLayers = pi->layers,
+        .samples = VK_SAMPLE_COUNT_1_BIT,
+        .tiling = VK_IMAGE_TILING_OPTIMAL,
+        .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+        .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
+        .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
+    };
+    VkResult vr = vkCreateImage(ctx->device, &info, ctx->alloc, &im->image);
+    if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateImage");
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(ctx->device, im->image, &req);
+    r = allocate_memory(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, &im->memory);
+    if (r != CACAO_SUCCESS) return r;
+    vr = vkBindImageMemory(ctx->device, im->image, im->memory, 0);
+    if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkBindImageMemory");
+    const bool array = pi->resource != CACAO_RES_IMPORTANCE && pi->resource != CACAO_RES_IMPORTANCE_PONG;
+    VkImageViewCreateInfo view = {
+        .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+        .image = im->image,
+        .viewType = array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D,
+        .format = pi->format,
+        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, pi->mips, 0, pi->layers},
+    };
+    vr = vkCreateImageView(ctx->device, &view, ctx->alloc, &im->view);
+    for (uint32_t m = 0; vr == VK_SUCCESS && m < pi->mips; ++m) {
+        view.subresourceRange.baseMipLevel = m;
+        view.subresourceRange.levelCount = 1;
+        vr = vkCreateImageView(ctx->device, &view, ctx->alloc, &im->mip_views[m]);
+    }
+    if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateImageView");
+    im->layers = pi->layers;
+    im->mips = pi->mips;
+    ctx->memory.image_count++;
+    return CACAO_SUCCESS;
+}
+
+static cacao_result create_buffer(cacao_context *ctx, unsigned index, VkDeviceSize size, VkBufferUsageFlags usage) {
+    const VkBufferCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+        .size = size,
+        .usage = usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+        .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
+    };
+    VkResult vr = vkCreateBuffer(ctx->device, &info, ctx->alloc, &ctx->buffers[index]);
+    if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateBuffer");
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(ctx->device, ctx->buffers[index], &req);
+    cacao_result r = allocate_memory(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, &ctx->buffer_memory[index]);
+    if (r != CACAO_SUCCESS) return r;
+    vr = vkBindBufferMemory(ctx->device, ctx->buffers[index], ctx->buffer_memory[index], 0);
+    return vr == VK_SUCCESS ? CACAO_SUCCESS : vk_fail(ctx, vr, "vkBindBufferMemory");
+}
+
+/* The module's reflected bindings must be exactly what the plan step provides. */
+static bool step_matches_module(const cacao_plan_step *step, const cacao_permutation *perm) {
+    bool provided[CACAO_BINDING_COUNT] = {false};
+    for (uint32_t i = 0; i < step->binding_count; ++i) provided[step->bindings[i].binding] = true;
+    for (unsigned b = 0; b < CACAO_BINDING_COUNT; ++b)
+        if ((perm->bindings[b] != CACAO_RESOURCE_NONE) != provided[b]) return false;
+    return true;
+}
+
+static cacao_result create_pipeline(cacao_context *ctx, uint32_t index) {
+    const cacao_plan_step *step = &ctx->plan.steps[index];
+    const cacao_key key = cacao_plan_step_key(step);
+    const cacao_permutation *perm = cacao_table_find(&cacao_embedded_table, &key);
+    if (!perm)
+        return cacao_fail(ctx, CACAO_ERROR_PERMUTATION_MISSING,
+                          "permutation '%s' is not embedded in this build (subset %s); rebuild with it in "
+                          "CACAO_QUALITIES / CACAO_DOWNSAMPLE / CACAO_PRECISION",
+                          step->key_name, cacao_embedded_table.subset);
+    /* The plan and the generated table must agree (our invariant, not a user error). */
+    assert(step_matches_module(step, perm));
+    assert(step->dispatch[2] >= 1 && perm->workgroup_size[2] == 1);
+    if (!step_matches_module(step, perm))
+        return cacao_fail(ctx, CACAO_ERROR_VULKAN, "internal: plan step '%s' does not match its module's bindings",
+                          step->key_name);
+    const cacao_module *module = &cacao_embedded_table.modules[perm->module];
+    const VkShaderModuleCreateInfo module_info = {
+        .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+        .codeSize = module->word_count * sizeof(uint32_t),
+        .pCode = module->words,
+    };
+    VkShaderModule shader;
+    VkResult vr = vkCreateShaderModule(ctx->device, &module_info, ctx->alloc, &shader);
+    if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateShaderModule");
+    const VkComputePipelineCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                  .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                  .module = shader,
+                  .pName = cacao_embedded_table.entry_point},
+        .layout = ctx->pipeline_layout,
+    };
+    vr = vkCreateComputePipelines(ctx->device, ctx->pipeline_cache, 1, &info, ctx->alloc, &ctx->pipelines[index]);
+    vkDestroyShaderModule(ctx->device, shader, ctx->alloc);
+    if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateComputePipelines");
+    ctx->memory.pipeline_count++;
+    return CACAO_SUCCESS;
+}
+
+cacao_result cacao_context_resize(cacao_context *ctx, uint32_t width, uint32_t height, cacao_memory_info *out_info) {
+    if (!ctx) return CACAO_ERROR_INVALID_ARGUMENT;
+    cacao_settings settings = ctx->settings;
+    cacao_settings resolved;
+    cacao_result r = cacao_settings_resolve(&settings, &resolved, ctx->last_error, sizeof ctx->last_error);
+    if (r != CACAO_SUCCESS) return r;
+    if (resolved.precision == CACAO_PRECISION_FP16 && !ctx->fp16_available)
+        settings.precision = CACAO_PRECISION_FP32; /* documented fallback; cacao_context_precision tells */
+    cacao_plan plan;
+    r = cacao_plan_build(&settings, width, height, &plan, ctx->last_error, sizeof ctx->last_error);
+    if (r != CACAO_SUCCESS) return r;
+    /* Check every permutation before creating anything, so a missing one leaves nothing behind. */
+    for (uint32_t i = 0; i < plan.step_count; ++i) {
+        const cacao_key key = cacao_plan_step_key(&plan.steps[i]);
+        if (!cacao_table_find(&cacao_embedded_table, &key))
+            return cacao_fail(ctx, CACAO_ERROR_PERMUTATION_MISSING,
+                              "permutation '%s' is not embedded in this build (subset %s)", plan.steps[i].key_name,
+                              cacao_embedded_table.subset);
+    }
+    release_frame_resources(ctx);
+    ctx->plan = plan;
+    for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan.image_count; ++i) r = create_image(ctx, &plan.images[i]);
+    if (r == CACAO_SUCCESS)
+        r = create_buffer(ctx, CACAO_BUFFER_CONSTANTS, sizeof(cacao_constants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+    if (r == CACAO_SUCCESS && plan.uses_load_counter)
+        r = create_buffer(ctx, CACAO_BUFFER_LOAD_COUNTER, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan.step_count; ++i) r = create_pipeline(ctx, i);
+    if (r != CACAO_SUCCESS) {
+        release_frame_resources(ctx);
+        return r;
+    }
+    ctx->ready = true;
+    ctx->last_error[0] = '\0';
+    if (out_info) *out_info = ctx->memory;
+    return CACAO_SUCCESS;
+}

@@ -1,0 +1,26 @@
+/* internal.h - declarations shared by the runtime's source files (not installed). */
+#ifndef CACAO_INTERNAL_H
+#define CACAO_INTERNAL_H
+
+#include "cacao.h"
+#include "cacao_keys.h"
+#include "cacao_shared.h"
+#include "cacao_table.h"
+
+#define CACAO_MIN_SIZE 32
+
+/* printf-style error message into a caller buffer (NULL-safe). */
+void cacao_set_error(char *error, size_t error_size, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+/* The step's key as the key-space struct. */
+cacao_key cacao_plan_step_key(const cacao_plan_step *step);
+
+/* Checks the projection (finite, P(1,1) > 0, P(0,0) > 0, usable depth mapping). */
+cacao_result cacao_check_projection(const cacao_inputs *inputs, char *error, size_t error_size);
+
+/* spec: constants.md section 8 - fills the constant block from the plan and the frame's matrices.
+ * Pure; the inputs are assumed checked by cacao_check_projection. */
+void cacao_fill_constants(const cacao_plan *plan, const cacao_inputs *inputs, cacao_constants *out);
+
+#endif

@@ -1,0 +1,214 @@
+/* record.c - cacao_record: walks the plan, recording barriers, pushed descriptors and dispatches
+ * into the caller's command buffer. No submission, no waiting, no allocation. */
+#include "vulkan_internal.h"
+
+static bool format_in(VkFormat f, const VkFormat *list, size_t n) {
+    for (size_t i = 0; i < n; ++i)
+        if (list[i] == f) return true;
+    return false;
+}
+
+static const VkFormat depth_formats[] = {
+    VK_FORMAT_D32_SFLOAT,         VK_FORMAT_D16_UNORM,  VK_FORMAT_X8_D24_UNORM_PACK32, VK_FORMAT_D24_UNORM_S8_UINT,
+    VK_FORMAT_D32_SFLOAT_S8_UINT, VK_FORMAT_R32_SFLOAT, VK_FORMAT_R16_SFLOAT,
+};
+static const VkFormat normal_formats[] = {
+    VK_FORMAT_R8G8B8A8_UNORM,           VK_FORMAT_B8G8R8A8_UNORM,      VK_FORMAT_R8G8B8A8_SNORM,
+    VK_FORMAT_A2B10G10R10_UNORM_PACK32, VK_FORMAT_A2R10G10B10_UNORM_PACK32, VK_FORMAT_R16G16B16A16_UNORM,
+    VK_FORMAT_R16G16B16A16_SNORM,       VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT,
+};
+static const VkFormat output_formats[] = {VK_FORMAT_R32_SFLOAT, VK_FORMAT_R16_SFLOAT, VK_FORMAT_R8_UNORM,
+                                          VK_FORMAT_R16_UNORM};
+static const VkImageLayout read_layouts[] = {
+    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
+    VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL};
+
+static bool layout_readable(VkImageLayout layout) {
+    for (size_t i = 0; i < sizeof read_layouts / sizeof read_layouts[0]; ++i)
+        if (read_layouts[i] == layout) return true;
+    return false;
+}
+
+static VkImageAspectFlags aspect_of(VkFormat f) {
+    switch (f) {
+    case VK_FORMAT_D32_SFLOAT:
+    case VK_FORMAT_D16_UNORM:
+    case VK_FORMAT_X8_D24_UNORM_PACK32: return VK_IMAGE_ASPECT_DEPTH_BIT;
+    case VK_FORMAT_D24_UNORM_S8_UINT:
+    case VK_FORMAT_D32_SFLOAT_S8_UINT: return VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
+    default: return VK_IMAGE_ASPECT_COLOR_BIT;
+    }
+}
+
+static cacao_result check_image(cacao_context *ctx, const cacao_image *im, const char *field, const VkFormat *formats,
+                                size_t format_count, bool read) {
+    if (!im->image || !im->view)
+        return cacao_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "inputs.%s: image and view are required", field);
+    if (!format_in(im->format, formats, format_count))
+        return cacao_fail(ctx, CACAO_ERROR_UNSUPPORTED_FORMAT, "inputs.%s.format %d is not supported", field,
+                          (int)im->format);
+    if (read && !layout_readable(im->layout))
+        return cacao_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT,
+                          "inputs.%s.layout %d is not a shader-readable layout", field, (int)im->layout);
+    if (!read && (im->layout == VK_IMAGE_LAYOUT_UNDEFINED || im->layout == VK_IMAGE_LAYOUT_PREINITIALIZED))
+        return cacao_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "inputs.%s.layout must be a defined layout", field);
+    return CACAO_SUCCESS;
+}
+
+static cacao_result check_inputs(cacao_context *ctx, const cacao_inputs *in) {
+    cacao_result r = check_image(ctx, &in->depth, "depth", depth_formats,
+                                 sizeof depth_formats / sizeof depth_formats[0], true);
+    if (r == CACAO_SUCCESS && !ctx->plan.settings.generate_normals)
+        r = check_image(ctx, &in->normals, "normals", normal_formats,
+                        sizeof normal_formats / sizeof normal_formats[0], true);
+    if (r == CACAO_SUCCESS)
+        r = check_image(ctx, &in->output, "output", output_formats,
+                        sizeof output_formats / sizeof output_formats[0], false);
+    if (r == CACAO_SUCCESS) r = cacao_check_projection(in, ctx->last_error, sizeof ctx->last_error);
+    return r;
+}
+
+/* Image barrier on the whole first mip/layer range of an image. */
+static VkImageMemoryBarrier image_barrier(VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
+                                          VkImageLayout to, VkAccessFlags src, VkAccessFlags dst) {
+    return (VkImageMemoryBarrier){
+        .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
+        .srcAccessMask = src,
+        .dstAccessMask = dst,
+        .oldLayout = from,
+        .newLayout = to,
+        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .image = image,
+        .subresourceRange = {aspect, 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS},
+    };
+}
+
+/* Frame start: previous frames' accesses to our intermediates end before this frame overwrites
+ * them (their contents are discarded: UNDEFINED -> GENERAL), the caller's earlier writes to its
+ * inputs become visible, and the output goes to GENERAL for storage writes. */
+static void record_frame_start(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in) {
+    VkImageMemoryBarrier barriers[CACAO_RES_COUNT + 3];
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < ctx->plan.image_count; ++i)
+        barriers[n++] = image_barrier(ctx->images[ctx->plan.images[i].resource].image, VK_IMAGE_ASPECT_COLOR_BIT,
+                                      VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_ACCESS_SHADER_WRITE_BIT,
+                                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    barriers[n++] = image_barrier(in->depth.image, aspect_of(in->depth.format), in->depth.layout, in->depth.layout,
+                                  VK_ACCESS_MEMORY_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT);
+    if (!ctx->plan.settings.generate_normals)
+        barriers[n++] = image_barrier(in->normals.image, VK_IMAGE_ASPECT_COLOR_BIT, in->normals.layout,
+                                      in->normals.layout, VK_ACCESS_MEMORY_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT);
+    barriers[n++] = image_barrier(in->output.image, VK_IMAGE_ASPECT_COLOR_BIT, in->output.layout,
+                                  VK_IMAGE_LAYOUT_GENERAL, VK_ACCESS_MEMORY_WRITE_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+    /* Buffers: last frame's shader reads/writes end before this frame's transfer writes. */
+    const VkMemoryBarrier memory = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+                                    .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
+                                    .dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &memory, 0, NULL,
+                         n, barriers);
+}
+
+static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in) {
+    cacao_constants constants;
+    cacao_fill_constants(&ctx->plan, in, &constants);
+    vkCmdUpdateBuffer(cmd, ctx->buffers[CACAO_BUFFER_CONSTANTS], 0, sizeof constants, &constants);
+    if (ctx->plan.uses_load_counter)
+        vkCmdFillBuffer(cmd, ctx->buffers[CACAO_BUFFER_LOAD_COUNTER], 0, sizeof(uint32_t), 0);
+    const VkMemoryBarrier memory = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+        .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
+        .dstAccessMask = VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &memory, 0,
+                         NULL, 0, NULL);
+}
+
+/* Descriptor content of one plan binding. */
+typedef union descriptor_info {
+    VkDescriptorBufferInfo buffer;
+    VkDescriptorImageInfo image;
+} descriptor_info;
+
+static void describe(const cacao_context *ctx, const cacao_inputs *in, const cacao_plan_binding *b,
+                     descriptor_info *info) {
+    switch (b->resource) {
+    case CACAO_RES_CONSTANTS:
+        info->buffer = (VkDescriptorBufferInfo){ctx->buffers[CACAO_BUFFER_CONSTANTS], 0, sizeof(cacao_constants)};
+        return;
+    case CACAO_RES_LOAD_COUNTER:
+        info->buffer = (VkDescriptorBufferInfo){ctx->buffers[CACAO_BUFFER_LOAD_COUNTER], 0, sizeof(uint32_t)};
+        return;
+    case CACAO_RES_DEPTH_INPUT: info->image = (VkDescriptorImageInfo){0, in->depth.view, in->depth.layout}; return;
+    case CACAO_RES_NORMALS_INPUT:
+        info->image = (VkDescriptorImageInfo){0, in->normals.view, in->normals.layout};
+        return;
+    case CACAO_RES_OUTPUT: info->image = (VkDescriptorImageInfo){0, in->output.view, VK_IMAGE_LAYOUT_GENERAL}; return;
+    default: {
+        const cacao_intermediate *im = &ctx->images[b->resource];
+        const bool storage = cacao_binding_type(b->binding) == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+        info->image = (VkDescriptorImageInfo){0, storage ? im->mip_views[b->mip] : im->view, VK_IMAGE_LAYOUT_GENERAL};
+        return;
+    }
+    }
+}
+
+static void record_step(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in, uint32_t index) {
+    const cacao_plan_step *step = &ctx->plan.steps[index];
+    if (step->barrier_before) {
+        const VkMemoryBarrier memory = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+                                        .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT,
+                                        .dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
+                             &memory, 0, NULL, 0, NULL);
+    }
+    descriptor_info infos[CACAO_PLAN_MAX_BINDINGS];
+    VkWriteDescriptorSet writes[CACAO_PLAN_MAX_BINDINGS];
+    for (uint32_t i = 0; i < step->binding_count; ++i) {
+        const cacao_plan_binding *b = &step->bindings[i];
+        const VkDescriptorType type = cacao_binding_type(b->binding);
+        describe(ctx, in, b, &infos[i]);
+        const bool buffer = type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER || type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        writes[i] = (VkWriteDescriptorSet){
+            .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+            .dstBinding = b->binding,
+            .descriptorCount = 1,
+            .descriptorType = type,
+            .pImageInfo = buffer ? NULL : &infos[i].image,
+            .pBufferInfo = buffer ? &infos[i].buffer : NULL,
+        };
+    }
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->pipelines[index]);
+    ctx->push_descriptor(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->pipeline_layout, 0, step->binding_count, writes);
+    vkCmdDispatch(cmd, step->dispatch[0], step->dispatch[1], step->dispatch[2]);
+}
+
+cacao_result cacao_record(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in) {
+    if (!ctx) return CACAO_ERROR_INVALID_ARGUMENT;
+    if (!cmd || !in)
+        return cacao_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "%s is NULL", !cmd ? "command_buffer" : "inputs");
+    if (!ctx->ready)
+        return cacao_fail(ctx, CACAO_ERROR_NOT_READY, "cacao_context_resize must succeed before cacao_record");
+    cacao_result r = check_inputs(ctx, in);
+    if (r != CACAO_SUCCESS) return r;
+
+    record_frame_start(ctx, cmd, in);
+    record_constants(ctx, cmd, in);
+    const VkQueryPool timer = in->timestamp_query_pool;
+    if (timer)
+        vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timer, in->timestamp_first_query);
+    for (uint32_t i = 0; i < ctx->plan.step_count; ++i) {
+        record_step(ctx, cmd, in, i);
+        if (timer)
+            vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timer, in->timestamp_first_query + i + 1);
+    }
+
+    /* Output back to the caller's layout; its later accesses are ordered after our writes. */
+    const VkImageMemoryBarrier done =
+        image_barrier(in->output.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL, in->output.layout,
+                      VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, NULL, 0,
+                         NULL, 1, &done);
+    ctx->last_error[0] = '\0';
+    return CACAO_SUCCESS;
+}

@@ -1,0 +1,107 @@
+/* settings.c - defaults and validation of cacao_settings (spec: constants.md section 6). */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+
+#include "internal.h"
+
+void cacao_set_error(char *error, size_t error_size, const char *fmt, ...) {
+    if (!error || error_size == 0) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(error, error_size, fmt, ap);
+    va_end(ap);
+}
+
+const char *cacao_result_string(cacao_result result) {
+    switch (result) {
+    case CACAO_SUCCESS: return "success";
+    case CACAO_ERROR_INVALID_ARGUMENT: return "invalid argument";
+    case CACAO_ERROR_INVALID_SIZE: return "invalid size";
+    case CACAO_ERROR_UNSUPPORTED_FORMAT: return "unsupported format";
+    case CACAO_ERROR_PERMUTATION_MISSING: return "shader permutation not embedded in this build";
+    case CACAO_ERROR_UNSUPPORTED_DEVICE: return "unsupported device";
+    case CACAO_ERROR_NOT_READY: return "context not ready (call cacao_context_resize first)";
+    case CACAO_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case CACAO_ERROR_VULKAN: return "Vulkan error";
+    }
+    return "unknown result";
+}
+
+/* How a float field defaults and which values it accepts. */
+typedef struct float_rule {
+    const char *name;
+    size_t offset;
+    float fallback;      /* value used for 0 */
+    bool zero_allowed;   /* CACAO_ZERO selects a literal 0 */
+    float min, max;      /* accepted literal range (after defaults) */
+    bool min_exclusive;
+} float_rule;
+
+#define RULE(field, fallback, zero_ok, lo, hi, lo_excl) \
+    {#field, offsetof(cacao_settings, field), fallback, zero_ok, lo, hi, lo_excl}
+
+static const float_rule float_rules[] = {
+    RULE(radius, 1.2f, false, 0.0f, 100000.0f, true),
+    RULE(shadow_multiplier, 1.0f, false, 0.0f, 5.0f, true),
+    RULE(shadow_power, 1.5f, false, 0.0f, 10.0f, true),
+    RULE(shadow_clamp, 0.98f, false, 0.0f, 1.0f, true),
+    RULE(horizon_angle_threshold, 0.06f, true, 0.0f, 1.0f, false),
+    RULE(fade_out_from, 50.0f, true, 0.0f, 1e30f, false),
+    RULE(fade_out_to, 300.0f, false, 0.0f, 1e30f, true),
+    RULE(sharpness, 0.98f, true, 0.0f, 1.0f, false),
+    RULE(detail_shadow_strength, 0.5f, true, 0.0f, 5.0f, false),
+    RULE(adaptive_quality_limit, 0.45f, true, 0.0f, 1.0f, false),
+    RULE(bilateral_sigma_squared, 5.0f, false, 0.0f, 1e30f, true),
+    RULE(bilateral_similarity_distance_sigma, 0.01f, false, 0.0f, 1e30f, true),
+};
+
+cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *out, char *error,
+                                    size_t error_size) {
+    if (!in || !out) {
+        cacao_set_error(error, error_size, "settings: NULL pointer");
+        return CACAO_ERROR_INVALID_ARGUMENT;
+    }
+    cacao_settings s = *in;
+    for (size_t i = 0; i < sizeof float_rules / sizeof float_rules[0]; ++i) {
+        const float_rule *r = &float_rules[i];
+        float *v = (float *)((char *)&s + r->offset);
+        if (!isfinite(*v)) {
+            cacao_set_error(error, error_size, "settings.%s is not a finite number", r->name);
+            return CACAO_ERROR_INVALID_ARGUMENT;
+        }
+        if (*v == 0.0f) *v = r->fallback;
+        else if (r->zero_allowed && *v == CACAO_ZERO) *v = 0.0f;
+        bool low_ok = r->min_exclusive ? *v > r->min : *v >= r->min;
+        if (!low_ok || *v > r->max) {
+            cacao_set_error(error, error_size, "settings.%s = %g is outside %s%g, %g]%s", r->name, (double)*v,
+                            r->min_exclusive ? "(" : "[", (double)r->min, (double)r->max,
+                            r->zero_allowed ? " (use CACAO_ZERO for 0)" : "");
+            return CACAO_ERROR_INVALID_ARGUMENT;
+        }
+    }
+    if (!(s.fade_out_to > s.fade_out_from)) {
+        cacao_set_error(error, error_size, "settings.fade_out_to (%g) must be greater than fade_out_from (%g)",
+                        (double)s.fade_out_to, (double)s.fade_out_from);
+        return CACAO_ERROR_INVALID_ARGUMENT;
+    }
+    if (s.blur_pass_count == 0) s.blur_pass_count = 2;
+    else if (s.blur_pass_count == CACAO_BLUR_NONE) s.blur_pass_count = 0;
+    else if (s.blur_pass_count < 1 || s.blur_pass_count > 8) {
+        cacao_set_error(error, error_size, "settings.blur_pass_count = %d is outside 1..8 (0 = default, %d = none)",
+                        s.blur_pass_count, CACAO_BLUR_NONE);
+        return CACAO_ERROR_INVALID_ARGUMENT;
+    }
+    if (s.quality == CACAO_QUALITY_DEFAULT) s.quality = CACAO_QUALITY_HIGHEST;
+    if ((int)s.quality < CACAO_QUALITY_LOWEST || (int)s.quality > CACAO_QUALITY_HIGHEST) {
+        cacao_set_error(error, error_size, "settings.quality = %d is not a cacao_quality", (int)in->quality);
+        return CACAO_ERROR_INVALID_ARGUMENT;
+    }
+    if (s.precision == CACAO_PRECISION_DEFAULT) s.precision = CACAO_PRECISION_FP32;
+    if ((int)s.precision != CACAO_PRECISION_FP32 && (int)s.precision != CACAO_PRECISION_FP16) {
+        cacao_set_error(error, error_size, "settings.precision = %d is not a cacao_precision", (int)in->precision);
+        return CACAO_ERROR_INVALID_ARGUMENT;
+    }
+    *out = s;
+    return CACAO_SUCCESS;
+}

@@ -1,0 +1,49 @@
+/* vulkan_internal.h - the context struct and helpers shared by context.c and record.c. */
+#ifndef CACAO_VULKAN_INTERNAL_H
+#define CACAO_VULKAN_INTERNAL_H
+
+#include <stdarg.h>
+#include <stdio.h>
+
+#include "internal.h"
+
+typedef struct cacao_intermediate {
+    VkImage image;
+    VkDeviceMemory memory;
+    VkImageView view;                             /* all mips and layers, for sampling */
+    VkImageView mip_views[CACAO_DEPTH_MIP_COUNT]; /* one mip each, for storage writes */
+    uint32_t layers, mips;
+} cacao_intermediate;
+
+enum { CACAO_BUFFER_CONSTANTS = 0, CACAO_BUFFER_LOAD_COUNTER = 1 };
+
+struct cacao_context {
+    VkPhysicalDevice physical_device;
+    VkDevice device;
+    const VkAllocationCallbacks *alloc;
+    VkPipelineCache pipeline_cache;
+    PFN_vkCmdPushDescriptorSetKHR push_descriptor;
+    bool fp16_available;
+
+    cacao_settings settings;  /* as given (zero = default) */
+    bool ready;               /* plan, intermediates and pipelines exist */
+    cacao_plan plan;
+
+    VkSampler nearest_sampler, linear_sampler;
+    VkDescriptorSetLayout set_layout;
+    VkPipelineLayout pipeline_layout;
+    VkPipeline pipelines[CACAO_PLAN_MAX_STEPS]; /* one per plan step */
+    cacao_intermediate images[CACAO_RES_COUNT];
+    VkBuffer buffers[2];
+    VkDeviceMemory buffer_memory[2];
+    cacao_memory_info memory;
+    char last_error[256];
+};
+
+/* Sets the context's last error and returns result. */
+cacao_result cacao_fail(cacao_context *ctx, cacao_result result, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+VkDescriptorType cacao_binding_type(unsigned binding);
+
+#endif

@@ -1,0 +1,57 @@
+/* shadergen.h - internal interface of the build-time shader generator. */
+#ifndef SHADERGEN_H
+#define SHADERGEN_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "cacao_table.h"
+
+/* One compiled permutation. */
+typedef struct sg_module {
+    cacao_key key;
+    char name[CACAO_KEY_NAME_MAX];
+    uint32_t *words;
+    size_t word_count;
+    uint32_t dedup_of;         /* index of the first permutation with identical words, or itself */
+    uint32_t module_index;     /* index among unique modules */
+    uint32_t workgroup_size[3];
+    uint32_t uniform_size;
+    uint32_t push_constant_size;
+    uint8_t bindings[CACAO_BINDING_COUNT];
+} sg_module;
+
+typedef struct sg_options {
+    bool optimize;             /* run the SPIRV-Tools optimizer through glslang */
+    bool optimize_size;        /* size passes instead of performance passes */
+} sg_options;
+
+/* Builds the full shader text for a key: #version line, key defines, the shared header spliced in
+ * place of its #include, with #line directives so errors name the right file and line. */
+char *sg_specialise(const char *source, const char *shared_header, const cacao_key *key);
+
+/* Compiles GLSL text to SPIR-V 1.3 (Vulkan 1.1). On failure prints the key and log, returns false. */
+bool sg_compile(const char *text, const char *key_name, const sg_options *options, uint32_t **words,
+                size_t *word_count);
+
+/* Runs spvValidate (Vulkan 1.1 rules). On failure prints the key and diagnostic. */
+bool sg_validate(const uint32_t *words, size_t word_count, const char *key_name);
+
+/* Fills workgroup size, bindings, uniform and push-constant sizes from SPIRV-Cross reflection. */
+bool sg_reflect(sg_module *module);
+
+/* Marks identical modules (dedup_of, module_index); returns the number of unique modules. */
+uint32_t sg_dedup(sg_module *modules, size_t count);
+
+/* Writes cacao_spirv.c, cacao_table.c and VERSIONS into dir. */
+bool sg_emit(const char *dir, const sg_module *modules, size_t count, const char *subset);
+
+/* Versions of the compilers, as recorded in generated/VERSIONS. */
+const char *sg_glslang_version(void);
+const char *sg_spirv_tools_version(void);
+
+/* Reads a whole file; NULL (with a message naming the file) on failure. */
+char *sg_read_file(const char *path);
+
+#endif /* SHADERGEN_H */

@@ -1,0 +1,896 @@
+#version 450
+#extension GL_GOOGLE_include_directive : enable
+#if defined(CACAO_FP16) && CACAO_FP16 == 1
+#extension GL_EXT_shader_explicit_arithmetic_types_float16 : enable
+#endif
+#include "cacao_shared.h"
+
+/* cacao.comp - every CACAO compute pass in one templated source (spec: README.md "Pass graph").
+ *
+ * The generator defines CACAO_GLSL, CACAO_PASS, CACAO_VARIANT, CACAO_DOWNSAMPLED,
+ * CACAO_BLUR_PASSES and CACAO_FP16 (all integers). Each pass below has its own main() and
+ * declares only the bindings it uses, so reflection of a module shows exactly its resources.
+ *
+ * Out-of-bounds behaviour: AMD relies on D3D rules (an out-of-range integer load returns 0, an
+ * out-of-range store is dropped). Every load and store below that can leave its image is
+ * bounds-checked explicitly, so nothing depends on robustImageAccess.
+ *
+ * ---- fp16 variant (CACAO_FP16 == 1; blur, apply and upsample only) ----
+ * All texture coordinates, texel indices and view-space depths stay fp32 in every pass: UVs need
+ * more than 11 bits of mantissa at 1080p and view depth reaches thousands of units.
+ *  - blur: AO values (in [0,1]) are stored in shared memory as float16_t and blurred in half;
+ *    the unpacked edge weights (in [0,1] after the saturate) are stored as f16vec4. The kernel
+ *    sum of weights is at most 0.5 + 4 = 4.5 and the weighted sum at most 4.5, far inside the
+ *    half range; the spacing of half near 1 (2^-11) is 8x finer than the 8-bit output step.
+ *    (AMD keeps these values as half between iterations in both of its variants.)
+ *  - apply: the fetched AO values, unpacked edges (in [0,1]), the edge-derived sample shifts
+ *    (in [-1,1]) and the blend weights (each <= 1, sum <= 4) are half; the shifts are widened
+ *    to fp32 before they enter the UV arithmetic.
+ *  - upsample: table values (AO in [0,1]) and the weight accumulators are half: each weight is
+ *    wS*wZ <= 1 and the sum over 25 taps plus the 1e-3 epsilon is <= 25.001, the weighted AO
+ *    sum is <= the weight sum. The exponentials and the depth differences are computed in fp32
+ *    (AMD's 16-bit variant does the depth difference in half; fp32 is safer because view depths
+ *    above ~2000 would lose all bilateral discrimination in half, and depths above 65504 would
+ *    overflow). The table depths come from the R16F deinterleaved-depth texture, so storing
+ *    them as fp32 loses nothing.
+ * The fp32 variant does everything in fp32; values that AMD keeps in half-precision shared
+ * memory (blur values, upsample table values) are rounded through half there too so that the
+ * two variants and AMD see the same stored values.
+ */
+
+#if !defined(CACAO_PASS) || !defined(CACAO_VARIANT) || !defined(CACAO_DOWNSAMPLED) || \
+    !defined(CACAO_BLUR_PASSES) || !defined(CACAO_FP16)
+#error "cacao.comp needs CACAO_PASS, CACAO_VARIANT, CACAO_DOWNSAMPLED, CACAO_BLUR_PASSES, CACAO_FP16"
+#endif
+
+/* ---- Precision of the "real" values (fp16 variant: half) ---- */
+#if CACAO_FP16 == 1
+#define rfloat float16_t
+#define rvec2 f16vec2
+#define rvec4 f16vec4
+#else
+#define rfloat float
+#define rvec2 vec2
+#define rvec4 vec4
+#endif
+
+/* ============================== shared helpers ============================== */
+
+float sat(float x) { return clamp(x, 0.0, 1.0); }
+vec4 sat(vec4 x) { return clamp(x, vec4(0.0), vec4(1.0)); }
+
+/* D3D's max(0, x): a NaN operand yields the other operand, i.e. 0. */
+float max0(float x) { return x > 0.0 ? x : 0.0; }
+
+/* Layer of a 2D-array resource -> slice index k (spec: README "Notation"). */
+int slice_of_layer(int layer) { return cb.slice_count == 2 ? layer * 3 : layer; }
+
+/* Round a value to half precision and back: mirrors AMD's half-precision shared memory. */
+float round_to_half(float x) { return unpackHalf2x16(packHalf2x16(vec2(x, 0.0))).x; }
+
+/* Raw hardware depth -> positive view-space z (spec: prepare.md "Depth linearisation"). */
+float view_z(float d) { return cb.depth_unpack.x / (cb.depth_unpack.y - d); }
+
+/* Screen UV + view z -> view-space position (spec: README "P(uv, z)"). */
+vec3 view_pos(vec2 uv, float z) { return vec3((cb.ndc_to_view_mul * uv + cb.ndc_to_view_add) * z, z); }
+
+/* Edge weights toward L, R, T, B (spec: prepare.md "Edges"); 1 = no edge. */
+vec4 depth_edges(float c, float l, float r, float t, float b)
+{
+    vec4 d = vec4(l, r, t, b) - c;
+    vec4 ds = d + d.yxwz; /* each difference plus its opposite: slope compensation */
+    vec4 e = min(abs(d), abs(ds));
+    return sat(CACAO_EDGE_SLOPE - e / (CACAO_EDGE_DEPTH_FRACTION * c));
+}
+
+/* Per-sample obscurance (spec: generate.md "Obs"). max0 keeps D3D's NaN rule for a zero delta. */
+float obscurance(vec3 n, vec3 delta, float falloff, float horizon)
+{
+    float len2 = dot(delta, delta);
+    float cos_a = dot(n, delta) / sqrt(len2);
+    return max0(cos_a - horizon) * max0(1.0 + len2 * falloff);
+}
+
+/* 2 bits per direction, LRTB -> one UNORM8 value (spec: generate.md step 10b). */
+float pack_edges(vec4 e)
+{
+    e = roundEven(sat(e) * CACAO_EDGE_PACK_SCALE);
+    return dot(e, vec4(64.0, 16.0, 4.0, 1.0)) / 255.0;
+}
+
+/* Packed UNORM8 edges -> the 8-bit integer (exact for k/255 inputs). */
+uint edges_bits(float packed_value) { return uint(packed_value * 255.5); }
+
+/* Integer edge bits -> LRTB weights plus InvSharpness (spec: generate.md "UnpackEdges"). */
+rvec4 unpack_edge_bits(uint v)
+{
+    rvec4 e = rvec4(uvec4(v >> 6u, v >> 4u, v >> 2u, v) & uvec4(3u)) / rfloat(3.0);
+    return clamp(e + rfloat(cb.inv_sharpness), rvec4(0.0), rvec4(1.0));
+}
+rvec4 unpack_edges(float packed_value) { return unpack_edge_bits(edges_bits(packed_value)); }
+
+bool in_rect(ivec2 p, ivec2 size) { return all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, size)); }
+
+/* Mirror addressing (-1 -> 0, -2 -> 1, n -> n-1, ...), clamped for padding wider than n. */
+int mirror_coord(int c, int n)
+{
+    if (c < 0) c = -c - 1;
+    if (c >= n) c = 2 * n - c - 1;
+    return clamp(c, 0, n - 1);
+}
+ivec2 mirror_coord(ivec2 c, ivec2 n) { return ivec2(mirror_coord(c.x, n.x), mirror_coord(c.y, n.y)); }
+
+/* ============================== resources ============================== */
+
+#if CACAO_PASS == CACAO_PASS_PREPARE_DEPTHS || \
+    (CACAO_PASS == CACAO_PASS_PREPARE_NORMALS && CACAO_VARIANT == 0) || CACAO_PASS == CACAO_PASS_UPSAMPLE
+layout(set = 0, binding = CACAO_BINDING_SRC_DEPTH) uniform sampler2D src_depth;
+
+/* Integer load of the caller's depth with clamp-to-edge (what AMD's gathers/samples read). */
+float load_src_depth_clamped(ivec2 p)
+{
+    ivec2 size = textureSize(src_depth, 0);
+    return texelFetch(src_depth, clamp(p, ivec2(0), size - 1), 0).r;
+}
+
+/* Integer load of the caller's depth, out of bounds -> raw 0 (D3D load rule). */
+float load_src_depth_or_zero(ivec2 p)
+{
+    return in_rect(p, textureSize(src_depth, 0)) ? texelFetch(src_depth, p, 0).r : 0.0;
+}
+#endif
+
+#if CACAO_PASS == CACAO_PASS_PREPARE_NORMALS && CACAO_VARIANT == 1
+layout(set = 0, binding = CACAO_BINDING_SRC_NORMALS) uniform sampler2D src_normals;
+#endif
+
+#if CACAO_PASS == CACAO_PASS_GENERATE || CACAO_PASS == CACAO_PASS_UPSAMPLE
+layout(set = 0, binding = CACAO_BINDING_DEPTHS) uniform sampler2DArray depths;
+#endif
+
+#if CACAO_PASS == CACAO_PASS_GENERATE
+layout(set = 0, binding = CACAO_BINDING_NORMALS) uniform sampler2DArray normals;
+#endif
+
+#if CACAO_PASS == CACAO_PASS_IMPORTANCE || CACAO_PASS == CACAO_PASS_BLUR || \
+    CACAO_PASS == CACAO_PASS_APPLY || CACAO_PASS == CACAO_PASS_UPSAMPLE
+layout(set = 0, binding = CACAO_BINDING_SSAO_IN) uniform sampler2DArray ssao_in;
+#endif
+
+#if (CACAO_PASS == CACAO_PASS_GENERATE && CACAO_VARIANT == CACAO_GENERATE_Q3)
+layout(set = 0, binding = CACAO_BINDING_SSAO_BASE) uniform sampler2DArray ssao_base;
+#endif
+
+#if (CACAO_PASS == CACAO_PASS_GENERATE && CACAO_VARIANT == CACAO_GENERATE_Q3) || \
+    CACAO_PASS == CACAO_PASS_IMPORTANCE_A || CACAO_PASS == CACAO_PASS_IMPORTANCE_B
+layout(set = 0, binding = CACAO_BINDING_IMPORTANCE_IN) uniform sampler2D importance_in;
+#endif
+
+#if (CACAO_PASS == CACAO_PASS_GENERATE && CACAO_VARIANT == CACAO_GENERATE_Q3) || \
+    CACAO_PASS == CACAO_PASS_IMPORTANCE_B
+layout(std430, set = 0, binding = CACAO_BINDING_LOAD_COUNTER) buffer cacao_load_counter { uint load_counter; };
+#endif
+
+#if CACAO_PASS == CACAO_PASS_PREPARE_DEPTHS
+layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT0, r16f) uniform writeonly image2DArray depths_out0;
+#if CACAO_VARIANT == CACAO_DEPTHS_MIPS
+layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT1, r16f) uniform writeonly image2DArray depths_out1;
+layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT2, r16f) uniform writeonly image2DArray depths_out2;
+layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT3, r16f) uniform writeonly image2DArray depths_out3;
+#endif
+#endif
+
+#if CACAO_PASS == CACAO_PASS_PREPARE_NORMALS
+layout(set = 0, binding = CACAO_BINDING_NORMALS_OUT, rgba8_snorm) uniform writeonly image2DArray normals_out;
+#endif
+
+#if CACAO_PASS == CACAO_PASS_GENERATE || CACAO_PASS == CACAO_PASS_BLUR
+layout(set = 0, binding = CACAO_BINDING_SSAO_OUT, rg8) uniform writeonly image2DArray ssao_out;
+#endif
+
+#if CACAO_PASS == CACAO_PASS_IMPORTANCE || CACAO_PASS == CACAO_PASS_IMPORTANCE_A || \
+    CACAO_PASS == CACAO_PASS_IMPORTANCE_B
+layout(set = 0, binding = CACAO_BINDING_IMPORTANCE_OUT, r8) uniform writeonly image2D importance_out;
+#endif
+
+#if CACAO_PASS == CACAO_PASS_APPLY || CACAO_PASS == CACAO_PASS_UPSAMPLE
+/* No format qualifier: the caller's image format (shaderStorageImageWriteWithoutFormat). */
+layout(set = 0, binding = CACAO_BINDING_OUTPUT) uniform writeonly image2D output_image;
+#endif
+
+/* Full-resolution pixel that slice texel t of slice k holds (spec: prepare.md table). */
+ivec2 full_res_pixel(ivec2 t, int slice)
+{
+    ivec2 d = ivec2(slice & 1, slice >> 1);
+#if CACAO_DOWNSAMPLED == 1
+    return 4 * t + 2 * d;
+#else
+    return 2 * t + d;
+#endif
+}
+
+/* ============================== PREPARE_DEPTHS ============================== */
+#if CACAO_PASS == CACAO_PASS_PREPARE_DEPTHS
+/* spec: prepare.md "Which full-resolution pixels each slice keeps", "Depth mips" */
+layout(local_size_x = CACAO_WG_PREPARE_X, local_size_y = CACAO_WG_PREPARE_Y) in;
+
+#if CACAO_VARIANT == CACAO_DEPTHS_MIPS
+/* Per-slice tiles of mips 0..2 of this group, fp32 (AMD does not re-quantise between levels). */
+shared float lds_mip0[4][64];
+shared float lds_mip1[4][16];
+shared float lds_mip2[4][4];
+
+/* Depth-aware average; F = -1 ([quirk] MIP-WEIGHT-PRECEDENCE kept). */
+float smart_average(float d0, float d1, float d2, float d3)
+{
+    float m = min(min(d0, d1), min(d2, d3));
+    vec4 d = vec4(d0, d1, d2, d3);
+    vec4 dm = d - m;
+    vec4 w = sat(1.0 + (CACAO_MIP_WEIGHT_FALLOFF) * dm * dm);
+    return dot(w, d) / dot(w, vec4(1.0));
+}
+
+void store_mip(int level, ivec2 p, int layer, float z)
+{
+    if (level == 1) { if (in_rect(p, imageSize(depths_out1).xy)) imageStore(depths_out1, ivec3(p, layer), vec4(z)); }
+    else if (level == 2) { if (in_rect(p, imageSize(depths_out2).xy)) imageStore(depths_out2, ivec3(p, layer), vec4(z)); }
+    else { if (in_rect(p, imageSize(depths_out3).xy)) imageStore(depths_out3, ivec3(p, layer), vec4(z)); }
+}
+#endif
+
+void main()
+{
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 s = imageSize(depths_out0).xy;
+    bool t_in = in_rect(t, s);
+
+#if CACAO_VARIANT == CACAO_DEPTHS_HALF
+    /* LOWEST: slices 0 and 3 in layers 0 and 1; integer loads, OOB -> raw 0 (z = M/A). */
+    if (!t_in) return;
+    imageStore(depths_out0, ivec3(t, 0), vec4(view_z(load_src_depth_or_zero(full_res_pixel(t, 0)))));
+    imageStore(depths_out0, ivec3(t, 1), vec4(view_z(load_src_depth_or_zero(full_res_pixel(t, 3)))));
+#else
+    /* Four slices; clamp-to-edge reads (the footprint AMD's gather / point samples intend). */
+    float z[4];
+    for (int k = 0; k < 4; ++k) {
+        z[k] = view_z(load_src_depth_clamped(full_res_pixel(t, k)));
+        if (t_in) imageStore(depths_out0, ivec3(t, k), vec4(z[k]));
+    }
+
+#if CACAO_VARIANT == CACAO_DEPTHS_MIPS
+    /* Every thread of the group contributes, including out-of-range ones (clamped values). */
+    int li = int(gl_LocalInvocationIndex);
+    ivec2 g = ivec2(gl_WorkGroupID.xy);
+    for (int k = 0; k < 4; ++k) lds_mip0[k][li] = z[k];
+    barrier();
+
+    { /* mip 1: 4 slices x 4x4 texels = 64 work items, one per thread */
+        int k = li / 16, j = li % 16, a = j % 4, b = j / 4;
+        float m = smart_average(lds_mip0[k][(2 * b) * 8 + 2 * a], lds_mip0[k][(2 * b + 1) * 8 + 2 * a],
+                                lds_mip0[k][(2 * b) * 8 + 2 * a + 1], lds_mip0[k][(2 * b + 1) * 8 + 2 * a + 1]);
+        lds_mip1[k][b * 4 + a] = m;
+        store_mip(1, g * 4 + ivec2(a, b), k, m);
+    }
+    barrier();
+
+    if (li < 16) { /* mip 2: 4 slices x 2x2 texels */
+        int k = li / 4, j = li % 4, a = j % 2, b = j / 2;
+        float m = smart_average(lds_mip1[k][(2 * b) * 4 + 2 * a], lds_mip1[k][(2 * b + 1) * 4 + 2 * a],
+                                lds_mip1[k][(2 * b) * 4 + 2 * a + 1], lds_mip1[k][(2 * b + 1) * 4 + 2 * a + 1]);
+        lds_mip2[k][b * 2 + a] = m;
+        store_mip(2, g * 2 + ivec2(a, b), k, m);
+    }
+    barrier();
+
+    if (li < 4) { /* mip 3: 4 slices x 1 texel */
+        int k = li;
+        float m = smart_average(lds_mip2[k][0], lds_mip2[k][2], lds_mip2[k][1], lds_mip2[k][3]);
+        store_mip(3, g, k, m);
+    }
+#endif
+#endif
+}
+#endif /* PREPARE_DEPTHS */
+
+/* ============================== PREPARE_NORMALS ============================== */
+#if CACAO_PASS == CACAO_PASS_PREPARE_NORMALS
+/* spec: prepare.md "Normals from input normals", "Normals reconstructed from depth" */
+layout(local_size_x = CACAO_WG_PREPARE_X, local_size_y = CACAO_WG_PREPARE_Y) in;
+
+void main()
+{
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    if (!in_rect(t, imageSize(normals_out).xy)) return; /* no side effects: no LDS, no atomics */
+
+#if CACAO_VARIANT == 1
+    /* Transform the caller's normal; not renormalised ([quirk] NORMALS-NOT-NORMALIZED). */
+    ivec2 size = textureSize(src_normals, 0);
+    for (int layer = 0; layer < cb.slice_count; ++layer) {
+        ivec2 p = full_res_pixel(t, slice_of_layer(layer));
+        vec3 rgb = in_rect(p, size) ? texelFetch(src_normals, p, 0).rgb : vec3(0.0);
+        vec3 n = rgb * cb.normals_unpack_mul + cb.normals_unpack_add;
+        vec3 nv = (cb.normals_to_view * vec4(n, 0.0)).xyz; /* n'_j = sum_i E[j][i] n_i */
+        imageStore(normals_out, ivec3(t, layer), vec4(clamp(nv, vec3(-1.0), vec3(1.0)), 1.0));
+    }
+#else
+    /* 4x4 neighbourhood without corners; pos[j][i] = column i, row j. */
+    vec3 pos[4][4];
+    for (int j = 0; j < 4; ++j) {
+        for (int i = 0; i < 4; ++i) {
+            pos[j][i] = vec3(0.0);
+            if ((i == 0 || i == 3) && (j == 0 || j == 3)) continue;
+            ivec2 o = ivec2(i - 1, j - 1);
+#if CACAO_DOWNSAMPLED == 1
+            /* integer loads: OOB -> raw 0 ([quirk] DOWNSAMPLED-NORMAL-OOB kept) */
+            float d = load_src_depth_or_zero(4 * t + 2 * o);
+            vec2 uv = (vec2(4 * t) + 0.5 + 2.0 * vec2(o)) * cb.depth_buffer_inverse_dimensions;
+#else
+            /* AMD's gathers use clamp-to-edge */
+            float d = load_src_depth_clamped(2 * t + o);
+            vec2 uv = (vec2(2 * t) + 0.5 + vec2(o)) * cb.depth_buffer_inverse_dimensions;
+#endif
+            pos[j][i] = view_pos(uv, view_z(d));
+        }
+    }
+
+    for (int layer = 0; layer < cb.slice_count; ++layer) {
+        int k = slice_of_layer(layer);
+        int ci = 1 + (k & 1), cj = 1 + (k >> 1); /* centre (1,1) slice 0 ... (2,2) slice 3 */
+        vec3 pc = pos[cj][ci];
+        vec3 pl = pos[cj][ci - 1], pr = pos[cj][ci + 1];
+        vec3 pt = pos[cj - 1][ci], pb = pos[cj + 1][ci];
+        vec4 e = depth_edges(pc.z, pl.z, pr.z, pt.z, pb.z);
+        vec4 a = vec4(e.x * e.z, e.z * e.y, e.y * e.w, e.w * e.x);
+        vec3 l = normalize(pl - pc), r = normalize(pr - pc);
+        vec3 u = normalize(pt - pc), b = normalize(pb - pc);
+        vec3 n = vec3(0.0, 0.0, CACAO_NORMAL_BIAS_Z) + a.x * cross(l, u) + a.y * cross(u, r) +
+                 a.z * cross(r, b) + a.w * cross(b, l);
+        n = normalize(n);
+        imageStore(normals_out, ivec3(t, layer), vec4(n, 1.0));
+    }
+#endif
+}
+#endif /* PREPARE_NORMALS */
+
+/* ============================== GENERATE ============================== */
+#if CACAO_PASS == CACAO_PASS_GENERATE
+/* spec: generate.md steps 1-10, adaptive.md (Q3) */
+layout(local_size_x = CACAO_WG_GENERATE_X, local_size_y = CACAO_WG_GENERATE_Y) in;
+
+#if CACAO_VARIANT == CACAO_GENERATE_Q3_BASE
+#define GEN_Q 3
+#define GEN_BASE 1
+#define GEN_TAPS CACAO_TAPS_Q3_BASE
+#else
+#define GEN_Q CACAO_VARIANT
+#define GEN_BASE 0
+#if CACAO_VARIANT == CACAO_GENERATE_Q0
+#define GEN_TAPS CACAO_TAPS_Q0
+#elif CACAO_VARIANT == CACAO_GENERATE_Q1
+#define GEN_TAPS CACAO_TAPS_Q1
+#elif CACAO_VARIANT == CACAO_GENERATE_Q2
+#define GEN_TAPS CACAO_TAPS_Q2
+#else
+#define GEN_TAPS 0 /* Q3: taps 0..4 come from the base pass */
+#endif
+#endif
+
+const float sample_pattern[128] = float[128](CACAO_SAMPLE_PATTERN_VALUES);
+
+vec4 pattern_entry(int i) /* (x, y, weight, mip term) */
+{
+    return vec4(sample_pattern[4 * i], sample_pattern[4 * i + 1], sample_pattern[4 * i + 2], sample_pattern[4 * i + 3]);
+}
+
+/* Deinterleaved depth at slice texel p, mip 0, mirror addressing (AMD: PointMirror gathers). */
+float load_depth_mirror(ivec2 p, ivec2 s, int layer)
+{
+    return texelFetch(depths, ivec3(mirror_coord(p, s), layer), 0).r;
+}
+
+/* Normal at slice texel p; OOB -> (0,0,0) ([quirk] NORMAL-EDGE-OOB kept). */
+vec3 load_normal_or_zero(ivec2 p, ivec2 s, int layer)
+{
+    return in_rect(p, s) ? texelFetch(normals, ivec3(p, layer), 0).xyz : vec3(0.0);
+}
+
+/* ViewspaceDepthTap (point, clamp, explicit LOD) at the centre of slice texel p, emulated with
+ * integer math: the texel of level L that covers UV (p + 0.5)/S. */
+float depth_tap(ivec2 p, int level, ivec2 s, int layer)
+{
+    ivec2 pc = clamp(p, ivec2(0), s - 1);
+    ivec2 sl = max(s >> level, ivec2(1));
+    ivec2 tl = min(((2 * pc + 1) * sl) / (2 * s), sl - 1);
+    return texelFetch(depths, ivec3(tl, layer), level).r;
+}
+
+/* Nearest mip for an explicit LOD, with Vulkan's round-half-down: ceil(lod + 0.5) - 1. */
+int nearest_level(float mip, int max_level)
+{
+    float m = clamp(mip, 0.0, float(max_level)); /* also maps -inf (radius 0) to level 0 */
+    return clamp(int(ceil(m + 0.5)) - 1, 0, max_level);
+}
+
+/* The two mirrored samples of one tap (generate.md step 9 / adaptive.md D). */
+void accumulate_tap(vec4 s, bool use_pattern_weight, ivec2 xy, vec2 uvd, vec2 inv_s, ivec2 size,
+                    int layer, int max_level, vec4 rot_scale, float mip_offset, vec3 pc, vec3 n,
+                    float falloff, inout float obsc_sum, inout float weight_sum)
+{
+    vec2 off = vec2(rot_scale.x * s.x + rot_scale.y * s.y, rot_scale.z * s.x + rot_scale.w * s.y);
+    ivec2 o = ivec2(roundEven(off)); /* snap to whole slice texels */
+#if GEN_Q >= 2
+    int level = nearest_level(s.w + mip_offset, max_level);
+#else
+    int level = 0;
+#endif
+    for (int side = 0; side < 2; ++side) {
+        ivec2 os = side == 0 ? o : -o;
+        vec2 uv = uvd + vec2(os) * inv_s;
+        float z = depth_tap(xy + os, level, size, layer);
+        vec3 delta = vec3((cb.depth_uv_to_view_mul * uv + cb.depth_uv_to_view_add) * z, z) - pc;
+        float ob = obscurance(n, delta, falloff, cb.effect_horizon_angle_threshold);
+        float w = 1.0;
+#if GEN_Q >= 1
+        /* haloing reduction, with the global radius ([quirk] HALO-GLOBAL-RADIUS) */
+        w = CACAO_HALO_AMOUNT * sat(max0(-delta.z) * cb.neg_rec_effect_radius + 2.0) + (1.0 - CACAO_HALO_AMOUNT);
+#endif
+        if (use_pattern_weight) w *= s.z; /* adaptive taps: halo only ([quirk] ADAPTIVE-WEIGHTMOD) */
+        obsc_sum += ob * w;
+        weight_sum += w;
+    }
+}
+
+void main()
+{
+    ivec2 xy = ivec2(gl_GlobalInvocationID.xy);
+    int layer = int(gl_WorkGroupID.z);
+    int slice = slice_of_layer(layer);
+    ivec2 size = textureSize(depths, 0).xy;
+    if (!in_rect(xy, size)) return; /* no LDS, no barriers, no atomics: safe to leave */
+    int max_level = textureQueryLevels(depths) - 1;
+    vec2 inv_s = cb.ssao_buffer_inverse_dimensions; /* = deinterleaved-depth inverse size */
+
+    /* 1. centre, neighbours (mirror), view position, normal, pixel size */
+    vec2 uvd = (vec2(xy) + 0.5) * inv_s;
+    float zc = texelFetch(depths, ivec3(xy, layer), 0).r;
+    float zl = load_depth_mirror(xy + ivec2(-1, 0), size, layer);
+    float zr = load_depth_mirror(xy + ivec2(1, 0), size, layer);
+    float zt = load_depth_mirror(xy + ivec2(0, -1), size, layer);
+    float zb = load_depth_mirror(xy + ivec2(0, 1), size, layer);
+    vec2 uvs = uvd; /* slice UV used as screen UV ([quirk] SLICE-SUBPIXEL) */
+    vec3 pc = view_pos(uvs, zc);
+    vec3 n = texelFetch(normals, ivec3(xy, layer), 0).xyz;
+    vec2 px_size = zc * cb.ndc_to_view_mul * inv_s; /* .y negative */
+
+    /* 2. radius parameters from the unscaled centre */
+    float near_mod = sat(length(pc) * cb.effect_sampling_radius_near_limit_rec) * CACAO_NEAR_LIMIT_SCALE + CACAO_NEAR_LIMIT_BIAS;
+    float r_eff = cb.effect_radius * near_mod;
+    float radius_px = CACAO_LOOKUP_RADIUS_FACTOR * r_eff / px_size.x;
+    float falloff = -1.0 / (r_eff * r_eff);
+
+    /* 3. per-pixel rotation/scale of the pattern */
+    int ri = (2 * xy.y + xy.x) % 5;
+    vec4 rot_scale = cb.pattern_rot_scale[slice * 5 + ri] * radius_px;
+
+    /* 4. self-occlusion guard for the R16F depths */
+    pc *= cb.depth_precision_offset_mod;
+
+    /* 5. depth edges; 6. detail AO */
+    vec4 edges = vec4(1.0);
+    float obsc_sum = 0.0;
+    float weight_sum = 0.0;
+#if GEN_Q >= 1 && GEN_BASE == 0
+    edges = depth_edges(zc, zl, zr, zt, zb);
+    {
+        vec3 v = vec3(pc.xy / pc.z, 1.0);
+        vec3 dl = vec3(-px_size.x, 0.0, 0.0) + v * (zl - pc.z);
+        vec3 dr = vec3(px_size.x, 0.0, 0.0) + v * (zr - pc.z);
+        vec3 dt = vec3(0.0, -px_size.y, 0.0) + v * (zt - pc.z);
+        vec3 db = vec3(0.0, px_size.y, 0.0) + v * (zb - pc.z);
+        float f4 = CACAO_DETAIL_FALLOFF_MUL * falloff;
+        float h = cb.effect_horizon_angle_threshold;
+        vec4 ob = vec4(obscurance(n, dl, f4, h), obscurance(n, dr, f4, h), obscurance(n, dt, f4, h), obscurance(n, db, f4, h));
+        obsc_sum = cb.detail_ao_strength * dot(edges, ob);
+    }
+#endif
+
+    /* 7. normal edges */
+#if GEN_Q >= 2 && GEN_BASE == 0
+    {
+        vec3 nl = load_normal_or_zero(xy + ivec2(-1, 0), size, layer);
+        vec3 nr = load_normal_or_zero(xy + ivec2(1, 0), size, layer);
+        vec3 nt = load_normal_or_zero(xy + ivec2(0, -1), size, layer);
+        vec3 nb = load_normal_or_zero(xy + ivec2(0, 1), size, layer);
+        edges *= sat(vec4(dot(n, nl), dot(n, nr), dot(n, nt), dot(n, nb)) + CACAO_NORMAL_EDGE_THRESHOLD);
+    }
+#endif
+
+    /* 8. mip offset */
+#if GEN_Q >= 2
+    float mip_offset = log2(radius_px) + (CACAO_MIP_OFFSET);
+#else
+    float mip_offset = 0.0;
+#endif
+
+    /* 9. taps */
+#if GEN_TAPS > 0
+    for (int i = 0; i < GEN_TAPS; ++i)
+        accumulate_tap(pattern_entry(i), true, xy, uvd, inv_s, size, layer, max_level, rot_scale,
+                       mip_offset, pc, n, falloff, obsc_sum, weight_sum);
+#endif
+
+#if GEN_BASE == 1
+    /* 10a. raw obscurance and weight/20 for the adaptive pass */
+    imageStore(ssao_out, ivec3(xy, layer), vec4(obsc_sum / weight_sum, weight_sum / CACAO_BASE_WEIGHT_SCALE, 0.0, 0.0));
+#else
+
+#if CACAO_VARIANT == CACAO_GENERATE_Q3
+    /* adaptive.md A: importance at the (offset) full-res UV ([quirk] FULLRES-UV kept) */
+    vec2 uv_full = uvs + cb.per_slice_full_res_uv_offset[slice].xy;
+    float importance = textureLod(importance_in, uv_full, 0.0).r;
+
+    /* B: detail AO rescale (raw importance, [quirk] ADAPTIVE-DETAIL-SCALE), then the base taps.
+     * base_from_all_slices != 0: own slice's base ([quirk] BASE-SLICE-VIEW fixed);
+     * == 0: v1.2 under D3D rules, only slice 0 finds its base, the others read (0,0). */
+    obsc_sum *= float(CACAO_ADAPTIVE_TAP_BASE_COUNT) / float(CACAO_MAX_TAPS) +
+                importance * float(CACAO_ADAPTIVE_TAP_FLEXIBLE_COUNT) / float(CACAO_MAX_TAPS);
+    vec2 base = vec2(0.0);
+    if (cb.base_from_all_slices != 0 || slice == 0) base = texelFetch(ssao_base, ivec3(xy, layer), 0).rg;
+    weight_sum += base.g * CACAO_BASE_WEIGHT_SCALE;
+    obsc_sum += base.r * weight_sum;
+
+    /* C: number of extra taps (limiter with D3D's saturate: NaN -> 0, +inf -> 1) */
+    float avg_importance = float(load_counter) * cb.load_counter_avg_div;
+    float limiter = cb.adaptive_sample_count_limit / avg_importance;
+    limiter = limiter > 0.0 ? min(limiter, 1.0) : 0.0;
+    uint extra = uint(float(CACAO_ADAPTIVE_TAP_FLEXIBLE_COUNT) * (importance * limiter) + 1.5);
+    int tap_end = int(min(uint(CACAO_MAX_TAPS), extra + uint(CACAO_ADAPTIVE_TAP_BASE_COUNT)));
+
+    /* D: extra taps, halo weight only */
+    for (int i = CACAO_ADAPTIVE_TAP_BASE_COUNT; i < tap_end; ++i)
+        accumulate_tap(pattern_entry(i), false, xy, uvd, inv_s, size, layer, max_level, rot_scale,
+                       mip_offset, pc, n, falloff, obsc_sum, weight_sum);
+#endif
+
+    /* 10b. final shaping */
+    float obsc = obsc_sum / weight_sum;
+    float fade = sat(pc.z * cb.effect_fade_out_mul + cb.effect_fade_out_add);
+#if GEN_Q >= 1
+    float edge_fade = sat((1.0 - edges.x - edges.y) * CACAO_EDGE_FADE) + sat((1.0 - edges.z - edges.w) * CACAO_EDGE_FADE);
+    fade *= sat(1.0 - edge_fade);
+#endif
+    obsc = min(cb.effect_shadow_strength * obsc, cb.effect_shadow_clamp) * fade;
+    float ao = pow(sat(1.0 - obsc), cb.effect_shadow_pow);
+#if GEN_Q >= 1
+    float packed_edges = pack_edges(edges);
+#else
+    float packed_edges = 1.0; /* Q0: no edges */
+#endif
+    imageStore(ssao_out, ivec3(xy, layer), vec4(ao, packed_edges, 0.0, 0.0));
+#endif
+}
+#endif /* GENERATE */
+
+/* ============================== IMPORTANCE ============================== */
+#if CACAO_PASS == CACAO_PASS_IMPORTANCE
+/* spec: importance.md "GenerateImportanceMap" */
+layout(local_size_x = CACAO_WG_IMPORTANCE_X, local_size_y = CACAO_WG_IMPORTANCE_Y) in;
+
+void main()
+{
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    if (!in_rect(t, imageSize(importance_out))) return;
+    ivec2 s = textureSize(ssao_in, 0).xy;
+    float mx = 0.0, mn = 1.0;
+    for (int k = 0; k < 4; ++k) {
+        for (int b = 0; b < 2; ++b) {
+            for (int a = 0; a < 2; ++a) {
+                ivec2 p = clamp(2 * t + ivec2(a, b), ivec2(0), s - 1);
+                float v = texelFetch(ssao_in, ivec3(p, k), 0).r;
+                v = pow(sat(1.0 - cb.effect_shadow_strength * v), cb.effect_shadow_pow); /* no clamp, no fade */
+                mx = max(mx, v);
+                mn = min(mn, v);
+            }
+        }
+    }
+    imageStore(importance_out, t, vec4(pow(sat(2.0 * (mx - mn)), CACAO_IMPORTANCE_POWER)));
+}
+#endif /* IMPORTANCE */
+
+/* ============================== IMPORTANCE_A / IMPORTANCE_B ============================== */
+#if CACAO_PASS == CACAO_PASS_IMPORTANCE_A || CACAO_PASS == CACAO_PASS_IMPORTANCE_B
+/* spec: importance.md "PostprocessImportanceMapA", "PostprocessImportanceMapB", "Load counter" */
+layout(local_size_x = CACAO_WG_IMPORTANCE_X, local_size_y = CACAO_WG_IMPORTANCE_Y) in;
+
+float importance_at(vec2 uv) { return textureLod(importance_in, uv, 0.0).r; }
+
+void main()
+{
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    vec2 c = (vec2(t) + 0.5) * cb.importance_map_inverse_dimensions;
+    vec2 h = 0.5 * cb.importance_map_inverse_dimensions;
+#if CACAO_PASS == CACAO_PASS_IMPORTANCE_A
+    float v0 = importance_at(c + vec2(-3.0 * h.x, -h.y));
+    float v1 = importance_at(c + vec2(h.x, -3.0 * h.y));
+    float v2 = importance_at(c + vec2(3.0 * h.x, h.y));
+    float v3 = importance_at(c + vec2(-h.x, 3.0 * h.y));
+#else
+    float v0 = importance_at(c + vec2(-h.x, -3.0 * h.y));
+    float v1 = importance_at(c + vec2(3.0 * h.x, -h.y));
+    float v2 = importance_at(c + vec2(h.x, 3.0 * h.y));
+    float v3 = importance_at(c + vec2(-3.0 * h.x, h.y));
+#endif
+    float ret = (v0 + v1 + v2 + v3) / 4.0; /* lerp(max, avg, 1.0) == avg ([quirk] IMPORTANCE-DEAD-CODE) */
+    if (in_rect(t, imageSize(importance_out))) imageStore(importance_out, t, vec4(ret));
+#if CACAO_PASS == CACAO_PASS_IMPORTANCE_B
+    /* every dispatched thread counts, in range or not ([quirk] LOADCOUNTER-OOB kept) */
+    if (t.x % CACAO_LOAD_COUNTER_STRIDE == 0 && t.y % CACAO_LOAD_COUNTER_STRIDE == 0)
+        atomicAdd(load_counter, uint(sat(ret) * 255.0 + 0.5));
+#endif
+}
+#endif /* IMPORTANCE_A / B */
+
+/* ============================== BLUR ============================== */
+#if CACAO_PASS == CACAO_PASS_BLUR
+/* spec: blur.md (padded-domain formulation, N Jacobi iterations in one dispatch) */
+layout(local_size_x = CACAO_WG_BLUR_X, local_size_y = CACAO_WG_BLUR_Y) in;
+
+#define BLUR_N CACAO_BLUR_PASSES
+#define BLUR_P (CACAO_BLUR_TILE + 2 * BLUR_N) /* padded tile side */
+#define BLUR_ENTRIES (BLUR_P * BLUR_P)
+#define BLUR_THREADS (CACAO_WG_BLUR_X * CACAO_WG_BLUR_Y)
+#define BLUR_PER_THREAD ((BLUR_ENTRIES + BLUR_THREADS - 1) / BLUR_THREADS)
+
+/* N = 8: values 2 x 2304 x 4 B + edges 2304 x 4 B = 27 KiB (fp32); 9 + 18 KiB (fp16). */
+shared rfloat blur_values[2][BLUR_ENTRIES];
+#if CACAO_FP16 == 1
+shared f16vec4 blur_edges[BLUR_ENTRIES]; /* unpacked once: LRTB weights in [0,1] */
+#else
+shared uint blur_edges[BLUR_ENTRIES];    /* 8-bit packed edges, unpacked per iteration */
+#endif
+
+rvec4 blur_edge_weights(int i)
+{
+#if CACAO_FP16 == 1
+    return blur_edges[i];
+#else
+    return unpack_edge_bits(blur_edges[i]);
+#endif
+}
+
+rfloat blur_store_value(float v)
+{
+#if CACAO_FP16 == 1
+    return rfloat(v);
+#else
+    return round_to_half(v); /* AMD keeps the values as half between iterations */
+#endif
+}
+
+void main()
+{
+    ivec2 s = textureSize(ssao_in, 0).xy;
+    int layer = int(gl_WorkGroupID.z);
+    ivec2 tile_origin = ivec2(gl_WorkGroupID.xy) * CACAO_BLUR_TILE;
+    int tid = int(gl_LocalInvocationIndex);
+
+    /* padded tile: value and packed edges both from the mirrored texel ([quirk] BLUR-BORDER-EDGES) */
+    for (int k = 0; k < BLUR_PER_THREAD; ++k) {
+        int i = tid + k * BLUR_THREADS;
+        if (i < BLUR_ENTRIES) {
+            ivec2 lp = ivec2(i % BLUR_P, i / BLUR_P);
+            ivec2 c = mirror_coord(tile_origin - BLUR_N + lp, s);
+            vec2 ae = texelFetch(ssao_in, ivec3(c, layer), 0).rg;
+            blur_values[0][i] = blur_store_value(ae.r);
+#if CACAO_FP16 == 1
+            blur_edges[i] = unpack_edges(ae.g);
+#else
+            blur_edges[i] = edges_bits(ae.g);
+#endif
+        }
+    }
+    barrier();
+
+    /* N Jacobi iterations over the whole padded tile; reads past the tile clamp to it (such
+     * values never reach the inner 32x32 within N iterations). */
+    for (int it = 0; it < BLUR_N; ++it) {
+        int src = it & 1, dst = 1 - src;
+        for (int k = 0; k < BLUR_PER_THREAD; ++k) {
+            int i = tid + k * BLUR_THREADS;
+            if (i < BLUR_ENTRIES) {
+                int x = i % BLUR_P, y = i / BLUR_P;
+                rvec4 e = blur_edge_weights(i);
+                rfloat a = blur_values[src][i];
+                rfloat al = blur_values[src][y * BLUR_P + max(x - 1, 0)];
+                rfloat ar = blur_values[src][y * BLUR_P + min(x + 1, BLUR_P - 1)];
+                rfloat at = blur_values[src][max(y - 1, 0) * BLUR_P + x];
+                rfloat ab = blur_values[src][min(y + 1, BLUR_P - 1) * BLUR_P + x];
+                rfloat sum = rfloat(CACAO_BLUR_CENTRE_WEIGHT) * a + e.x * al + e.y * ar + e.z * at + e.w * ab;
+                rfloat wsum = rfloat(CACAO_BLUR_CENTRE_WEIGHT) + e.x + e.y + e.z + e.w;
+                blur_values[dst][i] = blur_store_value(float(sum / wsum));
+            }
+        }
+        barrier();
+    }
+
+    /* inner 32x32: (blurred AO, original packed edges) */
+    const int fin = BLUR_N & 1;
+    for (int k = 0; k < BLUR_PER_THREAD; ++k) {
+        int i = tid + k * BLUR_THREADS;
+        if (i < BLUR_ENTRIES) {
+            ivec2 o = ivec2(i % BLUR_P, i / BLUR_P) - BLUR_N;
+            ivec2 p = tile_origin + o;
+            if (in_rect(o, ivec2(CACAO_BLUR_TILE)) && in_rect(p, s)) {
+                float packed_edges = texelFetch(ssao_in, ivec3(p, layer), 0).g;
+                imageStore(ssao_out, ivec3(p, layer), vec4(float(blur_values[fin][i]), packed_edges, 0.0, 0.0));
+            }
+        }
+    }
+}
+#endif /* BLUR */
+
+/* ============================== APPLY / UPSAMPLE shared ============================== */
+#if CACAO_PASS == CACAO_PASS_APPLY || CACAO_PASS == CACAO_PASS_UPSAMPLE
+
+/* Bilinear read of one layer of the AO texture (LinearClamp). */
+rfloat ao_bilinear(vec2 uv, int layer) { return rfloat(textureLod(ssao_in, vec3(uv, float(layer)), 0.0).r); }
+
+/* Edge-aware interleave at integer position p of the 2S-sized re-interleaved image
+ * (spec: apply.md "Apply", integer p as written: [quirk] APPLY-HALF-PIXEL). */
+rfloat smart_apply(ivec2 p)
+{
+    int mx = p.x & 1, my = p.y & 1;
+    int ic = mx + 2 * my;
+    int ih = (1 - mx) + 2 * my;
+    int iv = mx + 2 * (1 - my);
+    int id = (1 - mx) + 2 * (1 - my);
+    vec2 ae = texelFetch(ssao_in, ivec3(p >> 1, ic), 0).rg;
+    rfloat ao = rfloat(ae.r);
+    rvec4 e = unpack_edges(ae.g);
+    float sx = float(e.y - e.x); /* push samples away from edges */
+    float sy = float(e.w - e.z);
+    vec2 pf = vec2(p);
+    vec2 inv_s = cb.ssao_buffer_inverse_dimensions;
+    vec2 uvh = (pf + vec2(float(mx) + sx - 0.5, 0.5 - float(my))) * 0.5 * inv_s;
+    vec2 uvv = (pf + vec2(0.5 - float(mx), float(my) - 0.5 + sy)) * 0.5 * inv_s;
+    vec2 uvd = (pf + vec2(float(mx) - 0.5 + sx, float(my) - 0.5 + sy)) * 0.5 * inv_s;
+    rfloat ah = ao_bilinear(uvh, ih);
+    rfloat av = ao_bilinear(uvv, iv);
+    rfloat ad = ao_bilinear(uvd, id);
+    rfloat wh = (e.x + e.y) * rfloat(0.5);
+    rfloat wv = (e.z + e.w) * rfloat(0.5);
+    rfloat wd = (wh + wv) * rfloat(0.5);
+    return (ao + wh * ah + wv * av + wd * ad) / (rfloat(1.0) + wh + wv + wd);
+}
+#endif
+
+/* ============================== APPLY ============================== */
+#if CACAO_PASS == CACAO_PASS_APPLY
+/* spec: apply.md (Apply, NonSmartApply, NonSmartHalfApply) */
+layout(local_size_x = CACAO_WG_APPLY_X, local_size_y = CACAO_WG_APPLY_Y) in;
+
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (!in_rect(p, imageSize(output_image))) return;
+#if CACAO_VARIANT == CACAO_OUTPUT_SMART
+    rfloat ao = smart_apply(p);
+#elif CACAO_VARIANT == CACAO_OUTPUT_NON_SMART
+    vec2 uv = vec2(p) * cb.output_buffer_inverse_dimensions; /* no +0.5, as AMD */
+    rfloat ao = (ao_bilinear(uv, 0) + ao_bilinear(uv, 1) + ao_bilinear(uv, 2) + ao_bilinear(uv, 3)) / rfloat(4.0);
+#else
+    vec2 uv = vec2(p) * cb.output_buffer_inverse_dimensions;
+    rfloat ao = (ao_bilinear(uv, 0) + ao_bilinear(uv, 1)) / rfloat(2.0); /* layers 0,1 = slices 0,3 */
+#endif
+    imageStore(output_image, p, vec4(float(ao), 0.0, 0.0, 0.0));
+}
+#endif /* APPLY */
+
+/* ============================== UPSAMPLE ============================== */
+#if CACAO_PASS == CACAO_PASS_UPSAMPLE
+/* spec: upsample.md (bilateral 5x5, Smart / NonSmart / Half) */
+layout(local_size_x = CACAO_WG_UPSAMPLE_X, local_size_y = CACAO_WG_UPSAMPLE_Y) in;
+
+#define UP_TABLE 12 /* 8 + 2 apron on each side */
+#define UP_NO_DEPTH -1.0e30 /* marks an entry outside the Q image: weight 0 */
+
+shared rfloat up_value[UP_TABLE * UP_TABLE];
+shared float up_depth[UP_TABLE * UP_TABLE];
+
+/* Deinterleaved depth (mip 0) at slice texel c of a layer; OOB -> 0 (D3D load rule). */
+float load_depth_or_zero(ivec2 c, int layer)
+{
+    return in_rect(c, textureSize(depths, 0).xy) ? texelFetch(depths, ivec3(c, layer), 0).r : 0.0;
+}
+
+rfloat table_value(float v)
+{
+#if CACAO_FP16 == 1
+    return rfloat(v);
+#else
+    return round_to_half(v); /* AMD stores the table as half */
+#endif
+}
+
+void main()
+{
+    ivec2 s = textureSize(ssao_in, 0).xy;
+    ivec2 qsize = 2 * s;
+    ivec2 g = ivec2(gl_WorkGroupID.xy);
+    vec2 inv_s = cb.ssao_buffer_inverse_dimensions;
+
+    /* Step 1: (value, depth) of Q-positions g*8 - 2 .. g*8 + 9, filled by all 64 threads.
+     * Entries outside [0, 2S) get weight 0 ([quirk] BILATERAL-LEFT-BORDER fixed). */
+    for (int i = int(gl_LocalInvocationIndex); i < UP_TABLE * UP_TABLE; i += CACAO_WG_UPSAMPLE_X * CACAO_WG_UPSAMPLE_Y) {
+        ivec2 q = g * 8 + ivec2(i % UP_TABLE, i / UP_TABLE) - 2;
+        float value = 0.0;
+        float depth = UP_NO_DEPTH;
+        if (in_rect(q, qsize)) {
+            int cx = q.x & 1, cy = q.y & 1;
+            ivec2 c = q >> 1;
+#if CACAO_VARIANT == CACAO_OUTPUT_SMART
+            value = float(smart_apply(q));
+            /* depth from ((qx+1)/2, qy/2) ([quirk] BILATERAL-DEPTH-SHIFT kept; OOB -> 0) */
+            depth = load_depth_or_zero(ivec2((q.x + 1) >> 1, c.y), cx + 2 * cy);
+#elif CACAO_VARIANT == CACAO_OUTPUT_NON_SMART
+            /* 3x3 tent: bilinear reads at +-1/2 texel around the slice texel centre */
+            vec2 cc = vec2(c) + 0.5;
+            float sum = 0.0;
+            for (int k = 0; k < 4; ++k) {
+                vec2 delta = 0.5 * vec2(cx - (k & 1), cy - (k >> 1));
+                sum += textureLod(ssao_in, vec3((cc + delta) * inv_s, float(k)), 0.0).r;
+            }
+            value = sum / 4.0;
+            depth = load_depth_or_zero(c, cx + 2 * cy);
+#else
+            /* slices 0 and 3 only (layers 0 and 1) */
+            vec2 cc = vec2(c) + 0.5;
+            float s0 = textureLod(ssao_in, vec3((cc + 0.5 * vec2(cx, cy)) * inv_s, 0.0), 0.0).r;
+            float s3 = textureLod(ssao_in, vec3((cc + 0.5 * vec2(cx - 1, cy - 1)) * inv_s, 1.0), 0.0).r;
+            value = (s0 + s3) / 2.0;
+            depth = load_depth_or_zero(c, cy); /* layer 0 (slice 0) on even rows, 1 (slice 3) on odd */
+#endif
+        }
+        up_value[i] = table_value(value);
+        up_depth[i] = depth;
+    }
+    barrier();
+
+    /* Step 2: bilateral filter for the 2x2 full-res pixels of this half-res position */
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 l = ivec2(gl_LocalInvocationID.xy);
+    float zf[4];
+    for (int o = 0; o < 4; ++o) zf[o] = view_z(load_src_depth_or_zero(2 * t + ivec2(o & 1, o >> 1)));
+
+    rfloat centre = up_value[(l.y + 2) * UP_TABLE + l.x + 2];
+    rfloat tot[4], wsum[4];
+    for (int o = 0; o < 4; ++o) {
+        tot[o] = rfloat(CACAO_BILATERAL_EPSILON) * centre;
+        wsum[o] = rfloat(CACAO_BILATERAL_EPSILON);
+    }
+    for (int y = -2; y <= 2; ++y) {
+        for (int x = -2; x <= 2; ++x) {
+            int idx = (l.y + 2 + y) * UP_TABLE + (l.x + 2 + x);
+            rfloat v = up_value[idx];
+            float zq = up_depth[idx];
+            bool valid = zq > -1.0e29;
+            for (int o = 0; o < 4; ++o) {
+                float dx = float(x) - 0.5 * float(o & 1);
+                float dy = float(y) - 0.5 * float(o >> 1);
+                float ws = exp(-(dx * dx + dy * dy) / cb.bilateral_sigma_squared);
+                float dz = zf[o] - zq; /* sigma is used as a variance, as AMD does */
+                float wz = valid ? exp(-(dz * dz) / cb.bilateral_similarity_distance_sigma) : 0.0;
+                rfloat w = rfloat(ws * wz);
+                tot[o] += v * w;
+                wsum[o] += w;
+            }
+        }
+    }
+
+    ivec2 out_size = imageSize(output_image);
+    for (int o = 0; o < 4; ++o) {
+        ivec2 p = 2 * t + ivec2(o & 1, o >> 1);
+        if (in_rect(p, out_size)) imageStore(output_image, p, vec4(float(tot[o] / wsum[o]), 0.0, 0.0, 0.0));
+    }
+}
+#endif /* UPSAMPLE */

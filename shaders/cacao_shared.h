@@ -1,0 +1,212 @@
+/* cacao_shared.h - the one header shared by the C runtime, the generator and the GLSL source.
+ *
+ * Everything whose value or layout must agree between host and shader lives here exactly once:
+ * the constant-buffer block, binding numbers, workgroup sizes, intermediate formats and the
+ * numeric tables of the algorithm (spec: constants.md).
+ *
+ * It is valid C11 and valid GLSL 4.50: the GLSL side is selected by CACAO_GLSL, which the
+ * generator defines in front of every shader. Keep it to #defines, the constants block and plain
+ * numbers so that both languages read it the same way.
+ */
+#ifndef CACAO_SHARED_H
+#define CACAO_SHARED_H
+
+/* ---- Pass identifiers (the "pass" axis of the permutation key, also CACAO_PASS in GLSL) ---- */
+#define CACAO_PASS_PREPARE_DEPTHS 0
+#define CACAO_PASS_PREPARE_NORMALS 1
+#define CACAO_PASS_GENERATE 2
+#define CACAO_PASS_IMPORTANCE 3
+#define CACAO_PASS_IMPORTANCE_A 4
+#define CACAO_PASS_IMPORTANCE_B 5
+#define CACAO_PASS_BLUR 6
+#define CACAO_PASS_APPLY 7
+#define CACAO_PASS_UPSAMPLE 8
+#define CACAO_PASS_COUNT 9
+
+/* Depth-prepare variants (spec: prepare.md). HALF = slices 0 and 3 only (LOWEST), FULL = four
+ * slices, MIPS = four slices plus mips 1..3 (HIGH and HIGHEST; MEDIUM never reads mips). */
+#define CACAO_DEPTHS_HALF 0
+#define CACAO_DEPTHS_FULL 1
+#define CACAO_DEPTHS_MIPS 2
+
+/* Generate variants: shader quality index q (Q0..Q3, spec: generate.md) plus the Q3 base pass. */
+#define CACAO_GENERATE_Q0 0
+#define CACAO_GENERATE_Q1 1
+#define CACAO_GENERATE_Q2 2
+#define CACAO_GENERATE_Q3 3
+#define CACAO_GENERATE_Q3_BASE 4
+
+/* Output variants shared by apply (native) and upsample (downsampled), spec: apply.md, upsample.md */
+#define CACAO_OUTPUT_SMART 0
+#define CACAO_OUTPUT_NON_SMART 1
+#define CACAO_OUTPUT_HALF 2
+
+/* ---- Descriptor bindings (set 0, pushed with VK_KHR_push_descriptor) ---- */
+#define CACAO_BINDING_CONSTANTS 0        /* uniform block cacao_constants */
+#define CACAO_BINDING_LOAD_COUNTER 1     /* storage buffer, one uint (HIGHEST only) */
+#define CACAO_BINDING_SRC_DEPTH 2        /* caller's depth, sampler2D, nearest sampler */
+#define CACAO_BINDING_SRC_NORMALS 3      /* caller's normals, sampler2D, nearest sampler */
+#define CACAO_BINDING_DEPTHS 4           /* deinterleaved view z, sampler2DArray, nearest */
+#define CACAO_BINDING_NORMALS 5          /* deinterleaved normals, sampler2DArray, nearest */
+#define CACAO_BINDING_SSAO_IN 6          /* AO + packed edges, sampler2DArray, linear clamp */
+#define CACAO_BINDING_SSAO_BASE 7        /* Q3 base result, sampler2DArray, nearest */
+#define CACAO_BINDING_IMPORTANCE_IN 8    /* importance map, sampler2D, linear clamp */
+#define CACAO_BINDING_DEPTHS_OUT0 9      /* image2DArray r16f, mip 0 .. mip 3 at 9..12 */
+#define CACAO_BINDING_DEPTHS_OUT1 10
+#define CACAO_BINDING_DEPTHS_OUT2 11
+#define CACAO_BINDING_DEPTHS_OUT3 12
+#define CACAO_BINDING_NORMALS_OUT 13     /* image2DArray rgba8_snorm */
+#define CACAO_BINDING_SSAO_OUT 14        /* image2DArray rg8 */
+#define CACAO_BINDING_IMPORTANCE_OUT 15  /* image2D r8 */
+#define CACAO_BINDING_OUTPUT 16          /* caller's output, image2D, written without format */
+#define CACAO_BINDING_COUNT 17
+
+/* ---- Workgroup sizes (x, y); z is always 1 ---- */
+#define CACAO_WG_PREPARE_X 8
+#define CACAO_WG_PREPARE_Y 8
+#define CACAO_WG_GENERATE_X 8
+#define CACAO_WG_GENERATE_Y 8
+#define CACAO_WG_IMPORTANCE_X 8
+#define CACAO_WG_IMPORTANCE_Y 8
+#define CACAO_WG_BLUR_X 16
+#define CACAO_WG_BLUR_Y 16
+#define CACAO_BLUR_TILE 32               /* output texels per blur workgroup and axis */
+#define CACAO_WG_APPLY_X 8
+#define CACAO_WG_APPLY_Y 8
+#define CACAO_WG_UPSAMPLE_X 8            /* each upsample thread writes 2x2 output pixels */
+#define CACAO_WG_UPSAMPLE_Y 8
+
+/* ---- Intermediate formats (VkFormat values, so they are plain numbers in GLSL too) ---- */
+#define CACAO_FORMAT_DEPTHS 76           /* VK_FORMAT_R16_SFLOAT      (GLSL r16f) */
+#define CACAO_FORMAT_NORMALS 38          /* VK_FORMAT_R8G8B8A8_SNORM  (GLSL rgba8_snorm) */
+#define CACAO_FORMAT_SSAO 16             /* VK_FORMAT_R8G8_UNORM      (GLSL rg8) */
+#define CACAO_FORMAT_IMPORTANCE 9        /* VK_FORMAT_R8_UNORM        (GLSL r8) */
+#define CACAO_DEPTH_MIP_COUNT 4
+
+/* ---- Algorithm constants (spec: constants.md section 2 and 3) ---- */
+#define CACAO_MAX_TAPS 32
+#define CACAO_TAPS_Q0 3
+#define CACAO_TAPS_Q1 5
+#define CACAO_TAPS_Q2 12
+#define CACAO_TAPS_Q3_BASE 5
+#define CACAO_ADAPTIVE_TAP_BASE_COUNT 5
+#define CACAO_ADAPTIVE_TAP_FLEXIBLE_COUNT 27
+#define CACAO_BASE_WEIGHT_SCALE 20.0     /* base weight stored as sum / 20 (5 taps * 4) */
+#define CACAO_HALO_AMOUNT 0.6
+#define CACAO_NORMAL_EDGE_THRESHOLD 0.5
+#define CACAO_MIP_OFFSET -4.3
+#define CACAO_NEAR_LIMIT_SCALE 0.8
+#define CACAO_NEAR_LIMIT_BIAS 0.2
+#define CACAO_LOOKUP_RADIUS_FACTOR 0.85
+#define CACAO_DETAIL_FALLOFF_MUL 4.0
+#define CACAO_EDGE_SLOPE 1.3
+#define CACAO_EDGE_DEPTH_FRACTION 0.04
+#define CACAO_EDGE_FADE 0.35
+#define CACAO_EDGE_PACK_SCALE 3.05
+#define CACAO_NORMAL_BIAS_Z -0.0005
+#define CACAO_DEPTH_PRECISION_OFFSET_MOD 0.9992
+#define CACAO_STRENGTH_MULTIPLIER 4.3
+#define CACAO_IMPORTANCE_POWER 0.8
+#define CACAO_LOAD_COUNTER_STRIDE 3
+#define CACAO_BLUR_CENTRE_WEIGHT 0.5
+#define CACAO_BILATERAL_EPSILON 1e-3
+#define CACAO_MIP_WEIGHT_FALLOFF -1.0    /* [quirk] MIP-WEIGHT-PRECEDENCE, kept: -1, not -1/R^2 */
+#define CACAO_NEAR_LIMIT_RADIUS_FACTOR 1.2
+#define CACAO_LOW_NEAR_LIMIT_FACTOR 1.5
+#define CACAO_LOWEST_RADIUS_FACTOR 0.8
+
+/* Sample pattern: 32 entries of (x, y, weight, mip term), spec: constants.md section 1.
+ * Usable as a C initialiser (float[32][4]) and as a GLSL float[128] constructor argument. */
+#define CACAO_SAMPLE_PATTERN_VALUES                                                                \
+    0.78488064, 0.56661671, 1.500000, -0.126083, 0.26022232, -0.29575172, 1.500000, -1.064030,     \
+    0.10459357, 0.08372527, 1.110000, -2.730563, -0.68286800, 0.04963045, 1.090000, -0.498827,     \
+    -0.13570161, -0.64190155, 1.250000, -0.532765, -0.26193795, -0.08205118, 0.670000, -1.783245,  \
+    -0.61177456, 0.66664219, 0.710000, -0.044234, 0.43675563, 0.25119025, 0.610000, -1.167283,     \
+    0.07884444, 0.86618668, 0.640000, -0.459002, -0.12790935, -0.29869005, 0.600000, -1.729424,    \
+    -0.04031125, 0.02413622, 0.600000, -4.792042, 0.16201244, -0.52851415, 0.790000, -1.067055,    \
+    -0.70991218, 0.47301072, 0.640000, -0.335236, 0.03277707, -0.22349690, 0.600000, -1.982384,    \
+    0.68921727, 0.36800742, 0.630000, -0.266718, 0.29251814, 0.37775412, 0.610000, -1.422520,      \
+    -0.12224089, 0.96582592, 0.600000, -0.426142, 0.11071457, -0.16131058, 0.600000, -2.165947,    \
+    0.46562141, -0.59747696, 0.600000, -0.189760, -0.51548797, 0.11804193, 0.600000, -1.246800,    \
+    0.89141309, -0.42090443, 0.600000, 0.028192, -0.32402530, -0.01591529, 0.600000, -1.543018,    \
+    0.60771245, 0.41635221, 0.600000, -0.605411, 0.02379565, -0.08239821, 0.600000, -3.809046,     \
+    0.48951152, -0.23657045, 0.600000, -1.189011, -0.17611565, -0.81696892, 0.600000, -0.513724,   \
+    -0.33930185, -0.20732205, 0.600000, -1.698047, -0.91974425, 0.05403209, 0.600000, 0.062246,    \
+    -0.15064627, -0.14949332, 0.600000, -1.896062, 0.53180975, -0.35210401, 0.600000, -0.758838,   \
+    0.41487166, 0.81442589, 0.600000, -0.505648, -0.24106961, -0.32721516, 0.600000, -1.665244
+
+/* ---- The constant block (std140). One block for every pass; per-slice values are arrays
+ * indexed by slice, so one buffer serves all dispatches of a frame. ---- */
+#ifdef CACAO_GLSL
+#define CACAO_T_VEC2 vec2
+#define CACAO_T_VEC4 vec4
+#define CACAO_T_MAT4 mat4
+#define CACAO_T_FLOAT float
+#define CACAO_T_INT int
+#define CACAO_MEMBER(type, name) CACAO_T_##type name;
+#define CACAO_MEMBER_ARRAY(type, name, count) CACAO_T_##type name[count];
+#else
+typedef struct cacao_vec2 { float x, y; } cacao_vec2;
+typedef struct cacao_vec4 { float x, y, z, w; } cacao_vec4;
+typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4*col + row] */
+#define CACAO_T_VEC2 cacao_vec2
+#define CACAO_T_VEC4 cacao_vec4
+#define CACAO_T_MAT4 cacao_mat4
+#define CACAO_T_FLOAT float
+#define CACAO_T_INT int
+#define CACAO_MEMBER(type, name) CACAO_T_##type name;
+#define CACAO_MEMBER_ARRAY(type, name, count) CACAO_T_##type name[count];
+#endif
+
+/* X-list of members: M(type, name) for scalars/vectors, A(type, name, count) for arrays.
+ * Order is chosen so std140 needs no padding that C would not also insert. */
+#define CACAO_CONSTANTS_MEMBERS(M, A)                                                              \
+    M(VEC2, depth_unpack)               /* view z = x / (y - d) */                                 \
+    M(VEC2, camera_tan_half_fov)        /* (tanX, tanY), informational */                          \
+    M(VEC2, ndc_to_view_mul)            /* (2 tanX, -2 tanY) */                                    \
+    M(VEC2, ndc_to_view_add)            /* (-tanX, tanY) */                                        \
+    M(VEC2, depth_uv_to_view_mul)                                                                  \
+    M(VEC2, depth_uv_to_view_add)                                                                  \
+    M(FLOAT, effect_radius)                                                                        \
+    M(FLOAT, effect_shadow_strength)                                                               \
+    M(FLOAT, effect_shadow_pow)                                                                    \
+    M(FLOAT, effect_shadow_clamp)                                                                  \
+    M(FLOAT, effect_fade_out_mul)                                                                  \
+    M(FLOAT, effect_fade_out_add)                                                                  \
+    M(FLOAT, effect_horizon_angle_threshold)                                                       \
+    M(FLOAT, effect_sampling_radius_near_limit_rec)                                                \
+    M(FLOAT, depth_precision_offset_mod)                                                           \
+    M(FLOAT, neg_rec_effect_radius)                                                                \
+    M(FLOAT, load_counter_avg_div)                                                                 \
+    M(FLOAT, adaptive_sample_count_limit)                                                          \
+    M(FLOAT, inv_sharpness)                                                                        \
+    M(INT, slice_count)                 /* 2 at LOWEST (slices 0 and 3 in layers 0 and 1), else 4 */ \
+    M(FLOAT, bilateral_sigma_squared)                                                              \
+    M(FLOAT, bilateral_similarity_distance_sigma)                                                  \
+    M(FLOAT, normals_unpack_mul)                                                                   \
+    M(FLOAT, normals_unpack_add)                                                                   \
+    M(FLOAT, detail_ao_strength)                                                                   \
+    M(INT, base_from_all_slices)        /* 1: adaptive pass reads its own slice's base ([quirk] BASE-SLICE-VIEW fixed) */ \
+    M(VEC2, ssao_buffer_dimensions)                                                                \
+    M(VEC2, ssao_buffer_inverse_dimensions)                                                        \
+    M(VEC2, depth_buffer_dimensions)                                                               \
+    M(VEC2, depth_buffer_inverse_dimensions)                                                       \
+    M(VEC2, output_buffer_dimensions)                                                              \
+    M(VEC2, output_buffer_inverse_dimensions)                                                      \
+    M(VEC2, importance_map_dimensions)                                                             \
+    M(VEC2, importance_map_inverse_dimensions)                                                     \
+    A(VEC4, per_slice_full_res_uv_offset, 4) /* xy = (dx / Sw, dy / Sh) per slice */               \
+    A(VEC4, pattern_rot_scale, 20)      /* [slice * 5 + j] = (m0, m1, m2, m3) */                   \
+    M(MAT4, normals_to_view)            /* n'_j = sum_i E[j][i] n_i, stored column-major */
+
+#ifdef CACAO_GLSL
+layout(std140, set = 0, binding = CACAO_BINDING_CONSTANTS) uniform cacao_constants_block {
+    CACAO_CONSTANTS_MEMBERS(CACAO_MEMBER, CACAO_MEMBER_ARRAY)
+} cb;
+#else
+typedef struct cacao_constants {
+    CACAO_CONSTANTS_MEMBERS(CACAO_MEMBER, CACAO_MEMBER_ARRAY)
+} cacao_constants;
+#endif
+
+#endif /* CACAO_SHARED_H */

@@ -1,0 +1,52 @@
+/* cacao_table.h - the schema of the generated permutation table (generated/cacao_table.c).
+ *
+ * Written by shadergen, read by the runtime and the tools. Every per-permutation fact here comes
+ * from reflection of the compiled module (SPIRV-Cross), not from a hand-kept list.
+ */
+#ifndef CACAO_TABLE_H
+#define CACAO_TABLE_H
+
+#include <stdint.h>
+
+#include "cacao_keys.h"
+
+/* Descriptor kinds a binding can have (0 = the module does not use that binding). */
+#define CACAO_RESOURCE_NONE 0
+#define CACAO_RESOURCE_UNIFORM_BUFFER 1
+#define CACAO_RESOURCE_STORAGE_BUFFER 2
+#define CACAO_RESOURCE_SAMPLED_IMAGE 3 /* combined image sampler */
+#define CACAO_RESOURCE_STORAGE_IMAGE 4
+
+typedef struct cacao_module {
+    const uint32_t *words; /* SPIR-V */
+    uint32_t word_count;
+} cacao_module;
+
+typedef struct cacao_permutation {
+    cacao_key key;
+    const char *name;          /* cacao_key_name(key) */
+    uint32_t module;           /* index into cacao_table.modules (shared by identical modules) */
+    uint32_t workgroup_size[3];
+    uint32_t uniform_size;     /* bytes of the constant block, 0 if unused */
+    uint32_t push_constant_size;
+    uint8_t bindings[CACAO_BINDING_COUNT]; /* CACAO_RESOURCE_* per binding of set 0 */
+} cacao_permutation;
+
+typedef struct cacao_table {
+    const cacao_permutation *permutations; /* sorted by cacao_key_compare */
+    uint32_t permutation_count;
+    const cacao_module *modules;
+    uint32_t module_count;
+    const char *entry_point;
+    const char *glslang_version;
+    const char *spirv_tools_version;
+    const char *subset;        /* "all" or the build's subset, e.g. "medium;high|OFF|fp32" */
+} cacao_table;
+
+/* The table linked into this build (the committed full set, or a build-tree subset). */
+extern const cacao_table cacao_embedded_table;
+
+/* Binary search by key; NULL when the key is not embedded in this build. */
+const cacao_permutation *cacao_table_find(const cacao_table *table, const cacao_key *key);
+
+#endif /* CACAO_TABLE_H */

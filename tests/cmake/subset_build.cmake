@@ -1,0 +1,41 @@
+# A subset build (-DCACAO_QUALITIES=medium;high -DCACAO_DOWNSAMPLE=OFF -DCACAO_PRECISION=fp32)
+# generates its own table in its build tree holding exactly the permutations those settings can
+# dispatch, and a lookup of a permutation outside it is a clear error.
+# Inputs: SOURCE_DIR, WORK, GENERATOR.
+file(REMOVE_RECURSE ${WORK})
+set(qualities "medium;high")
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK} -G ${GENERATOR} -DCACAO_BUILD_TESTS=ON
+                "-DCACAO_QUALITIES=${qualities}" -DCACAO_DOWNSAMPLE=OFF -DCACAO_PRECISION=fp32
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "configuring the subset build failed:\n${out}${err}")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK} --target table_dump RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "building the subset failed:\n${out}${err}")
+endif()
+if(NOT EXISTS ${WORK}/generated/cacao_table.c)
+  message(FATAL_ERROR "the subset build did not generate its own table in its build tree")
+endif()
+execute_process(COMMAND ${WORK}/tests/table_dump RESULT_VARIABLE rc OUTPUT_VARIABLE listing)
+string(REGEX MATCHALL "[a-z_0-9.]+ [0-9]+ [0-9]+\n" lines "${listing}")
+set(names "")
+foreach(l ${lines})
+  string(REGEX REPLACE " .*" "" name "${l}")
+  list(APPEND names ${name})
+endforeach()
+# Expected by hand from the spec's quality table: MEDIUM = depths without mips, Q1, Apply;
+# HIGH = depths with mips, Q2, Apply; either normals source; blur 1..8; fp32 only; native only.
+set(expected prepare_depths.full.native prepare_depths.mips.native prepare_normals.depth.native
+    prepare_normals.input.native generate.q1 generate.q2 blur.1.fp32 blur.2.fp32 blur.3.fp32
+    blur.4.fp32 blur.5.fp32 blur.6.fp32 blur.7.fp32 blur.8.fp32 apply.smart.fp32)
+if(NOT names STREQUAL expected)
+  message(FATAL_ERROR "subset table holds [${names}]\nexpected [${expected}]")
+endif()
+execute_process(COMMAND ${WORK}/tests/table_dump --find generate.q3 RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "generate.q3' is not embedded in this build")
+  message(FATAL_ERROR "looking up a permutation outside the subset should fail clearly, got rc=${rc}: ${err}")
+endif()
+list(LENGTH names n)
+message("subset table holds exactly the ${n} expected permutations; missing lookup says: ${err}")

@@ -1,0 +1,537 @@
+/* vkdev.c - headless Vulkan device and one-shot cacao frames (see vkdev.h). */
+#include "vkdev.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_TIMESTAMPS (CACAO_PLAN_MAX_STEPS + 1)
+
+static void set_err(char *err, size_t n, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, n, fmt, ap);
+    va_end(ap);
+}
+
+static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                 VkDebugUtilsMessageTypeFlagsEXT type,
+                                                 const VkDebugUtilsMessengerCallbackDataEXT *data, void *user) {
+    (void)type;
+    vkdev *dev = user;
+    if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+        dev->validation_messages++;
+        fprintf(stderr, "validation: %s\n", data->pMessage);
+    }
+    return VK_FALSE;
+}
+
+static bool has_layer(const char *name) {
+    uint32_t n = 0;
+    vkEnumerateInstanceLayerProperties(&n, NULL);
+    VkLayerProperties *layers = calloc(n ? n : 1, sizeof *layers);
+    bool found = false;
+    if (layers && vkEnumerateInstanceLayerProperties(&n, layers) == VK_SUCCESS)
+        for (uint32_t i = 0; i < n; ++i) found |= strcmp(layers[i].layerName, name) == 0;
+    free(layers);
+    return found;
+}
+
+static bool create_instance(vkdev *dev, bool validation, char *err, size_t n) {
+    const char *layer = "VK_LAYER_KHRONOS_validation";
+    if (validation && !has_layer(layer)) {
+        set_err(err, n, "--validate: the Vulkan validation layer is not installed (Debian: vulkan-validationlayers)");
+        return false;
+    }
+    const VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    const VkValidationFeaturesEXT features = {
+        .sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT,
+        .enabledValidationFeatureCount = 1,
+        .pEnabledValidationFeatures = enables,
+    };
+    const VkDebugUtilsMessengerCreateInfoEXT messenger = {
+        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
+        .pNext = &features,
+        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+        .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
+        .pfnUserCallback = on_message,
+        .pUserData = dev,
+    };
+    const char *extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
+    const VkApplicationInfo app = {.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
+                                   .pApplicationName = "cacao",
+                                   .apiVersion = VK_API_VERSION_1_1};
+    const VkInstanceCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
+        .pNext = validation ? &messenger : NULL,
+        .pApplicationInfo = &app,
+        .enabledLayerCount = validation ? 1 : 0,
+        .ppEnabledLayerNames = &layer,
+        .enabledExtensionCount = validation ? 1 : 0,
+        .ppEnabledExtensionNames = extensions,
+    };
+    VkResult vr = vkCreateInstance(&info, NULL, &dev->instance);
+    if (vr != VK_SUCCESS) {
+        set_err(err, n, "no usable Vulkan driver: vkCreateInstance failed (VkResult %d); install mesa-vulkan-drivers",
+                (int)vr);
+        return false;
+    }
+    if (validation) {
+        PFN_vkCreateDebugUtilsMessengerEXT create =
+            (PFN_vkCreateDebugUtilsMessengerEXT)vkGetInstanceProcAddr(dev->instance, "vkCreateDebugUtilsMessengerEXT");
+        VkDebugUtilsMessengerCreateInfoEXT info = messenger;
+        info.pNext = NULL; /* the validation features only go to vkCreateInstance */
+        if (!create || create(dev->instance, &info, NULL, &dev->messenger) != VK_SUCCESS) {
+            set_err(err, n, "cannot create the validation messenger");
+            return false;
+        }
+    }
+    return true;
+}
+
+/* lavapipe (a CPU device) unless `want` names another by index or name substring. */
+static bool pick_device(vkdev *dev, const char *want, char *err, size_t n) {
+    uint32_t count = 0;
+    vkEnumeratePhysicalDevices(dev->instance, &count, NULL);
+    if (count == 0) {
+        set_err(err, n, "no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
+        return false;
+    }
+    VkPhysicalDevice devices[16];
+    if (count > 16) count = 16;
+    vkEnumeratePhysicalDevices(dev->instance, &count, devices);
+    int chosen = -1;
+    char *end = NULL;
+    long index = want ? strtol(want, &end, 10) : -1;
+    for (uint32_t i = 0; i < count && chosen < 0; ++i) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(devices[i], &p);
+        if (!want) {
+            if (p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) chosen = (int)i;
+        } else if (end && *end == '\0' && end != want) {
+            if ((long)i == index) chosen = (int)i;
+        } else if (strstr(p.deviceName, want)) {
+            chosen = (int)i;
+        }
+    }
+    if (chosen < 0 && !want) chosen = 0;
+    if (chosen < 0) {
+        set_err(err, n, "--device %s: no such Vulkan device (see --list-devices)", want);
+        return false;
+    }
+    dev->physical_device = devices[chosen];
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(dev->physical_device, &p);
+    snprintf(dev->device_name, sizeof dev->device_name, "%s", p.deviceName);
+    dev->timestamp_period_ns = p.limits.timestampPeriod;
+    return true;
+}
+
+static bool has_device_extension(VkPhysicalDevice pd, const char *name) {
+    uint32_t n = 0;
+    vkEnumerateDeviceExtensionProperties(pd, NULL, &n, NULL);
+    VkExtensionProperties *ext = calloc(n ? n : 1, sizeof *ext);
+    bool found = false;
+    if (ext && vkEnumerateDeviceExtensionProperties(pd, NULL, &n, ext) == VK_SUCCESS)
+        for (uint32_t i = 0; i < n; ++i) found |= strcmp(ext[i].extensionName, name) == 0;
+    free(ext);
+    return found;
+}
+
+static bool create_device(vkdev *dev, char *err, size_t n) {
+    uint32_t families = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(dev->physical_device, &families, NULL);
+    VkQueueFamilyProperties props[16];
+    if (families > 16) families = 16;
+    vkGetPhysicalDeviceQueueFamilyProperties(dev->physical_device, &families, props);
+    dev->queue_family = UINT32_MAX;
+    for (uint32_t i = 0; i < families && dev->queue_family == UINT32_MAX; ++i)
+        if ((props[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && props[i].timestampValidBits > 0) dev->queue_family = i;
+    if (dev->queue_family == UINT32_MAX) {
+        set_err(err, n, "device '%s' has no compute queue with timestamps", dev->device_name);
+        return false;
+    }
+    if (!has_device_extension(dev->physical_device, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) {
+        set_err(err, n, "device '%s' lacks VK_KHR_push_descriptor, which cacao needs", dev->device_name);
+        return false;
+    }
+    VkPhysicalDeviceShaderFloat16Int8Features f16 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES};
+    VkPhysicalDeviceFeatures2 supported = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f16};
+    vkGetPhysicalDeviceFeatures2(dev->physical_device, &supported);
+    dev->fp16 = f16.shaderFloat16 && has_device_extension(dev->physical_device, "VK_KHR_shader_float16_int8");
+    VkPhysicalDeviceShaderFloat16Int8Features f16_on = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES, .shaderFloat16 = dev->fp16};
+    VkPhysicalDeviceFeatures2 enabled = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
+                                         .pNext = dev->fp16 ? &f16_on : NULL};
+    enabled.features.shaderStorageImageWriteWithoutFormat = supported.features.shaderStorageImageWriteWithoutFormat;
+    enabled.features.shaderStorageImageExtendedFormats = supported.features.shaderStorageImageExtendedFormats;
+    const float priority = 1.0f;
+    const VkDeviceQueueCreateInfo queue = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+                                           .queueFamilyIndex = dev->queue_family,
+                                           .queueCount = 1,
+                                           .pQueuePriorities = &priority};
+    const char *extensions[2] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME, "VK_KHR_shader_float16_int8"};
+    const VkDeviceCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+        .pNext = &enabled,
+        .queueCreateInfoCount = 1,
+        .pQueueCreateInfos = &queue,
+        .enabledExtensionCount = dev->fp16 ? 2 : 1,
+        .ppEnabledExtensionNames = extensions,
+    };
+    VkResult vr = vkCreateDevice(dev->physical_device, &info, NULL, &dev->device);
+    if (vr != VK_SUCCESS) {
+        set_err(err, n, "vkCreateDevice failed on '%s' (VkResult %d)", dev->device_name, (int)vr);
+        return false;
+    }
+    vkGetDeviceQueue(dev->device, dev->queue_family, 0, &dev->queue);
+    const VkCommandPoolCreateInfo pool = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                          .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+                                          .queueFamilyIndex = dev->queue_family};
+    const VkFenceCreateInfo fence = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    const VkQueryPoolCreateInfo query = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
+                                         .queryType = VK_QUERY_TYPE_TIMESTAMP,
+                                         .queryCount = MAX_TIMESTAMPS};
+    if (vkCreateCommandPool(dev->device, &pool, NULL, &dev->pool) != VK_SUCCESS ||
+        vkCreateFence(dev->device, &fence, NULL, &dev->fence) != VK_SUCCESS ||
+        vkCreateQueryPool(dev->device, &query, NULL, &dev->timestamps) != VK_SUCCESS) {
+        set_err(err, n, "cannot create command pool, fence or query pool");
+        return false;
+    }
+    const VkCommandBufferAllocateInfo alloc = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+                                               .commandPool = dev->pool,
+                                               .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+                                               .commandBufferCount = 1};
+    if (vkAllocateCommandBuffers(dev->device, &alloc, &dev->cmd) != VK_SUCCESS) {
+        set_err(err, n, "cannot allocate a command buffer");
+        return false;
+    }
+    return true;
+}
+
+bool vkdev_create(const vkdev_options *options, vkdev *dev, char *err, size_t n) {
+    memset(dev, 0, sizeof *dev);
+    dev->validation = options->validation;
+    if (!create_instance(dev, options->validation, err, n) || !pick_device(dev, options->device, err, n) ||
+        !create_device(dev, err, n)) {
+        vkdev_destroy(dev);
+        return false;
+    }
+    return true;
+}
+
+void vkdev_destroy(vkdev *dev) {
+    if (dev->device) {
+        vkDeviceWaitIdle(dev->device);
+        if (dev->timestamps) vkDestroyQueryPool(dev->device, dev->timestamps, NULL);
+        if (dev->fence) vkDestroyFence(dev->device, dev->fence, NULL);
+        if (dev->pool) vkDestroyCommandPool(dev->device, dev->pool, NULL);
+        vkDestroyDevice(dev->device, NULL);
+    }
+    if (dev->messenger) {
+        PFN_vkDestroyDebugUtilsMessengerEXT destroy =
+            (PFN_vkDestroyDebugUtilsMessengerEXT)vkGetInstanceProcAddr(dev->instance, "vkDestroyDebugUtilsMessengerEXT");
+        if (destroy) destroy(dev->instance, dev->messenger, NULL);
+    }
+    if (dev->instance) vkDestroyInstance(dev->instance, NULL);
+    uint32_t messages = dev->validation_messages;
+    memset(dev, 0, sizeof *dev);
+    dev->validation_messages = messages;
+}
+
+bool vkdev_list(FILE *out, char *err, size_t n) {
+    vkdev dev;
+    memset(&dev, 0, sizeof dev);
+    if (!create_instance(&dev, false, err, n)) return false;
+    uint32_t count = 0;
+    vkEnumeratePhysicalDevices(dev.instance, &count, NULL);
+    VkPhysicalDevice devices[16];
+    if (count > 16) count = 16;
+    vkEnumeratePhysicalDevices(dev.instance, &count, devices);
+    static const char *const types[] = {"other", "integrated GPU", "discrete GPU", "virtual GPU", "CPU"};
+    for (uint32_t i = 0; i < count; ++i) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(devices[i], &p);
+        fprintf(out, "%u: %s (%s)%s\n", i, p.deviceName, p.deviceType <= 4 ? types[p.deviceType] : "?",
+                p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? " [default]" : "");
+    }
+    vkDestroyInstance(dev.instance, NULL);
+    return true;
+}
+
+/* ---- Resources of one run ---- */
+
+typedef struct gpu_image {
+    VkImage image;
+    VkImageView view;
+    VkDeviceMemory memory;
+    VkFormat format;
+} gpu_image;
+
+typedef struct gpu_buffer {
+    VkBuffer buffer;
+    VkDeviceMemory memory;
+    void *mapped;
+} gpu_buffer;
+
+static bool find_memory(vkdev *dev, uint32_t bits, VkMemoryPropertyFlags flags, uint32_t *index) {
+    VkPhysicalDeviceMemoryProperties props;
+    vkGetPhysicalDeviceMemoryProperties(dev->physical_device, &props);
+    for (uint32_t i = 0; i < props.memoryTypeCount; ++i)
+        if ((bits & (1u << i)) && (props.memoryTypes[i].propertyFlags & flags) == flags) {
+            *index = i;
+            return true;
+        }
+    return false;
+}
+
+static bool make_image(vkdev *dev, VkFormat format, uint32_t w, uint32_t h, VkImageUsageFlags usage, gpu_image *im) {
+    im->format = format;
+    const VkImageCreateInfo info = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
+                                    .imageType = VK_IMAGE_TYPE_2D,
+                                    .format = format,
+                                    .extent = {w, h, 1},
+                                    .mipLevels = 1,
+                                    .arrayLayers = 1,
+                                    .samples = VK_SAMPLE_COUNT_1_BIT,
+                                    .tiling = VK_IMAGE_TILING_OPTIMAL,
+                                    .usage = usage,
+                                    .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
+    if (vkCreateImage(dev->device, &info, NULL, &im->image) != VK_SUCCESS) return false;
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(dev->device, im->image, &req);
+    uint32_t type;
+    if (!find_memory(dev, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, &type)) return false;
+    const VkMemoryAllocateInfo alloc = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+                                        .allocationSize = req.size,
+                                        .memoryTypeIndex = type};
+    if (vkAllocateMemory(dev->device, &alloc, NULL, &im->memory) != VK_SUCCESS ||
+        vkBindImageMemory(dev->device, im->image, im->memory, 0) != VK_SUCCESS)
+        return false;
+    const VkImageViewCreateInfo view = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+                                        .image = im->image,
+                                        .viewType = VK_IMAGE_VIEW_TYPE_2D,
+                                        .format = format,
+                                        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    return vkCreateImageView(dev->device, &view, NULL, &im->view) == VK_SUCCESS;
+}
+
+static void free_image(vkdev *dev, gpu_image *im) {
+    if (im->view) vkDestroyImageView(dev->device, im->view, NULL);
+    if (im->image) vkDestroyImage(dev->device, im->image, NULL);
+    if (im->memory) vkFreeMemory(dev->device, im->memory, NULL);
+    memset(im, 0, sizeof *im);
+}
+
+static bool make_buffer(vkdev *dev, VkDeviceSize size, gpu_buffer *b) {
+    const VkBufferCreateInfo info = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+                                     .size = size,
+                                     .usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT};
+    if (vkCreateBuffer(dev->device, &info, NULL, &b->buffer) != VK_SUCCESS) return false;
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(dev->device, b->buffer, &req);
+    uint32_t type;
+    if (!find_memory(dev, req.memoryTypeBits,
+                     VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, &type))
+        return false;
+    const VkMemoryAllocateInfo alloc = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+                                        .allocationSize = req.size,
+                                        .memoryTypeIndex = type};
+    return vkAllocateMemory(dev->device, &alloc, NULL, &b->memory) == VK_SUCCESS &&
+           vkBindBufferMemory(dev->device, b->buffer, b->memory, 0) == VK_SUCCESS &&
+           vkMapMemory(dev->device, b->memory, 0, VK_WHOLE_SIZE, 0, &b->mapped) == VK_SUCCESS;
+}
+
+static void free_buffer(vkdev *dev, gpu_buffer *b) {
+    if (b->buffer) vkDestroyBuffer(dev->device, b->buffer, NULL);
+    if (b->memory) vkFreeMemory(dev->device, b->memory, NULL);
+    memset(b, 0, sizeof *b);
+}
+
+static void transition(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to, VkAccessFlags src,
+                       VkAccessFlags dst, VkPipelineStageFlags src_stage, VkPipelineStageFlags dst_stage) {
+    const VkImageMemoryBarrier b = {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
+                                    .srcAccessMask = src,
+                                    .dstAccessMask = dst,
+                                    .oldLayout = from,
+                                    .newLayout = to,
+                                    .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                                    .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                                    .image = image,
+                                    .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, NULL, 0, NULL, 1, &b);
+}
+
+static bool submit_and_wait(vkdev *dev) {
+    const VkSubmitInfo submit = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1,
+                                 .pCommandBuffers = &dev->cmd};
+    if (vkEndCommandBuffer(dev->cmd) != VK_SUCCESS || vkQueueSubmit(dev->queue, 1, &submit, dev->fence) != VK_SUCCESS ||
+        vkWaitForFences(dev->device, 1, &dev->fence, VK_TRUE, UINT64_MAX) != VK_SUCCESS)
+        return false;
+    vkResetFences(dev->device, 1, &dev->fence);
+    return true;
+}
+
+static bool begin(vkdev *dev) {
+    const VkCommandBufferBeginInfo info = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                           .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+    return vkResetCommandBuffer(dev->cmd, 0) == VK_SUCCESS && vkBeginCommandBuffer(dev->cmd, &info) == VK_SUCCESS;
+}
+
+/* Copies host floats into an image and leaves it in SHADER_READ_ONLY_OPTIMAL. */
+static void record_upload(vkdev *dev, gpu_buffer *staging, VkDeviceSize offset, gpu_image *im, uint32_t w,
+                          uint32_t h) {
+    transition(dev->cmd, im->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+               VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+    const VkBufferImageCopy region = {.bufferOffset = offset,
+                                      .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                      .imageExtent = {w, h, 1}};
+    vkCmdCopyBufferToImage(dev->cmd, staging->buffer, im->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    transition(dev->cmd, im->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+               VK_ACCESS_TRANSFER_WRITE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+}
+
+static double median(double *v, uint32_t n) {
+    for (uint32_t i = 1; i < n; ++i)
+        for (uint32_t j = i; j > 0 && v[j - 1] > v[j]; --j) {
+            double t = v[j];
+            v[j] = v[j - 1];
+            v[j - 1] = t;
+        }
+    return n ? (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2])) : 0.0;
+}
+
+static cacao_result vk_error(char *err, size_t n, const char *what) {
+    set_err(err, n, "%s failed", what);
+    return CACAO_ERROR_VULKAN;
+}
+
+cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t repeat,
+                       float *ao, vkdev_timings *timings, char *err, size_t n) {
+    const uint32_t w = frame->width, h = frame->height;
+    const VkFormat out_format = frame->output_format ? frame->output_format : VK_FORMAT_R32_SFLOAT;
+    if (out_format != VK_FORMAT_R32_SFLOAT) return vk_error(err, n, "vkdev: only R32_SFLOAT readback");
+    if (repeat == 0) repeat = 1;
+    cacao_context *ctx = NULL;
+    gpu_image depth = {0}, normals = {0}, output = {0};
+    gpu_buffer staging = {0};
+    cacao_result r = cacao_context_create(
+        &(cacao_context_desc){.physical_device = dev->physical_device, .device = dev->device,
+                              .shader_float16_enabled = dev->fp16},
+        &ctx);
+    if (r != CACAO_SUCCESS) {
+        set_err(err, n, "cacao_context_create: %s", cacao_result_string(r));
+        return r;
+    }
+    r = cacao_context_set_settings(ctx, settings);
+    if (r == CACAO_SUCCESS) r = cacao_context_resize(ctx, w, h, NULL);
+    if (r != CACAO_SUCCESS) {
+        set_err(err, n, "%s", cacao_context_last_error(ctx));
+        goto done;
+    }
+    const VkDeviceSize pixels = (VkDeviceSize)w * h;
+    const VkDeviceSize bytes = pixels * 4 * (1 + 4); /* depth R32 + normals RGBA32; output read back into the front */
+    r = CACAO_ERROR_VULKAN;
+    if (!make_buffer(dev, bytes, &staging) ||
+        !make_image(dev, VK_FORMAT_R32_SFLOAT, w, h, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                    &depth) ||
+        (frame->normals &&
+         !make_image(dev, VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
+                     VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, &normals)) ||
+        !make_image(dev, out_format, w, h, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &output)) {
+        set_err(err, n, "cannot create the frame's images (%ux%u)", w, h);
+        goto done;
+    }
+    float *host = staging.mapped;
+    memcpy(host, frame->depth, pixels * 4);
+    if (frame->normals)
+        for (VkDeviceSize i = 0; i < pixels; ++i) {
+            float *dst = host + pixels + 4 * i;
+            dst[0] = frame->normals[3 * i];
+            dst[1] = frame->normals[3 * i + 1];
+            dst[2] = frame->normals[3 * i + 2];
+            dst[3] = 0.0f;
+        }
+    if (!begin(dev)) goto vk_failed;
+    record_upload(dev, &staging, 0, &depth, w, h);
+    if (frame->normals) record_upload(dev, &staging, pixels * 4, &normals, w, h);
+    transition(dev->cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0, 0,
+               VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+    if (!submit_and_wait(dev)) goto vk_failed;
+
+    cacao_inputs in = {
+        .depth = {depth.image, depth.view, VK_FORMAT_R32_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+        .normals = {normals.image, normals.view, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+        .output = {output.image, output.view, out_format, VK_IMAGE_LAYOUT_GENERAL},
+        .matrices_row_major = true,
+        .normals_unpack_mul = frame->normals_unpack_mul,
+        .normals_unpack_add = frame->normals_unpack_add,
+        .timestamp_query_pool = dev->timestamps,
+    };
+    memcpy(in.projection, frame->projection, sizeof in.projection);
+    memcpy(in.normals_to_view, frame->normals_to_view, sizeof in.normals_to_view);
+    const cacao_plan *plan = cacao_context_plan(ctx);
+    const uint32_t steps = plan->step_count;
+    double *samples = calloc((size_t)repeat * (steps + 1), sizeof *samples);
+    if (!samples) goto vk_failed;
+    for (uint32_t rep = 0; rep < repeat; ++rep) {
+        if (!begin(dev)) {
+            free(samples);
+            goto vk_failed;
+        }
+        vkCmdResetQueryPool(dev->cmd, dev->timestamps, 0, steps + 1);
+        r = cacao_record(ctx, dev->cmd, &in);
+        if (r != CACAO_SUCCESS) {
+            set_err(err, n, "%s", cacao_context_last_error(ctx));
+            vkEndCommandBuffer(dev->cmd);
+            free(samples);
+            goto done;
+        }
+        if (rep + 1 == repeat) { /* read the AO back after the last run */
+            transition(dev->cmd, output.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                       VK_ACCESS_MEMORY_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                       VK_PIPELINE_STAGE_TRANSFER_BIT);
+            const VkBufferImageCopy region = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                              .imageExtent = {w, h, 1}};
+            vkCmdCopyImageToBuffer(dev->cmd, output.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1,
+                                   &region);
+            const VkMemoryBarrier host_read = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+                                               .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
+                                               .dstAccessMask = VK_ACCESS_HOST_READ_BIT};
+            vkCmdPipelineBarrier(dev->cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &host_read,
+                                 0, NULL, 0, NULL);
+        }
+        if (!submit_and_wait(dev)) {
+            free(samples);
+            goto vk_failed;
+        }
+        uint64_t stamps[MAX_TIMESTAMPS];
+        if (vkGetQueryPoolResults(dev->device, dev->timestamps, 0, steps + 1, sizeof stamps, stamps, sizeof(uint64_t),
+                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS)
+            for (uint32_t s = 0; s < steps; ++s)
+                samples[(size_t)s * repeat + rep] = (double)(stamps[s + 1] - stamps[s]) * dev->timestamp_period_ns * 1e-6;
+        samples[(size_t)steps * repeat + rep] = 0.0;
+        for (uint32_t s = 0; s < steps; ++s) samples[(size_t)steps * repeat + rep] += samples[(size_t)s * repeat + rep];
+    }
+    memcpy(ao, staging.mapped, pixels * 4);
+    if (timings) {
+        timings->step_count = steps;
+        for (uint32_t s = 0; s < steps; ++s) timings->step_ms[s] = median(samples + (size_t)s * repeat, repeat);
+        timings->total_ms = median(samples + (size_t)steps * repeat, repeat);
+    }
+    free(samples);
+    r = CACAO_SUCCESS;
+    goto done;
+vk_failed:
+    r = vk_error(err, n, "a Vulkan submission");
+done:
+    vkDeviceWaitIdle(dev->device);
+    free_image(dev, &depth);
+    free_image(dev, &normals);
+    free_image(dev, &output);
+    free_buffer(dev, &staging);
+    cacao_context_destroy(ctx);
+    return r;
+}

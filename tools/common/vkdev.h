@@ -1,0 +1,68 @@
+/* vkdev.h - a small headless Vulkan device for the cacao command and the tests: instance (with
+ * the Khronos validation layer and synchronization validation when asked), device selection
+ * (lavapipe by default), and one-shot "upload depth, run cacao, read back AO" frames.
+ * This is application code built on the public API (cacao.h), as an engine would write it. */
+#ifndef CACAO_VKDEV_H
+#define CACAO_VKDEV_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "cacao.h"
+
+typedef struct vkdev {
+    VkInstance instance;
+    VkDebugUtilsMessengerEXT messenger;
+    VkPhysicalDevice physical_device;
+    VkDevice device;
+    VkQueue queue;
+    uint32_t queue_family;
+    VkCommandPool pool;
+    VkCommandBuffer cmd;
+    VkFence fence;
+    VkQueryPool timestamps;
+    double timestamp_period_ns;
+    bool fp16;                 /* shaderFloat16 enabled */
+    bool validation;           /* validation layer on */
+    uint32_t validation_messages; /* warnings and errors reported by the layer */
+    char device_name[256];
+} vkdev;
+
+typedef struct vkdev_options {
+    bool validation;           /* Khronos validation + synchronization validation; messages are counted and printed */
+    const char *device;        /* NULL: lavapipe (CPU) if present, else the first device; or an index or a name substring */
+    bool quiet;                /* do not print validation messages */
+} vkdev_options;
+
+/* Creates everything; on failure writes a message into err and returns false. */
+bool vkdev_create(const vkdev_options *options, vkdev *dev, char *err, size_t err_size);
+void vkdev_destroy(vkdev *dev);
+
+/* Lists the physical devices (index, name, type) to out. Returns false if Vulkan is unusable. */
+bool vkdev_list(FILE *out, char *err, size_t err_size);
+
+/* One frame's inputs as host data. */
+typedef struct vkdev_frame {
+    uint32_t width, height;
+    const float *depth;        /* width*height raw depth, row 0 = top */
+    const float *normals;      /* width*height*3 or NULL */
+    float projection[16];      /* row-major, column vectors (scenes' camera.json convention) */
+    float normals_to_view[16]; /* row-major; zero = identity */
+    float normals_unpack_mul, normals_unpack_add;
+    VkFormat output_format;    /* 0 = R32_SFLOAT */
+} vkdev_frame;
+
+/* Per-step GPU times of the last run, in milliseconds (timestamp queries). */
+typedef struct vkdev_timings {
+    uint32_t step_count;
+    double step_ms[CACAO_PLAN_MAX_STEPS];
+    double total_ms;
+} vkdev_timings;
+
+/* Creates a context with these settings, uploads the frame, records cacao `repeat` times (each in
+ * its own submission, timed), reads the AO back into ao (width*height floats). timings may be NULL.
+ * On a cacao error returns it with the message in err; Vulkan failures return CACAO_ERROR_VULKAN. */
+cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t repeat,
+                       float *ao, vkdev_timings *timings, char *err, size_t err_size);
+
+#endif

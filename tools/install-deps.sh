@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Installs cacao's build and test dependencies from Debian 12 packages (runs apt-get update once).
+set -euo pipefail
+packages=(cmake ninja-build gcc pkg-config
+          glslang-dev glslang-tools spirv-tools libspirv-cross-c-shared-dev
+          libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
+          libpng-dev libcjson-dev libopenexr-dev)
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update
+"${sudo_cmd[@]}" apt-get install -y --no-install-recommends "${packages[@]}"
