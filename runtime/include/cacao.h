@@ -265,6 +265,13 @@ typedef struct cacao_inputs {
 cacao_result cacao_record(cacao_context *context, VkCommandBuffer command_buffer,
                           const cacao_inputs *inputs);
 
+/* For tools and tests: the handle of one of the context's intermediates (image or buffer, the
+ * other is set to VK_NULL_HANDLE), to copy it out after cacao_record. Images are in GENERAL
+ * layout and were last written by the compute stage; treat them as read-only. Returns
+ * CACAO_ERROR_INVALID_ARGUMENT when the current plan has no such resource. */
+cacao_result cacao_context_intermediate(const cacao_context *context, cacao_resource resource, VkImage *image,
+                                        VkBuffer *buffer);
+
 /* The precision that actually runs (FP32 when FP16 was asked but the device lacks it). */
 cacao_precision cacao_context_precision(const cacao_context *context);
 

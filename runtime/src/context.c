@@ -214,7 +214,7 @@ static cacao_result create_image(cacao_context *ctx, const cacao_plan_image *pi)
         .arrayLayers = pi->layers,
         .samples = VK_SAMPLE_COUNT_1_BIT,
         .tiling = VK_IMAGE_TILING_OPTIMAL,
-        .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+        .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, /* copyable for inspection */
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
         .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
     };
@@ -251,7 +251,7 @@ static cacao_result create_buffer(cacao_context *ctx, unsigned index, VkDeviceSi
     const VkBufferCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
         .size = size,
-        .usage = usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+        .usage = usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
     };
     VkResult vr = vkCreateBuffer(ctx->device, &info, ctx->alloc, &ctx->buffers[index]);
@@ -347,4 +347,15 @@ cacao_result cacao_context_resize(cacao_context *ctx, uint32_t width, uint32_t h
     ctx->last_error[0] = '\0';
     if (out_info) *out_info = ctx->memory;
     return CACAO_SUCCESS;
+}
+
+cacao_result cacao_context_intermediate(const cacao_context *ctx, cacao_resource resource, VkImage *image,
+                                        VkBuffer *buffer) {
+    if (!ctx || !ctx->ready || !image || !buffer) return CACAO_ERROR_INVALID_ARGUMENT;
+    *image = VK_NULL_HANDLE;
+    *buffer = VK_NULL_HANDLE;
+    if (resource == CACAO_RES_CONSTANTS) *buffer = ctx->buffers[CACAO_BUFFER_CONSTANTS];
+    else if (resource == CACAO_RES_LOAD_COUNTER) *buffer = ctx->buffers[CACAO_BUFFER_LOAD_COUNTER];
+    else if ((unsigned)resource < CACAO_RES_COUNT) *image = ctx->images[resource].image;
+    return (*image || *buffer) ? CACAO_SUCCESS : CACAO_ERROR_INVALID_ARGUMENT;
 }

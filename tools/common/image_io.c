@@ -324,6 +324,7 @@ typedef struct png_job {
     png_bytep *rows;       /* row pointers into pixels (reading) */
     float *data;           /* the float image being built (reading) */
     char message[256];     /* libpng's error, or ours */
+    char warning[128];     /* libpng's last warning: often the reason behind a generic error */
 } png_job;
 
 static void png_job_error(png_structp png, png_const_charp message) {
@@ -332,9 +333,22 @@ static void png_job_error(png_structp png, png_const_charp message) {
     png_longjmp(png, 1);
 }
 
+/* Warnings do not stop decoding; the last one is kept because libpng reports, for example, an
+ * oversized IHDR as a warning naming the field followed by the error "Invalid IHDR data". */
 static void png_job_warning(png_structp png, png_const_charp message) {
-    (void)png;
-    (void)message; /* warnings (e.g. unknown chunks) do not affect the pixels */
+    png_job *job = png_get_error_ptr(png);
+    snprintf(job->warning, sizeof(job->warning), "%s", message);
+}
+
+/* Formats a failed job's error as "<prefix>: <error> (<last warning>)". */
+static void png_job_report(const png_job *job, const char *path, const char *prefix, char *err,
+                           size_t err_size) {
+    if (!job->info)
+        set_err(err, err_size, "%s: %s: cannot initialise libpng", path, prefix);
+    else if (job->warning[0])
+        set_err(err, err_size, "%s: %s: %s (%s)", path, prefix, job->message, job->warning);
+    else
+        set_err(err, err_size, "%s: %s: %s", path, prefix, job->message);
 }
 
 static void png_job_read(png_structp png, png_bytep bytes, size_t count) {
@@ -345,7 +359,10 @@ static void png_job_read(png_structp png, png_bytep bytes, size_t count) {
 
 static void png_job_write(png_structp png, png_bytep bytes, size_t count) {
     png_job *job = png_get_io_ptr(png);
-    if (fwrite(bytes, 1, count, job->file) != count) png_error(png, "write failed");
+    if (fwrite(bytes, 1, count, job->file) != count) {
+        snprintf(job->warning, sizeof(job->warning), "%s", strerror(errno));
+        png_error(png, "write failed");
+    }
 }
 
 static void png_job_flush(png_structp png) { (void)png; }
@@ -424,9 +441,7 @@ bool cacao_png_read(const char *path, cacao_img *out, bool *is16bit, char *err, 
     job.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &job, png_job_error, png_job_warning);
     job.info = job.png ? png_create_info_struct(job.png) : NULL;
     bool ok = job.info && png_decode(&job, out, is16bit);
-    if (!ok)
-        set_err(err, err_size, "%s: bad PNG: %s", path,
-                job.info ? job.message : "cannot initialise libpng");
+    if (!ok) png_job_report(&job, path, "bad PNG", err, err_size);
     png_destroy_read_struct(job.png ? &job.png : NULL, job.info ? &job.info : NULL, NULL);
     free(job.data);
     free(job.rows);
@@ -489,9 +504,7 @@ bool cacao_png_write(const char *path, const cacao_img *img, int bits, char *err
     job.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &job, png_job_error, png_job_warning);
     job.info = job.png ? png_create_info_struct(job.png) : NULL;
     bool written = job.info && png_encode(&job, img, bits);
-    if (!written)
-        set_err(err, err_size, "%s: PNG encoding failed: %s", path,
-                job.info ? job.message : "cannot initialise libpng");
+    if (!written) png_job_report(&job, path, "PNG encoding failed", err, err_size);
     png_destroy_write_struct(job.png ? &job.png : NULL, job.info ? &job.info : NULL);
     free(job.pixels);
     return finish_temp(job.file, temp, path, written, err, err_size);

@@ -206,35 +206,36 @@ void cacao_scene_render(const cacao_scene *scene, float *depth, float *depth_rev
 
 #define BOX(x0, y0, z0, x1, y1, z1) {CACAO_PRIM_BOX, {x0, y0, z0}, {x1, y1, z1}, 0.0}
 #define SPHERE(x, y, z, radius) {CACAO_PRIM_SPHERE, {x, y, z}, {0, 0, 0}, radius}
-/* A step of the flight: solid from the floor up to its tread at height h, running back to the
- * back wall, so each riser meets the tread below in an inner corner. */
-#define STEP(k) BOX(-4.6, 0.0, -12.0, -2.6, 0.18 * (k), -12.0 + 0.3 * (9 - (k)))
+/* A step of the flight: solid from the floor up to its tread at height 0.18*k, running back to
+ * the back wall, so each riser meets the tread below in an inner corner. */
+#define STEP(k) BOX(-3.2, 0.0, -9.0, -1.2, 0.18 * (k), -9.0 + 0.3 * (9 - (k)))
 
 /* Room: floor y = 0 (an infinite plane, so it reaches the far plane), walls 3.5 m high on the
- * left (x = -6) and at the back (z = -12), open to the right (x > 5) and with no roof. */
+ * left (x = -5) and at the back (z = -9), open to the right (x > 3.5) and with no roof. */
 static const cacao_prim default_prims[] = {
     {CACAO_PRIM_PLANE, {0, 0, 0}, {0, 1, 0}, 0.0}, /* floor */
-    BOX(-6.3, 0.0, -12.3, -6.0, 3.5, 3.0),         /* left wall */
-    BOX(-6.3, 0.0, -12.3, 5.0, 3.5, -12.0),        /* back wall, ends at x = 5 */
-    BOX(4.6, 0.0, -12.0, 5.0, 3.5, -9.0),          /* return of the back wall */
+    BOX(-5.3, 0.0, -9.3, -5.0, 3.5, 3.0),          /* left wall */
+    BOX(-5.3, 0.0, -9.3, 3.5, 3.5, -9.0),          /* back wall */
+    BOX(3.2, 0.0, -9.0, 3.5, 3.5, -7.5),           /* return of the back wall at the open side */
     /* Columns */
-    BOX(-1.25, 0.0, -3.25, -0.75, 3.5, -2.75),
-    BOX(-1.25, 0.0, -8.25, -0.75, 3.5, -7.75),
-    BOX(2.75, 0.0, -8.25, 3.25, 3.5, -7.75),
-    BOX(2.75, 0.0, -3.25, 3.25, 3.5, -2.75),
-    BOX(-6.0, 0.0, -6.3, -5.6, 3.5, -5.7), /* pilaster on the left wall */
-    /* Stairs up to the back wall */
+    BOX(-2.75, 0.0, -3.75, -2.25, 3.5, -3.25),
+    BOX(0.75, 0.0, -3.75, 1.25, 3.5, -3.25),
+    BOX(0.75, 0.0, -7.25, 1.25, 3.5, -6.75),
+    BOX(-5.0, 0.0, -6.0, -4.7, 3.5, -5.4), /* pilaster on the left wall */
+    /* Stairs up to the back wall, with a landing */
     STEP(1), STEP(2), STEP(3), STEP(4), STEP(5), STEP(6), STEP(7), STEP(8),
-    BOX(-4.6, 0.0, -12.0, -2.6, 1.44, -11.7), /* landing */
-    /* Spheres on the floor, against the left wall, in the corner and by a column */
-    SPHERE(0.8, 0.5, -4.5, 0.5),
-    SPHERE(-5.4, 0.6, -3.0, 0.6),
-    SPHERE(-5.65, 0.35, -11.65, 0.35),
-    SPHERE(3.0, 0.3, -2.45, 0.3),
-    SPHERE(1.5, 0.25, -9.0, 0.25),
+    BOX(-3.2, 0.0, -9.0, -1.2, 1.62, -8.7),
+    /* Spheres: on the open floor, against the left wall, in the back corner, touching a column
+     * and touching the back wall */
+    SPHERE(-0.4, 0.5, -1.6, 0.5),
+    SPHERE(-4.4, 0.6, -2.0, 0.6),
+    SPHERE(-4.65, 0.35, -8.65, 0.35),
+    SPHERE(1.55, 0.3, -7.0, 0.3),
+    SPHERE(2.6, 0.4, -8.6, 0.4),
+    SPHERE(2.4, 0.35, -1.2, 0.35),
     /* A low block and a bench against the back wall */
-    BOX(-0.5, 0.0, -6.0, 0.5, 0.4, -5.0),
-    BOX(0.5, 0.0, -12.0, 3.5, 0.45, -11.4),
+    BOX(-1.0, 0.0, -5.6, 0.0, 0.4, -4.6),
+    BOX(-0.6, 0.0, -9.0, 0.6, 0.45, -8.5),
 };
 
 static cacao_scene default_scene = {
@@ -245,8 +246,8 @@ static cacao_scene default_scene = {
             .fov_y_deg = 60.0,
             .near_z = 0.1,
             .far_z = 500.0,
-            .eye = {3.8, 1.7, 3.0},
-            .target = {-1.0, 0.6, -7.0},
+            .eye = {3.0, 1.6, 2.2},
+            .target = {-1.0, 0.9, -5.5},
             .up = {0.0, 1.0, 0.0},
         },
     .ao_radius_world = 0.5,

@@ -270,11 +270,7 @@ typedef struct gpu_image {
     VkFormat format;
 } gpu_image;
 
-typedef struct gpu_buffer {
-    VkBuffer buffer;
-    VkDeviceMemory memory;
-    void *mapped;
-} gpu_buffer;
+typedef vkdev_buffer gpu_buffer;
 
 static bool find_memory(vkdev *dev, uint32_t bits, VkMemoryPropertyFlags flags, uint32_t *index) {
     VkPhysicalDeviceMemoryProperties props;
@@ -349,6 +345,15 @@ static void free_buffer(vkdev *dev, gpu_buffer *b) {
     if (b->memory) vkFreeMemory(dev->device, b->memory, NULL);
     memset(b, 0, sizeof *b);
 }
+
+bool vkdev_buffer_create(vkdev *dev, VkDeviceSize size, vkdev_buffer *out) {
+    memset(out, 0, sizeof *out);
+    if (make_buffer(dev, size, out)) return true;
+    free_buffer(dev, out);
+    return false;
+}
+
+void vkdev_buffer_destroy(vkdev *dev, vkdev_buffer *b) { free_buffer(dev, b); }
 
 static void transition(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to, VkAccessFlags src,
                        VkAccessFlags dst, VkPipelineStageFlags src_stage, VkPipelineStageFlags dst_stage) {
@@ -502,6 +507,7 @@ cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_f
                                                .dstAccessMask = VK_ACCESS_HOST_READ_BIT};
             vkCmdPipelineBarrier(dev->cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &host_read,
                                  0, NULL, 0, NULL);
+            if (frame->after_record) frame->after_record(dev, ctx, dev->cmd, frame->user);
         }
         if (!submit_and_wait(dev)) {
             free(samples);
@@ -516,6 +522,7 @@ cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_f
         for (uint32_t s = 0; s < steps; ++s) samples[(size_t)steps * repeat + rep] += samples[(size_t)s * repeat + rep];
     }
     memcpy(ao, staging.mapped, pixels * 4);
+    if (frame->after_wait) frame->after_wait(dev, ctx, frame->user);
     if (timings) {
         timings->step_count = steps;
         for (uint32_t s = 0; s < steps; ++s) timings->step_ms[s] = median(samples + (size_t)s * repeat, repeat);

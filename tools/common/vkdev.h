@@ -34,7 +34,8 @@ typedef struct vkdev_options {
     bool quiet;                /* do not print validation messages */
 } vkdev_options;
 
-/* Creates everything; on failure writes a message into err and returns false. */
+/* Creates everything; on failure writes a message into err and returns false. The validation
+ * layer reports into *dev, so dev must not move while it is alive. */
 bool vkdev_create(const vkdev_options *options, vkdev *dev, char *err, size_t err_size);
 void vkdev_destroy(vkdev *dev);
 
@@ -50,7 +51,21 @@ typedef struct vkdev_frame {
     float normals_to_view[16]; /* row-major; zero = identity */
     float normals_unpack_mul, normals_unpack_add;
     VkFormat output_format;    /* 0 = R32_SFLOAT */
+    /* Optional: called after the last cacao_record, before submission, to record extra commands
+     * (e.g. copies of intermediates), and after the wait, to read them. */
+    void (*after_record)(struct vkdev *dev, cacao_context *ctx, VkCommandBuffer cmd, void *user);
+    void (*after_wait)(struct vkdev *dev, cacao_context *ctx, void *user);
+    void *user;
 } vkdev_frame;
+
+/* Host-visible buffer helpers for after_record callbacks. */
+typedef struct vkdev_buffer {
+    VkBuffer buffer;
+    VkDeviceMemory memory;
+    void *mapped;
+} vkdev_buffer;
+bool vkdev_buffer_create(vkdev *dev, VkDeviceSize size, vkdev_buffer *out);
+void vkdev_buffer_destroy(vkdev *dev, vkdev_buffer *b);
 
 /* Per-step GPU times of the last run, in milliseconds (timestamp queries). */
 typedef struct vkdev_timings {

@@ -1,0 +1,98 @@
+/* gpu_scene.h - shared helpers of the GPU tests: render a procedural scene on the CPU, run cacao
+ * on lavapipe (validation on), and simple image statistics. Header-only, tests only. */
+#ifndef CACAO_GPU_SCENE_H
+#define CACAO_GPU_SCENE_H
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene.h"
+#include "test_util.h"
+#include "vkdev.h"
+
+typedef struct scene_buffers {
+    uint32_t width, height;
+    float *depth, *depth_reversed, *normals;
+    float projection[16], projection_reversed[16], view_from_world[16];
+} scene_buffers;
+
+static inline void scene_buffers_render(const cacao_scene *scene, scene_buffers *b) {
+    b->width = scene->camera.width;
+    b->height = scene->camera.height;
+    const size_t n = (size_t)b->width * b->height;
+    b->depth = malloc(n * sizeof(float));
+    b->depth_reversed = malloc(n * sizeof(float));
+    b->normals = malloc(3 * n * sizeof(float));
+    cacao_scene_render(scene, b->depth, b->depth_reversed, b->normals);
+    cacao_camera_projection(&scene->camera, false, b->projection);
+    cacao_camera_projection(&scene->camera, true, b->projection_reversed);
+    cacao_camera_view_from_world(&scene->camera, b->view_from_world);
+}
+
+static inline void scene_buffers_free(scene_buffers *b) {
+    free(b->depth);
+    free(b->depth_reversed);
+    free(b->normals);
+}
+
+/* The scenes' normals are right-handed view space (camera-facing +z); cacao's view space has
+ * camera-facing normals at -z: N = diag(1, 1, -1). Float normals: unpack 1, 0. */
+static inline vkdev_frame scene_frame(const scene_buffers *b, bool reversed, bool with_normals) {
+    vkdev_frame f = {.width = b->width, .height = b->height, .depth = reversed ? b->depth_reversed : b->depth};
+    memcpy(f.projection, reversed ? b->projection_reversed : b->projection, sizeof f.projection);
+    if (with_normals) {
+        f.normals = b->normals;
+        f.normals_to_view[0] = 1.0f;
+        f.normals_to_view[5] = 1.0f;
+        f.normals_to_view[10] = -1.0f;
+        f.normals_to_view[15] = 1.0f;
+        f.normals_unpack_mul = 1.0f;
+        f.normals_unpack_add = 0.0f;
+    }
+    return f;
+}
+
+/* World position of pixel i from the standard depth (for selecting regions by geometry). */
+static inline bool scene_world_position(const cacao_scene *scene, const scene_buffers *b, size_t i, double out[3]) {
+    const cacao_camera *c = &scene->camera;
+    const double d = b->depth[i];
+    if (d >= 1.0) return false;
+    const double z = c->near_z * c->far_z / (c->far_z - d * (c->far_z - c->near_z));
+    const double t = tan(c->fov_y_deg * 3.14159265358979323846 / 360.0), aspect = (double)b->width / b->height;
+    const double u = ((double)(i % b->width) + 0.5) / b->width, v = ((double)(i / b->width) + 0.5) / b->height;
+    const double view[3] = {(2 * u - 1) * aspect * t * z, (1 - 2 * v) * t * z, -z};
+    const float *m = b->view_from_world; /* [R | t]: world = R^T (view - t) */
+    for (int k = 0; k < 3; ++k)
+        out[k] = m[0 * 4 + k] * (view[0] - m[3]) + m[1 * 4 + k] * (view[1] - m[7]) + m[2 * 4 + k] * (view[2] - m[11]);
+    return true;
+}
+
+static inline bool all_finite_unit(const float *ao, size_t n) {
+    for (size_t i = 0; i < n; ++i)
+        if (!(ao[i] >= 0.0f && ao[i] <= 1.0f)) return false; /* also catches NaN */
+    return true;
+}
+
+/* Opens lavapipe with validation; the vkdev must stay where it is (the layer reports into it). */
+static inline void open_device(vkdev *dev) {
+    char err[512];
+    if (!vkdev_create(&(vkdev_options){.validation = true}, dev, err, sizeof err)) {
+        fprintf(stderr, "cannot open the Vulkan device: %s\n", err);
+        exit(1);
+    }
+}
+
+/* Runs cacao; a failure is a test failure (message printed). */
+static inline bool run(vkdev *dev, const cacao_settings *s, const vkdev_frame *f, float *ao) {
+    char err[512];
+    cacao_result r = vkdev_run(dev, s, f, 1, ao, NULL, err, sizeof err);
+    if (r != CACAO_SUCCESS) {
+        fprintf(stderr, "cacao run failed: %s: %s\n", cacao_result_string(r), err);
+        ++test_failures;
+        return false;
+    }
+    return true;
+}
+
+#endif

@@ -1,0 +1,222 @@
+/* test_constants - the constant-buffer math (cacao_fill_constants) against values derived by hand
+ * from the spec's formulas (constants.md section 8, worked example: 960x540, fovY 65 deg, 16:9,
+ * near 0.05, far 100) and, where the shared data is present, against the complete constant
+ * buffers AMD's own UpdateConstants produced for the reference images (settings.json).
+ * Both are independent of our code: the first is arithmetic done on paper, the second AMD's host. */
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "camera_json.h"
+#include "internal.h"
+#include "test_util.h"
+
+#define NEAR(a, b, tol) (fabs((double)(a) - (double)(b)) <= (tol) * fmax(1.0, fabs((double)(b))))
+#define CHECK_NEAR(a, b, tol)                                                                             \
+    do {                                                                                                  \
+        if (!NEAR(a, b, tol)) {                                                                           \
+            fprintf(stderr, "%s:%d: %s = %.9g, expected %.9g\n", __FILE__, __LINE__, #a, (double)(a), (double)(b)); \
+            ++test_failures;                                                                              \
+        }                                                                                                 \
+    } while (0)
+
+static cacao_constants fill(const cacao_settings *s, uint32_t w, uint32_t h, const float proj[16], bool row_major) {
+    cacao_plan plan;
+    char err[256];
+    CHECK(cacao_plan_build(s, w, h, &plan, err, sizeof err) == CACAO_SUCCESS);
+    cacao_inputs in = {.matrices_row_major = row_major};
+    memcpy(in.projection, proj, sizeof in.projection);
+    CHECK(cacao_check_projection(&in, err, sizeof err) == CACAO_SUCCESS);
+    cacao_constants c;
+    cacao_fill_constants(&plan, &in, &c);
+    return c;
+}
+
+static void transpose(const float in[16], float out[16]) {
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) out[c * 4 + r] = in[r * 4 + c];
+}
+
+/* spec constants.md "Worked example". */
+static void test_worked_example(void) {
+    float p[16], pr[16], pt[16];
+    cacao_perspective(65.0, 16.0 / 9.0, 0.05, 100.0, false, p);
+    cacao_perspective(65.0, 16.0 / 9.0, 0.05, 100.0, true, pr);
+    const cacao_settings s = {.quality = CACAO_QUALITY_HIGHEST};
+    cacao_constants c = fill(&s, 960, 540, p, true);
+    CHECK_NEAR(c.camera_tan_half_fov.y, 0.6370702, 1e-6);
+    CHECK_NEAR(c.camera_tan_half_fov.x, 1.1325693, 1e-6);
+    CHECK_NEAR(c.ndc_to_view_mul.x, 2.2651386, 1e-6);
+    CHECK_NEAR(c.ndc_to_view_mul.y, -1.2741405, 1e-6);
+    CHECK_NEAR(c.ndc_to_view_add.x, -1.1325693, 1e-6);
+    CHECK_NEAR(c.ndc_to_view_add.y, 0.6370702, 1e-6);
+    CHECK_NEAR(c.depth_unpack.x, 0.0500250, 1e-6);
+    CHECK_NEAR(c.depth_unpack.y, 1.0005002, 1e-6);
+    CHECK_NEAR(c.effect_radius, 1.2, 1e-6);
+    CHECK_NEAR(c.neg_rec_effect_radius, -0.8333333, 1e-6);
+    CHECK_NEAR(c.effect_shadow_strength, 4.3, 1e-6);
+    CHECK_NEAR(c.effect_fade_out_mul, -0.004, 1e-6);
+    CHECK_NEAR(c.effect_fade_out_add, 1.2, 1e-6);
+    CHECK_NEAR(c.effect_sampling_radius_near_limit_rec, 0.4424099, 1e-6);
+    CHECK_NEAR(c.inv_sharpness, 0.02, 1e-6);
+    CHECK_NEAR(c.ssao_buffer_dimensions.x, 480, 0);
+    CHECK_NEAR(c.ssao_buffer_dimensions.y, 270, 0);
+    CHECK_NEAR(c.importance_map_dimensions.x, 240, 0);
+    CHECK_NEAR(c.importance_map_dimensions.y, 135, 0);
+    CHECK_NEAR(c.load_counter_avg_div, 1.0893247e-6, 1e-6);
+    CHECK(c.slice_count == 4);
+    /* Pattern table rows of constants.md section 4: (k=1, j=2) and (k=3, j=4). */
+    CHECK_NEAR(c.pattern_rot_scale[1 * 5 + 2].x, -0.944399, 1e-5);
+    CHECK_NEAR(c.pattern_rot_scale[1 * 5 + 2].y, -0.306854, 1e-5);
+    CHECK_NEAR(c.pattern_rot_scale[1 * 5 + 2].w, 0.944399, 1e-5);
+    CHECK_NEAR(c.pattern_rot_scale[3 * 5 + 4].x, 0.649503, 1e-5);
+    CHECK_NEAR(c.pattern_rot_scale[3 * 5 + 4].z, 0.893964, 1e-5);
+    CHECK_NEAR(c.per_slice_full_res_uv_offset[3].x, 1.0 / 480, 1e-9);
+    CHECK_NEAR(c.per_slice_full_res_uv_offset[3].y, 1.0 / 270, 1e-9);
+
+    /* The same matrix stored column-major gives the same constants. */
+    transpose(p, pt);
+    cacao_constants c2 = fill(&s, 960, 540, pt, false);
+    CHECK(memcmp(&c, &c2, sizeof c) == 0);
+
+    /* Reversed Z: M = -0.0500250, A = -0.00050025, and both map their own depth of the same point
+     * (view z = 3) to z = 3. */
+    cacao_constants r = fill(&s, 960, 540, pr, true);
+    CHECK_NEAR(r.depth_unpack.x, -0.0500250, 1e-6);
+    CHECK_NEAR(r.depth_unpack.y, -0.00050025, 1e-6);
+    const double n = 0.05, f = 100.0, z = 3.0;
+    const double d = f * (z - n) / (z * (f - n)), dr = n * (f - z) / (z * (f - n));
+    CHECK_NEAR(c.depth_unpack.x / (c.depth_unpack.y - d), z, 1e-4);
+    CHECK_NEAR(r.depth_unpack.x / (r.depth_unpack.y - dr), z, 1e-4);
+
+    /* Downsampled: S = 240x135, I = 120x68, LoadCounterAvgDiv = 4.3252594e-6. */
+    const cacao_settings sd = {.quality = CACAO_QUALITY_HIGHEST, .downsample = true};
+    cacao_constants dsc = fill(&sd, 960, 540, p, true);
+    CHECK_NEAR(dsc.ssao_buffer_dimensions.x, 240, 0);
+    CHECK_NEAR(dsc.ssao_buffer_dimensions.y, 135, 0);
+    CHECK_NEAR(dsc.importance_map_dimensions.y, 68, 0);
+    CHECK_NEAR(dsc.load_counter_avg_div, 4.3252594e-6, 1e-6);
+
+    /* LOWEST with radius 0.75: EffectRadius 0.6, NearLimitRec 0.4719039, two slices. */
+    const cacao_settings sl = {.quality = CACAO_QUALITY_LOWEST, .radius = 0.75f};
+    cacao_constants lc = fill(&sl, 960, 540, p, true);
+    CHECK_NEAR(lc.effect_radius, 0.6, 1e-6);
+    CHECK_NEAR(lc.effect_sampling_radius_near_limit_rec, 0.4719039, 1e-6);
+    CHECK(lc.slice_count == 2);
+}
+
+/* A 90-degree square projection by hand: tan = 1, near 1, far 10 -> M = A = 10/9. */
+static void test_simple_projection(void) {
+    float p[16];
+    cacao_perspective(90.0, 1.0, 1.0, 10.0, false, p);
+    const cacao_settings s = {.quality = CACAO_QUALITY_HIGH};
+    cacao_constants c = fill(&s, 64, 64, p, true);
+    CHECK_NEAR(c.depth_unpack.x, 10.0 / 9.0, 1e-6);
+    CHECK_NEAR(c.depth_unpack.y, 10.0 / 9.0, 1e-6);
+    CHECK_NEAR(c.ndc_to_view_mul.x, 2.0, 1e-6);
+    CHECK_NEAR(c.ndc_to_view_mul.y, -2.0, 1e-6);
+    CHECK_NEAR(c.ndc_to_view_add.x, -1.0, 1e-6);
+    CHECK_NEAR(c.ndc_to_view_add.y, 1.0, 1e-6);
+    /* normals_to_view all zero -> identity; a given matrix N lands column-major (m[4c+r] = N(r,c)). */
+    CHECK(c.normals_to_view.m[0] == 1 && c.normals_to_view.m[5] == 1 && c.normals_to_view.m[1] == 0);
+    cacao_plan plan;
+    char err[256];
+    cacao_settings sn = {.quality = CACAO_QUALITY_HIGH, .generate_normals = false};
+    CHECK(cacao_plan_build(&sn, 64, 64, &plan, err, sizeof err) == CACAO_SUCCESS);
+    cacao_inputs in = {.matrices_row_major = true};
+    memcpy(in.projection, p, sizeof p);
+    in.normals_to_view[0 * 4 + 1] = 7.0f; /* N(0,1) = 7 */
+    in.normals_to_view[10] = -1.0f;
+    cacao_fill_constants(&plan, &in, &c);
+    CHECK(c.normals_to_view.m[4 * 1 + 0] == 7.0f);
+    CHECK(c.normals_to_view.m[4 * 2 + 2] == -1.0f);
+    CHECK(c.normals_unpack_mul == 2.0f && c.normals_unpack_add == -1.0f);
+}
+
+/* AMD's own constant buffers for the reference images (settings.json), field by field. */
+static int compare_with_amd(const char *shared, const char *scene) {
+    char path[4096], err[256];
+    snprintf(path, sizeof path, "%s/reference-amd/%s/settings.json", shared, scene);
+    FILE *f = fopen(path, "rb");
+    if (!f) return 0;
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *text = malloc((size_t)size + 1);
+    CHECK(text && fread(text, 1, (size_t)size, f) == (size_t)size);
+    fclose(f);
+    text[size] = 0;
+    cJSON *root = cJSON_Parse(text);
+    free(text);
+    CHECK(root != NULL);
+    snprintf(path, sizeof path, "%s/scenes/%s/camera.json", shared, scene);
+    cacao_camera_file cam;
+    CHECK(cacao_camera_json_read(path, &cam, err, sizeof err));
+    int compared = 0;
+    const cJSON *config;
+    cJSON_ArrayForEach(config, cJSON_GetObjectItem(root, "configurations")) {
+        const cJSON *st = cJSON_GetObjectItem(config, "settings");
+        const int quality = cJSON_GetObjectItem(st, "qualityLevel")->valueint;
+        const cacao_settings s = {
+            .radius = (float)cJSON_GetObjectItem(st, "radius")->valuedouble,
+            .fade_out_from = (float)cJSON_GetObjectItem(st, "fadeOutFrom")->valuedouble,
+            .fade_out_to = (float)cJSON_GetObjectItem(st, "fadeOutTo")->valuedouble,
+            .quality = (cacao_quality)(quality + 1),
+            .downsample = cJSON_IsTrue(cJSON_GetObjectItem(config, "useDownsampledSsao")),
+            .generate_normals = true,
+        };
+        cacao_constants c = fill(&s, (uint32_t)cam.width, (uint32_t)cam.height, cam.projection, true);
+        const cJSON *k0 = cJSON_GetArrayItem(cJSON_GetObjectItem(config, "constants_per_pass"), 3);
+#define AMD(name) (cJSON_GetObjectItem(k0, name)->valuedouble)
+#define AMD2(name, i) (cJSON_GetArrayItem(cJSON_GetObjectItem(k0, name), i)->valuedouble)
+        CHECK_NEAR(c.depth_unpack.x, AMD2("DepthUnpackConsts", 0), 1e-6);
+        CHECK_NEAR(c.depth_unpack.y, AMD2("DepthUnpackConsts", 1), 1e-6);
+        CHECK_NEAR(c.ndc_to_view_mul.x, AMD2("NDCToViewMul", 0), 1e-6);
+        CHECK_NEAR(c.ndc_to_view_mul.y, AMD2("NDCToViewMul", 1), 1e-6);
+        CHECK_NEAR(c.ndc_to_view_add.x, AMD2("NDCToViewAdd", 0), 1e-6);
+        CHECK_NEAR(c.ndc_to_view_add.y, AMD2("NDCToViewAdd", 1), 1e-6);
+        CHECK_NEAR(c.effect_radius, AMD("EffectRadius"), 1e-6);
+        CHECK_NEAR(c.effect_shadow_strength, AMD("EffectShadowStrength"), 1e-6);
+        CHECK_NEAR(c.effect_shadow_pow, AMD("EffectShadowPow"), 1e-6);
+        CHECK_NEAR(c.effect_shadow_clamp, AMD("EffectShadowClamp"), 1e-6);
+        CHECK_NEAR(c.effect_fade_out_mul, AMD("EffectFadeOutMul"), 1e-6);
+        CHECK_NEAR(c.effect_fade_out_add, AMD("EffectFadeOutAdd"), 1e-6);
+        CHECK_NEAR(c.effect_horizon_angle_threshold, AMD("EffectHorizonAngleThreshold"), 1e-6);
+        CHECK_NEAR(c.effect_sampling_radius_near_limit_rec, AMD("EffectSamplingRadiusNearLimitRec"), 1e-6);
+        CHECK_NEAR(c.neg_rec_effect_radius, AMD("NegRecEffectRadius"), 1e-6);
+        CHECK_NEAR(c.load_counter_avg_div, AMD("LoadCounterAvgDiv"), 1e-6);
+        CHECK_NEAR(c.inv_sharpness, AMD("InvSharpness"), 1e-6);
+        CHECK_NEAR(c.ssao_buffer_dimensions.x, AMD2("SSAOBufferDimensions", 0), 0);
+        CHECK_NEAR(c.ssao_buffer_dimensions.y, AMD2("SSAOBufferDimensions", 1), 0);
+        CHECK_NEAR(c.importance_map_dimensions.x, AMD2("ImportanceMapDimensions", 0), 0);
+        CHECK_NEAR(c.importance_map_dimensions.y, AMD2("ImportanceMapDimensions", 1), 0);
+        CHECK_NEAR(c.per_slice_full_res_uv_offset[3].x, AMD2("PerPassFullResUVOffset", 0), 1e-7);
+        CHECK_NEAR(c.per_slice_full_res_uv_offset[3].y, AMD2("PerPassFullResUVOffset", 1), 1e-7);
+        const cJSON *rot = cJSON_GetObjectItem(k0, "PatternRotScaleMatrices");
+        for (int j = 0; j < 5; ++j) {
+            const cJSON *m = cJSON_GetArrayItem(rot, j);
+            const cacao_vec4 v = c.pattern_rot_scale[3 * 5 + j];
+            CHECK_NEAR(v.x, cJSON_GetArrayItem(m, 0)->valuedouble, 1e-6);
+            CHECK_NEAR(v.y, cJSON_GetArrayItem(m, 1)->valuedouble, 1e-6);
+            CHECK_NEAR(v.z, cJSON_GetArrayItem(m, 2)->valuedouble, 1e-6);
+            CHECK_NEAR(v.w, cJSON_GetArrayItem(m, 3)->valuedouble, 1e-6);
+        }
+        ++compared;
+    }
+    cJSON_Delete(root);
+    return compared;
+}
+
+int main(int argc, char **argv) {
+    test_worked_example();
+    test_simple_projection();
+    if (argc > 1) {
+        static const char *const scenes[] = {"interior_fzkhaus", "statues_scanned", "street_track"};
+        int compared = 0;
+        for (int i = 0; i < 3; ++i) compared += compare_with_amd(argv[1], scenes[i]);
+        printf("compared %d of AMD's constant buffers field by field%s\n", compared,
+               compared ? "" : " (shared data absent)");
+    }
+    return test_report("test_constants");
+}
