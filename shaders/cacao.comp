@@ -68,8 +68,15 @@ int slice_of_layer(int layer) { return cb.slice_count == 2 ? layer * 3 : layer; 
 /* Round a value to half precision and back: mirrors AMD's half-precision shared memory. */
 float round_to_half(float x) { return unpackHalf2x16(packHalf2x16(vec2(x, 0.0))).x; }
 
-/* Raw hardware depth -> positive view-space z (spec: prepare.md "Depth linearisation"). */
-float view_z(float d) { return cb.depth_unpack.x / (cb.depth_unpack.y - d); }
+/* Raw hardware depth -> positive view-space z (spec: prepare.md "Depth linearisation").
+ * A depth that gives no finite positive z (NaN in the depth buffer, d == A on an infinite far
+ * plane, d beyond the far plane) becomes CACAO_MAX_VIEW_Z: far background, which the fade-out
+ * removes. AMD divides blindly there ([quirk] INF-DEPTH); finite depths are unchanged. */
+float view_z(float d)
+{
+    float z = cb.depth_unpack.x / (cb.depth_unpack.y - d);
+    return (z > 0.0 && z < CACAO_MAX_VIEW_Z) ? z : CACAO_MAX_VIEW_Z;
+}
 
 /* Screen UV + view z -> view-space position (spec: README "P(uv, z)"). */
 vec3 view_pos(vec2 uv, float z) { return vec3((cb.ndc_to_view_mul * uv + cb.ndc_to_view_add) * z, z); }

@@ -110,6 +110,7 @@
 #define CACAO_LOAD_COUNTER_STRIDE 3
 #define CACAO_BLUR_CENTRE_WEIGHT 0.5
 #define CACAO_BILATERAL_EPSILON 1e-3
+#define CACAO_MAX_VIEW_Z 65504.0      /* largest half value: the view z of invalid depths */
 #define CACAO_MIP_WEIGHT_FALLOFF -1.0    /* [quirk] MIP-WEIGHT-PRECEDENCE, kept: -1, not -1/R^2 */
 #define CACAO_NEAR_LIMIT_RADIUS_FACTOR 1.2
 #define CACAO_LOW_NEAR_LIMIT_FACTOR 1.5

@@ -157,10 +157,11 @@ static bool pfm_parse_size(const char *field, const char *path, const char *name
 
 static bool pfm_read_header(FILE *file, const char *path, pfm_header *header, char *err,
                             size_t err_size) {
-    int magic[3] = {getc(file), getc(file), getc(file)};
+    int magic[3]; /* read one at a time: initialiser evaluation order is unspecified */
+    for (int i = 0; i < 3; i++) magic[i] = getc(file);
     if (magic[0] != 'P' || (magic[1] != 'f' && magic[1] != 'F') || !is_space(magic[2])) {
-        set_err(err, err_size, "%s: bad header: not a PFM file (does not start with \"Pf\" or \"PF\")",
-                path);
+        set_err(err, err_size,
+                "%s: bad header: not a PFM file (does not start with \"Pf\" or \"PF\")", path);
         return false;
     }
     header->channels = magic[1] == 'F' ? 3 : 1;

@@ -437,7 +437,8 @@ cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_f
         goto done;
     }
     const VkDeviceSize pixels = (VkDeviceSize)w * h;
-    const VkDeviceSize bytes = pixels * 4 * (1 + 4); /* depth R32 + normals RGBA32; output read back into the front */
+    const VkDeviceSize normals_offset = (pixels * 4 + 15) / 16 * 16; /* RGBA32F copies need 16-byte offsets */
+    const VkDeviceSize bytes = normals_offset + pixels * 16; /* depth R32 + normals RGBA32; AO read back into the front */
     r = CACAO_ERROR_VULKAN;
     if (!make_buffer(dev, bytes, &staging) ||
         !make_image(dev, VK_FORMAT_R32_SFLOAT, w, h, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
@@ -453,7 +454,7 @@ cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_f
     memcpy(host, frame->depth, pixels * 4);
     if (frame->normals)
         for (VkDeviceSize i = 0; i < pixels; ++i) {
-            float *dst = host + pixels + 4 * i;
+            float *dst = host + normals_offset / 4 + 4 * i;
             dst[0] = frame->normals[3 * i];
             dst[1] = frame->normals[3 * i + 1];
             dst[2] = frame->normals[3 * i + 2];
@@ -461,7 +462,7 @@ cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_f
         }
     if (!begin(dev)) goto vk_failed;
     record_upload(dev, &staging, 0, &depth, w, h);
-    if (frame->normals) record_upload(dev, &staging, pixels * 4, &normals, w, h);
+    if (frame->normals) record_upload(dev, &staging, normals_offset, &normals, w, h);
     transition(dev->cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0, 0,
                VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
     if (!submit_and_wait(dev)) goto vk_failed;

@@ -1,0 +1,192 @@
+/* test_stability - numerically hard inputs stay well-behaved, on scenes the project renders itself:
+ * odd sizes, NaN/Inf in the depth buffer, reverse-Z (standard and infinite far plane), a huge
+ * depth range, and fp16 against fp32. Every output must be finite and in [0,1]; where two inputs
+ * describe the same geometry the AO must agree. */
+#include "gpu_scene.h"
+
+static const char *const quality_names[] = {"", "lowest", "low", "medium", "high", "highest"};
+
+static void stats_diff(const float *a, const float *b, size_t n, double *mean, double *max) {
+    *mean = 0;
+    *max = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const double d = fabs((double)a[i] - b[i]);
+        *mean += d;
+        *max = fmax(*max, d);
+    }
+    *mean /= (double)n;
+}
+
+/* Sizes that are not multiples of anything: partial workgroups and tiles, odd slice sizes. */
+static void test_odd_sizes(vkdev *dev) {
+    static const uint32_t sizes[][2] = {{97, 61}, {33, 35}, {1001, 37}};
+    for (size_t k = 0; k < 3; ++k) {
+        const cacao_scene *scene = cacao_default_scene(sizes[k][0], sizes[k][1]);
+        scene_buffers b;
+        scene_buffers_render(scene, &b);
+        float *ao = malloc(sizeof(float) * b.width * b.height);
+        for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
+            for (int ds = 0; ds < 2; ++ds) {
+                const cacao_settings s = {.quality = q, .downsample = ds, .radius = (float)scene->ao_radius_world,
+                                          .blur_pass_count = 3};
+                vkdev_frame f = scene_frame(&b, false, true);
+                if (!run(dev, &s, &f, ao)) continue;
+                const bool ok = all_finite_unit(ao, (size_t)b.width * b.height);
+                if (!ok) fprintf(stderr, "odd size %ux%u %s ds %d: output outside [0,1]\n", b.width, b.height,
+                                 quality_names[q], ds);
+                CHECK(ok);
+            }
+        free(ao);
+        scene_buffers_free(&b);
+    }
+    printf("odd sizes 97x61, 33x35, 1001x37: all outputs finite and in [0,1]\n");
+}
+
+/* NaN and infinities in the depth buffer must not poison the image: the output stays finite and
+ * in [0,1] everywhere, and pixels well away from the bad block are exactly as without it. */
+static void test_nan_depth(vkdev *dev) {
+    const cacao_scene *scene = cacao_default_scene(256, 144);
+    scene_buffers b;
+    scene_buffers_render(scene, &b);
+    const size_t n = (size_t)b.width * b.height;
+    float *clean = malloc(sizeof(float) * n), *dirty = malloc(sizeof(float) * n);
+    float *depth = malloc(sizeof(float) * n);
+    memcpy(depth, b.depth, sizeof(float) * n);
+    for (uint32_t y = 60; y < 76; ++y)
+        for (uint32_t x = 100; x < 130; ++x) depth[(size_t)y * b.width + x] = (x % 3 == 0) ? NAN : (x % 3 == 1 ? INFINITY : -INFINITY);
+    for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
+        for (int ds = 0; ds < 2; ++ds) {
+            const cacao_settings s = {.quality = q, .downsample = ds, .generate_normals = true,
+                                      .radius = (float)scene->ao_radius_world};
+            vkdev_frame f = scene_frame(&b, false, false);
+            if (!run(dev, &s, &f, clean)) continue;
+            f.depth = depth;
+            if (!run(dev, &s, &f, dirty)) continue;
+            size_t bad = 0, first_bad = 0;
+            for (size_t i = 0; i < n; ++i)
+                if (!(dirty[i] >= 0.0f && dirty[i] <= 1.0f) && bad++ == 0) first_bad = i;
+            if (bad)
+                fprintf(stderr, "NaN depth %s ds %d: %zu outputs outside [0,1], first at (%zu, %zu) = %f\n",
+                        quality_names[q], ds, bad, first_bad % b.width, first_bad / b.width, dirty[first_bad]);
+            CHECK(bad == 0);
+            size_t changed_far = 0;
+            for (uint32_t y = 0; y < b.height; ++y)
+                for (uint32_t x = 0; x < b.width; ++x) {
+                    const bool far = y + 48 < 60 || y >= 76 + 48 || x + 48 < 100 || x >= 130 + 48;
+                    if (far && clean[(size_t)y * b.width + x] != dirty[(size_t)y * b.width + x]) ++changed_far;
+                }
+            if (changed_far)
+                fprintf(stderr, "NaN depth %s ds %d: %zu pixels changed far from the bad block\n", quality_names[q], ds,
+                        changed_far);
+            CHECK(changed_far == 0);
+        }
+    printf("NaN/Inf depth block: outputs finite, nothing changes beyond 48 pixels of it\n");
+    free(depth);
+    free(clean);
+    free(dirty);
+    scene_buffers_free(&b);
+}
+
+/* The same geometry in standard and reverse-Z depth must give the same AO (up to the float
+ * rounding of the two depth encodings), at every quality and resolution. */
+static void test_reverse_z(vkdev *dev) {
+    const cacao_scene *scene = cacao_default_scene(320, 180);
+    scene_buffers b;
+    scene_buffers_render(scene, &b);
+    const size_t n = (size_t)b.width * b.height;
+    float *a = malloc(sizeof(float) * n), *r = malloc(sizeof(float) * n);
+    for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
+        for (int ds = 0; ds < 2; ++ds) {
+            const cacao_settings s = {.quality = q, .downsample = ds, .radius = (float)scene->ao_radius_world};
+            vkdev_frame f = scene_frame(&b, false, true), fr = scene_frame(&b, true, true);
+            if (!run(dev, &s, &f, a) || !run(dev, &s, &fr, r)) continue;
+            double mean, max;
+            stats_diff(a, r, n, &mean, &max);
+            printf("reverse-Z vs standard %-7s %-11s: mean |diff| %.6f, max %.4f\n", quality_names[q],
+                   ds ? "downsampled" : "native", mean, max);
+            CHECK(all_finite_unit(r, n));
+            CHECK(mean < 0.5 / 255.0);
+        }
+    free(a);
+    free(r);
+    scene_buffers_free(&b);
+}
+
+/* An infinite reverse-Z far plane (background depth exactly 0 maps to infinity) and a huge range
+ * (near 0.01, far 1e6) with a floor running to the horizon: finite output, open floor unoccluded. */
+static void test_depth_ranges(vkdev *dev) {
+    const cacao_prim prims[] = {{CACAO_PRIM_PLANE, {0, 0, 0}, {0, 1, 0}, 0},
+                                {CACAO_PRIM_SPHERE, {0, 0.5, -4}, {0, 0, 0}, 0.5}};
+    cacao_scene scene = {prims, 2, {320, 180, 60.0, 0.01, 1e6, {0, 1.6, 0}, {0, 1.0, -4}, {0, 1, 0}}, 0.5};
+    scene_buffers b;
+    scene_buffers_render(&scene, &b);
+    const size_t n = (size_t)b.width * b.height;
+    float *ao = malloc(sizeof(float) * n);
+    /* Infinite far plane, reversed: P(2,2) = 0, P(2,3) = near, so z = near / d; background d = 0. */
+    float infinite[16];
+    memcpy(infinite, b.projection_reversed, sizeof infinite);
+    infinite[10] = 0.0f;
+    infinite[11] = (float)scene.camera.near_z;
+    for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
+        for (int mode = 0; mode < 3; ++mode) {
+            const cacao_settings s = {.quality = q, .radius = 0.5f, .generate_normals = true};
+            vkdev_frame f = scene_frame(&b, mode != 0, false);
+            if (mode == 2) memcpy(f.projection, infinite, sizeof infinite);
+            if (!run(dev, &s, &f, ao)) continue;
+            CHECK(all_finite_unit(ao, n));
+            /* Bottom rows see open floor close to the camera, far from the sphere. */
+            double worst = 1.0;
+            for (size_t i = n - 8 * b.width; i < n; ++i) worst = fmin(worst, ao[i]);
+            if (worst < 0.99) fprintf(stderr, "depth range %s mode %d: open floor AO %.4f\n", quality_names[q], mode, worst);
+            CHECK(worst >= 0.99);
+        }
+    printf("near 0.01 / far 1e6, standard, reverse-Z and infinite reverse-Z: finite, open floor unoccluded\n");
+    free(ao);
+    scene_buffers_free(&b);
+}
+
+/* fp16 blur/apply/upsample against fp32: only rounding may differ (values in [0,1], half has 11
+ * bits), so the mean difference must stay well under one 8-bit step. */
+static void test_fp16(vkdev *dev) {
+    if (!dev->fp16) {
+        printf("fp16: device has no shaderFloat16, fp16 comparison not applicable\n");
+        return;
+    }
+    const cacao_scene *scene = cacao_default_scene(320, 180);
+    scene_buffers b;
+    scene_buffers_render(scene, &b);
+    const size_t n = (size_t)b.width * b.height;
+    float *a = malloc(sizeof(float) * n), *h = malloc(sizeof(float) * n);
+    for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
+        for (int ds = 0; ds < 2; ++ds) {
+            cacao_settings s = {.quality = q, .downsample = ds, .radius = (float)scene->ao_radius_world,
+                                .blur_pass_count = 4, .precision = CACAO_PRECISION_FP32};
+            vkdev_frame f = scene_frame(&b, false, true);
+            if (!run(dev, &s, &f, a)) continue;
+            s.precision = CACAO_PRECISION_FP16;
+            if (!run(dev, &s, &f, h)) continue;
+            double mean, max;
+            stats_diff(a, h, n, &mean, &max);
+            printf("fp16 vs fp32 %-7s %-11s: mean |diff| %.6f, max %.4f\n", quality_names[q],
+                   ds ? "downsampled" : "native", mean, max);
+            CHECK(all_finite_unit(h, n));
+            CHECK(mean < 0.25 / 255.0);
+            CHECK(max < 8.0 / 255.0);
+        }
+    free(a);
+    free(h);
+    scene_buffers_free(&b);
+}
+
+int main(void) {
+    vkdev dev;
+    open_device(&dev);
+    test_odd_sizes(&dev);
+    test_nan_depth(&dev);
+    test_reverse_z(&dev);
+    test_depth_ranges(&dev);
+    test_fp16(&dev);
+    vkdev_destroy(&dev);
+    CHECK(dev.validation_messages == 0);
+    return test_report("test_stability");
+}
