@@ -1,0 +1,109 @@
+/* test_plan - the pass plan is pure data that runs only the work the settings need: the step list
+ * per quality matches the spec's pass graph (README "Pass graph"), dispatch sizes follow from the
+ * sizes by hand, intermediates exist only when a step touches them, and barriers sit exactly
+ * where a step reads or overwrites what an earlier step since the last barrier touched. */
+#include <string.h>
+
+#include "cacao.h"
+#include "test_util.h"
+
+static const cacao_plan_image *find_image(const cacao_plan *p, cacao_resource r) {
+    for (uint32_t i = 0; i < p->image_count; ++i)
+        if (p->images[i].resource == r) return &p->images[i];
+    return NULL;
+}
+
+static cacao_plan build(cacao_settings s, uint32_t w, uint32_t h) {
+    cacao_plan p;
+    char err[256];
+    CHECK(cacao_plan_build(&s, w, h, &p, err, sizeof err) == CACAO_SUCCESS);
+    return p;
+}
+
+static void test_steps_per_quality(void) {
+    /* By hand from the spec's pass graph, with blur 2, native, normals from depth. */
+    const char *expected[5][10] = {
+        {"prepare_depths.half.native", "prepare_normals.depth.native", "generate.q0", "blur.2.fp32", "apply.half.fp32"},
+        {"prepare_depths.full.native", "prepare_normals.depth.native", "generate.q0", "blur.2.fp32",
+         "apply.nonsmart.fp32"},
+        {"prepare_depths.full.native", "prepare_normals.depth.native", "generate.q1", "blur.2.fp32", "apply.smart.fp32"},
+        {"prepare_depths.mips.native", "prepare_normals.depth.native", "generate.q2", "blur.2.fp32", "apply.smart.fp32"},
+        {"prepare_depths.mips.native", "prepare_normals.depth.native", "generate.q3base", "importance", "importance_a",
+         "importance_b", "generate.q3", "blur.2.fp32", "apply.smart.fp32"},
+    };
+    for (int q = 0; q < 5; ++q) {
+        cacao_plan p = build((cacao_settings){.quality = (cacao_quality)(q + 1), .generate_normals = true}, 1920, 1080);
+        uint32_t n = 0;
+        while (n < 10 && expected[q][n]) ++n;
+        CHECK(p.step_count == n);
+        for (uint32_t i = 0; i < n && i < p.step_count; ++i) {
+            if (strcmp(p.steps[i].key_name, expected[q][i]) != 0)
+                fprintf(stderr, "quality %d step %u: %s, expected %s\n", q, i, p.steps[i].key_name, expected[q][i]);
+            CHECK(strcmp(p.steps[i].key_name, expected[q][i]) == 0);
+        }
+        /* Prepare depths and normals touch disjoint resources: no barrier between them. */
+        CHECK(!p.steps[0].barrier_before && !p.steps[1].barrier_before);
+        for (uint32_t i = 2; i < p.step_count; ++i) CHECK(p.steps[i].barrier_before);
+    }
+}
+
+static void test_only_needed_resources(void) {
+    cacao_plan low = build((cacao_settings){.quality = CACAO_QUALITY_LOW, .blur_pass_count = CACAO_BLUR_NONE,
+                                            .generate_normals = true}, 1920, 1080);
+    CHECK(find_image(&low, CACAO_RES_SSAO_PONG) == NULL);   /* no blur, no Q3 base: no second AO buffer */
+    CHECK(find_image(&low, CACAO_RES_IMPORTANCE) == NULL);  /* importance only at HIGHEST */
+    CHECK(!low.uses_load_counter);
+    CHECK(find_image(&low, CACAO_RES_DEPTHS)->mips == 1);   /* LOW reads no mips */
+    CHECK(low.step_count == 4);                             /* no blur step */
+    cacao_plan medium = build((cacao_settings){.quality = CACAO_QUALITY_MEDIUM, .generate_normals = true}, 1920, 1080);
+    CHECK(find_image(&medium, CACAO_RES_DEPTHS)->mips == 1); /* MEDIUM never reads mips: none built */
+    cacao_plan lowest = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true}, 1920, 1080);
+    CHECK(lowest.slice_count == 2 && find_image(&lowest, CACAO_RES_DEPTHS)->layers == 2);
+    CHECK(lowest.steps[2].dispatch[2] == 2); /* generate runs two slices */
+    cacao_plan highest = build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
+    const cacao_plan_image *depths = find_image(&highest, CACAO_RES_DEPTHS);
+    CHECK(depths->mips == 4 && depths->layers == 4 && depths->width == 960 && depths->height == 540);
+    /* 960x540 + 480x270 + 240x135 + 120x67 texels, 4 layers, 2 bytes. */
+    CHECK(depths->bytes == (uint64_t)(960 * 540 + 480 * 270 + 240 * 135 + 120 * 67) * 4 * 2);
+    CHECK(find_image(&highest, CACAO_RES_IMPORTANCE)->width == 480);
+    CHECK(highest.uses_load_counter);
+    uint64_t sum = 0;
+    for (uint32_t i = 0; i < highest.image_count; ++i) sum += highest.images[i].bytes;
+    CHECK(highest.total_bytes > sum && highest.total_bytes - sum < 1024); /* + constants and counter */
+    CHECK(highest.total_bytes > low.total_bytes);
+}
+
+static void test_dispatch_sizes(void) {
+    /* 1920x1080 native: S = 960x540, I = 480x270. Downsampled: S = 480x270. Odd 1001x37. */
+    cacao_plan p = build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
+    CHECK(p.steps[0].dispatch[0] == 120 && p.steps[0].dispatch[1] == 68);  /* ceil(960/8), ceil(540/8) */
+    CHECK(p.steps[3].dispatch[0] == 60 && p.steps[3].dispatch[1] == 34);   /* importance: ceil(480/8), ceil(270/8) */
+    CHECK(p.steps[6].dispatch[2] == 4);                                    /* generate: 4 slices */
+    CHECK(p.steps[7].dispatch[0] == 30 && p.steps[7].dispatch[1] == 17);   /* blur: 32x32 tiles */
+    CHECK(p.steps[8].dispatch[0] == 240 && p.steps[8].dispatch[1] == 135); /* apply: ceil(1920/8) */
+    cacao_plan d = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true,
+                                          .generate_normals = true}, 1001, 37);
+    CHECK(d.slice_width == 251 && d.slice_height == 10); /* ceil(ceil(1001/2)/2), ceil(ceil(37/2)/2) */
+    CHECK(strcmp(d.steps[d.step_count - 1].key_name, "upsample.smart.fp32") == 0);
+    CHECK(d.steps[d.step_count - 1].dispatch[0] == 63 && d.steps[d.step_count - 1].dispatch[1] == 3); /* /16 */
+}
+
+static void test_invalid(void) {
+    cacao_plan p;
+    char err[256];
+    CHECK(cacao_plan_build(&(cacao_settings){0}, 0, 64, &p, err, sizeof err) == CACAO_ERROR_INVALID_SIZE);
+    CHECK(cacao_plan_build(&(cacao_settings){0}, 64, 65536, &p, err, sizeof err) == CACAO_ERROR_INVALID_SIZE);
+    CHECK(cacao_plan_build(&(cacao_settings){.radius = -1}, 64, 64, &p, err, sizeof err) ==
+          CACAO_ERROR_INVALID_ARGUMENT);
+    CHECK(cacao_plan_build(&(cacao_settings){0}, 64, 64, NULL, err, sizeof err) == CACAO_ERROR_INVALID_ARGUMENT);
+}
+
+int main(void) {
+    test_steps_per_quality();
+    test_only_needed_resources();
+    test_dispatch_sizes();
+    test_invalid();
+    cacao_plan p = build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
+    cacao_plan_print(&p, stdout);
+    return test_report("test_plan");
+}
