@@ -105,9 +105,8 @@ char *sg_specialise(const char *source, const char *shared_header, const cacao_k
     return b.data;
 }
 
-bool sg_compile(const char *text, const char *key_name, const sg_options *options, uint32_t **words,
-                size_t *word_count) {
-    const glslang_input_t input = {
+static glslang_input_t compute_input(const char *text) {
+    return (glslang_input_t){
         .language = GLSLANG_SOURCE_GLSL,
         .stage = GLSLANG_STAGE_COMPUTE,
         .client = GLSLANG_CLIENT_VULKAN,
@@ -120,6 +119,27 @@ bool sg_compile(const char *text, const char *key_name, const sg_options *option
         .messages = GLSLANG_MSG_DEFAULT_BIT | GLSLANG_MSG_SPV_RULES_BIT | GLSLANG_MSG_VULKAN_RULES_BIT,
         .resource = glslang_default_resource(),
     };
+}
+
+char *sg_preprocess(const char *text, const char *key_name) {
+    const glslang_input_t input = compute_input(text);
+    glslang_shader_t *shader = glslang_shader_create(&input);
+    char *out = NULL;
+    if (glslang_shader_preprocess(shader, &input)) {
+        const char *code = glslang_shader_get_preprocessed_code(shader);
+        size_t len = strlen(code);
+        out = malloc(len + 1);
+        if (out) memcpy(out, code, len + 1);
+    } else {
+        fprintf(stderr, "%s: preprocessing failed:\n%s", key_name, glslang_shader_get_info_log(shader));
+    }
+    glslang_shader_delete(shader);
+    return out;
+}
+
+bool sg_compile(const char *text, const char *key_name, const sg_options *options, uint32_t **words,
+                size_t *word_count) {
+    const glslang_input_t input = compute_input(text);
     bool ok = false;
     glslang_shader_t *shader = glslang_shader_create(&input);
     glslang_program_t *program = NULL;
@@ -167,4 +187,22 @@ bool sg_validate(const uint32_t *words, size_t word_count, const char *key_name)
     spvDiagnosticDestroy(diagnostic);
     spvContextDestroy(context);
     return result == SPV_SUCCESS;
+}
+
+char *sg_disassemble(const uint32_t *words, size_t word_count) {
+    spv_context context = spvContextCreate(SPV_ENV_VULKAN_1_1);
+    spv_text text = NULL;
+    spv_diagnostic diagnostic = NULL;
+    char *out = NULL;
+    if (spvBinaryToText(context, words, word_count,
+                        SPV_BINARY_TO_TEXT_OPTION_FRIENDLY_NAMES | SPV_BINARY_TO_TEXT_OPTION_INDENT, &text,
+                        &diagnostic) == SPV_SUCCESS &&
+        (out = malloc(text->length + 1))) {
+        memcpy(out, text->str, text->length);
+        out[text->length] = '\0';
+    }
+    spvTextDestroy(text);
+    spvDiagnosticDestroy(diagnostic);
+    spvContextDestroy(context);
+    return out;
 }

@@ -35,8 +35,15 @@ char *sg_specialise(const char *source, const char *shared_header, const cacao_k
 bool sg_compile(const char *text, const char *key_name, const sg_options *options, uint32_t **words,
                 size_t *word_count);
 
+/* Preprocesses GLSL text (defines expanded, comments gone) for inspection; NULL on failure
+ * (message printed). The caller frees the result. */
+char *sg_preprocess(const char *text, const char *key_name);
+
 /* Runs spvValidate (Vulkan 1.1 rules). On failure prints the key and diagnostic. */
 bool sg_validate(const uint32_t *words, size_t word_count, const char *key_name);
+
+/* SPIR-V disassembly with friendly names, or NULL; the caller frees it. */
+char *sg_disassemble(const uint32_t *words, size_t word_count);
 
 /* Fills workgroup size, bindings, uniform and push-constant sizes from SPIRV-Cross reflection. */
 bool sg_reflect(sg_module *module);

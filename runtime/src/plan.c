@@ -215,8 +215,9 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
             quality_names[p->settings.quality], p->settings.downsample ? "downsampled" : "native",
             p->settings.blur_pass_count, p->settings.precision == CACAO_PRECISION_FP16 ? "fp16" : "fp32",
             p->settings.generate_normals ? "from depth" : "from input");
-    fprintf(out, "slices: %u of %ux%u; importance map %ux%u\n", p->slice_count, p->slice_width, p->slice_height,
-            p->importance_width, p->importance_height);
+    fprintf(out, "slices: %u of %ux%u", p->slice_count, p->slice_width, p->slice_height);
+    if (p->uses_load_counter) fprintf(out, "; importance map %ux%u", p->importance_width, p->importance_height);
+    fprintf(out, "\n");
     for (uint32_t i = 0; i < p->step_count; ++i) {
         const cacao_plan_step *s = &p->steps[i];
         if (s->barrier_before) {

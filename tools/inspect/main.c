@@ -1,0 +1,320 @@
+/* cacao-inspect - see and trust every shader permutation this build embeds.
+ *
+ *   cacao-inspect list [--pass NAME] [--quality Q] [--json]   every permutation, one per line
+ *   cacao-inspect show KEY                                    defines, preprocessed GLSL, reflection, SPIR-V
+ *   cacao-inspect plan --size WxH [settings flags]            the pass plan cacao_record would walk
+ *   cacao-inspect stats                                       counts, dedup, bytes per pass
+ *   cacao-inspect verify                                      re-validate modules, check plan keys are embedded
+ *
+ * Everything comes from the embedded table (generated/), reflection of the modules (SPIRV-Cross)
+ * and the runtime's own cacao_plan_build: no second copy of any of that logic. */
+#include <cjson/cJSON.h>
+#include <spirv_cross/spirv_cross_c.h>
+#include <glslang/Include/glslang_c_interface.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cacao.h"
+#include "shadergen.h"
+
+extern const char cacao_inspect_shader_source[];
+extern const char cacao_inspect_shared_header[];
+
+static const cacao_table *table = &cacao_embedded_table;
+static const char *const resource_kinds[] = {"-", "uniform buffer", "storage buffer", "sampled image", "storage image"};
+static const char *const quality_words[] = {"lowest", "low", "medium", "high", "highest"};
+
+static int fail(const char *fmt, const char *arg) {
+    fprintf(stderr, "cacao-inspect: ");
+    fprintf(stderr, fmt, arg);
+    fprintf(stderr, "\n");
+    return 1;
+}
+
+static int quality_from_word(const char *w) {
+    for (int q = 0; q < 5; ++q)
+        if (strcmp(w, quality_words[q]) == 0) return q;
+    return -1;
+}
+
+/* Keys that share a module with permutation i, as "name, name". */
+static void dedup_group(uint32_t i, char *out, size_t n) {
+    out[0] = '\0';
+    size_t len = 0;
+    for (uint32_t j = 0; j < table->permutation_count; ++j)
+        if (j != i && table->permutations[j].module == table->permutations[i].module && len + 50 < n)
+            len += (size_t)snprintf(out + len, n - len, "%s%s", len ? "," : "", table->permutations[j].name);
+}
+
+static int cmd_list(int argc, char **argv) {
+    const char *pass = NULL;
+    int quality = -1;
+    bool json = false;
+    for (int i = 0; i < argc; ++i) {
+        if (strcmp(argv[i], "--json") == 0) json = true;
+        else if (strcmp(argv[i], "--pass") == 0 && i + 1 < argc) pass = argv[++i];
+        else if (strcmp(argv[i], "--quality") == 0 && i + 1 < argc) {
+            if ((quality = quality_from_word(argv[++i])) < 0) return fail("--quality: unknown level '%s'", argv[i]);
+        } else return fail("list: unknown argument '%s'", argv[i]);
+    }
+    cJSON *array = json ? cJSON_CreateArray() : NULL;
+    if (!json) printf("%-34s %-8s %-5s %-10s %5s %-8s %9s  %s\n", "key", "entry", "blur", "precision", "wg", "module",
+                      "bytes", "shares module with");
+    for (uint32_t i = 0; i < table->permutation_count; ++i) {
+        const cacao_permutation *p = &table->permutations[i];
+        if (pass && strcmp(pass, cacao_pass_name(p->key.pass)) != 0) continue;
+        if (quality >= 0) {
+            const cacao_key_subset s = {1u << quality, 3, 3};
+            if (!cacao_key_in_subset(&p->key, &s)) continue;
+        }
+        char group[1024], wg[32];
+        dedup_group(i, group, sizeof group);
+        snprintf(wg, sizeof wg, "%ux%u", p->workgroup_size[0], p->workgroup_size[1]);
+        const uint32_t bytes = table->modules[p->module].word_count * 4;
+        if (json) {
+            cJSON *o = cJSON_CreateObject();
+            cJSON_AddStringToObject(o, "key", p->name);
+            cJSON_AddStringToObject(o, "pass", cacao_pass_name(p->key.pass));
+            cJSON_AddNumberToObject(o, "variant", p->key.variant);
+            cJSON_AddBoolToObject(o, "downsampled", p->key.downsampled);
+            cJSON_AddNumberToObject(o, "blur_passes", p->key.blur_passes);
+            cJSON_AddStringToObject(o, "precision", p->key.fp16 ? "fp16" : "fp32");
+            cJSON_AddStringToObject(o, "entry_point", table->entry_point);
+            cJSON_AddNumberToObject(o, "spirv_bytes", bytes);
+            cJSON_AddNumberToObject(o, "module", p->module);
+            cJSON_AddStringToObject(o, "shares_module_with", group);
+            cJSON *w = cJSON_AddArrayToObject(o, "workgroup_size");
+            for (int k = 0; k < 3; ++k) cJSON_AddItemToArray(w, cJSON_CreateNumber(p->workgroup_size[k]));
+            cJSON_AddItemToArray(array, o);
+        } else {
+            printf("%-34s %-8s %-5u %-10s %5s %-8u %9u  %s\n", p->name, table->entry_point, p->key.blur_passes,
+                   p->key.fp16 ? "fp16" : "fp32", wg, p->module, bytes, group[0] ? group : "-");
+        }
+    }
+    if (json) {
+        char *text = cJSON_Print(array);
+        printf("%s\n", text);
+        free(text);
+        cJSON_Delete(array);
+    }
+    return 0;
+}
+
+/* Uniform block members and sizes as SPIRV-Cross reflects them from the module. */
+static void print_reflection(const cacao_module *m) {
+    spvc_context ctx = NULL;
+    spvc_parsed_ir ir = NULL;
+    spvc_compiler comp = NULL;
+    spvc_resources res = NULL;
+    const spvc_reflected_resource *list = NULL;
+    size_t count = 0;
+    if (spvc_context_create(&ctx) != SPVC_SUCCESS) return;
+    if (spvc_context_parse_spirv(ctx, m->words, m->word_count, &ir) == SPVC_SUCCESS &&
+        spvc_context_create_compiler(ctx, SPVC_BACKEND_NONE, ir, SPVC_CAPTURE_MODE_TAKE_OWNERSHIP, &comp) ==
+            SPVC_SUCCESS &&
+        spvc_compiler_create_shader_resources(comp, &res) == SPVC_SUCCESS &&
+        spvc_resources_get_resource_list_for_type(res, SPVC_RESOURCE_TYPE_UNIFORM_BUFFER, &list, &count) ==
+            SPVC_SUCCESS) {
+        for (size_t r = 0; r < count; ++r) {
+            spvc_type type = spvc_compiler_get_type_handle(comp, list[r].base_type_id);
+            size_t size = 0;
+            spvc_compiler_get_declared_struct_size(comp, type, &size);
+            printf("uniform block '%s' (binding %u), %zu bytes, std140:\n", list[r].name,
+                   spvc_compiler_get_decoration(comp, list[r].id, SpvDecorationBinding), size);
+            for (unsigned i = 0; i < spvc_type_get_num_member_types(type); ++i) {
+                unsigned offset = 0;
+                size_t msize = 0;
+                spvc_compiler_type_struct_member_offset(comp, type, i, &offset);
+                spvc_compiler_get_declared_struct_member_size(comp, type, i, &msize);
+                printf("  %4u  %-40s %3zu bytes\n", offset,
+                       spvc_compiler_get_member_name(comp, list[r].base_type_id, i), msize);
+            }
+        }
+    }
+    spvc_context_destroy(ctx);
+}
+
+static int cmd_show(int argc, char **argv) {
+    if (argc != 1) return fail("show needs exactly one KEY (see 'cacao-inspect list')%s", "");
+    cacao_key key;
+    if (!cacao_key_parse(argv[0], &key)) return fail("show: '%s' is not a permutation key", argv[0]);
+    const cacao_permutation *p = cacao_table_find(table, &key);
+    if (!p) return fail("show: '%s' is not embedded in this build", argv[0]);
+    const cacao_module *m = &table->modules[p->module];
+    char defines[512];
+    cacao_key_defines(&key, defines, sizeof defines);
+    printf("== %s\nSPIR-V: %u bytes (module %u), entry point '%s', workgroup %ux%ux%u\n\n== defines\n%s\n", p->name,
+           m->word_count * 4, p->module, table->entry_point, p->workgroup_size[0], p->workgroup_size[1],
+           p->workgroup_size[2], defines);
+    printf("== descriptor bindings (set 0, from reflection)\n");
+    for (int b = 0; b < CACAO_BINDING_COUNT; ++b)
+        if (p->bindings[b]) printf("  binding %2d: %s\n", b, resource_kinds[p->bindings[b]]);
+    printf("push constants: %u bytes\n", p->push_constant_size);
+    print_reflection(m);
+
+    glslang_initialize_process();
+    char *text = sg_specialise(cacao_inspect_shader_source, cacao_inspect_shared_header, &key);
+    char *pre = text ? sg_preprocess(text, p->name) : NULL;
+    glslang_finalize_process();
+    printf("\n== preprocessed GLSL\n%s\n", pre ? pre : "(preprocessing failed)");
+    free(pre);
+    free(text);
+
+    char *dis = sg_disassemble(m->words, m->word_count);
+    printf("== SPIR-V disassembly\n%s", dis ? dis : "(disassembly failed)\n");
+    free(dis);
+    return 0;
+}
+
+/* The settings flags understood by `plan` (the same names as the cacao command). */
+static int parse_plan_flags(int argc, char **argv, cacao_settings *s, uint32_t *w, uint32_t *h) {
+    for (int i = 0; i < argc; ++i) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "--downsample") == 0) s->downsample = true;
+        else if (strcmp(a, "--no-normals") == 0) s->generate_normals = true;
+        else if (!v) return fail("%s needs a value", a);
+        else if (strcmp(a, "--size") == 0) {
+            if (sscanf(v, "%ux%u", w, h) != 2) return fail("--size: '%s' is not WxH", v);
+            ++i;
+        } else if (strcmp(a, "--quality") == 0) {
+            int q = quality_from_word(v);
+            if (q < 0) return fail("--quality: unknown level '%s'", v);
+            s->quality = (cacao_quality)(q + 1);
+            ++i;
+        } else if (strcmp(a, "--blur") == 0) {
+            char *end;
+            long n = strtol(v, &end, 10);
+            if (*end || n < 0 || n > 8) return fail("--blur: '%s' is not 0..8", v);
+            s->blur_pass_count = n ? (int)n : CACAO_BLUR_NONE;
+            ++i;
+        } else if (strcmp(a, "--precision") == 0) {
+            if (strcmp(v, "fp16") && strcmp(v, "fp32")) return fail("--precision: '%s' is not fp16 or fp32", v);
+            s->precision = strcmp(v, "fp16") == 0 ? CACAO_PRECISION_FP16 : CACAO_PRECISION_FP32;
+            ++i;
+        } else return fail("plan: unknown argument '%s'", a);
+    }
+    return 0;
+}
+
+static int cmd_plan(int argc, char **argv) {
+    cacao_settings s = {0};
+    uint32_t w = 0, h = 0;
+    if (parse_plan_flags(argc, argv, &s, &w, &h)) return 1;
+    if (!w || !h) return fail("plan needs --size WxH%s", "");
+    cacao_plan plan;
+    char err[256];
+    if (cacao_plan_build(&s, w, h, &plan, err, sizeof err) != CACAO_SUCCESS) return fail("plan: %s", err);
+    cacao_plan_print(&plan, stdout);
+    int missing = 0;
+    for (uint32_t i = 0; i < plan.step_count; ++i) {
+        const cacao_key key = {plan.steps[i].key[0], plan.steps[i].key[1], plan.steps[i].key[2], plan.steps[i].key[3],
+                               plan.steps[i].key[4]};
+        if (!cacao_table_find(table, &key)) missing += fprintf(stderr, "note: %s is not embedded in this build\n",
+                                                               plan.steps[i].key_name) > 0;
+    }
+    return missing ? 1 : 0;
+}
+
+static int cmd_stats(void) {
+    uint64_t total = 0, per_pass[CACAO_PASS_COUNT] = {0};
+    uint32_t count[CACAO_PASS_COUNT] = {0};
+    bool counted[1024] = {false};
+    for (uint32_t i = 0; i < table->permutation_count; ++i) {
+        const cacao_permutation *p = &table->permutations[i];
+        count[p->key.pass]++;
+        if (p->module < 1024 && !counted[p->module]) {
+            counted[p->module] = true;
+            per_pass[p->key.pass] += table->modules[p->module].word_count * 4u;
+            total += table->modules[p->module].word_count * 4u;
+        }
+    }
+    printf("subset: %s\ncompilers: %s, %s\n", table->subset, table->glslang_version, table->spirv_tools_version);
+    printf("permutations: %u before dedup, %u unique modules after (%u removed)\n", table->permutation_count,
+           table->module_count, table->permutation_count - table->module_count);
+    printf("embedded SPIR-V: %llu bytes\n%-16s %6s %10s\n", (unsigned long long)total, "pass", "keys", "bytes");
+    for (unsigned p = 0; p < CACAO_PASS_COUNT; ++p)
+        if (count[p]) printf("%-16s %6u %10llu\n", cacao_pass_name(p), count[p], (unsigned long long)per_pass[p]);
+    return 0;
+}
+
+/* Parses the table's subset string ("all" or "qualities|downsample|precision"). */
+static bool table_subset(cacao_key_subset *s) {
+    if (strcmp(table->subset, "all") == 0) {
+        *s = CACAO_KEY_SUBSET_ALL;
+        return true;
+    }
+    char q[128], d[32], p[64];
+    if (sscanf(table->subset, "%127[^|]|%31[^|]|%63s", q, d, p) != 3) return false;
+    return cacao_key_subset_parse(q, d, p, s);
+}
+
+static int cmd_verify(void) {
+    int errors = 0;
+    for (uint32_t m = 0; m < table->module_count; ++m) {
+        char name[32];
+        snprintf(name, sizeof name, "module %u", m);
+        errors += !sg_validate(table->modules[m].words, table->modules[m].word_count, name);
+    }
+    printf("%u modules re-validated with SPIRV-Tools (Vulkan 1.1): %s\n", table->module_count,
+           errors ? "FAILED" : "all valid");
+    cacao_key_subset subset;
+    if (!table_subset(&subset)) return fail("cannot parse the table's subset '%s'", table->subset);
+    unsigned configs = 0, missing = 0;
+    for (unsigned q = 0; q < 5; ++q)
+        for (unsigned ds = 0; ds < 2; ++ds)
+            for (unsigned fp = 0; fp < 2; ++fp)
+                for (unsigned gen = 0; gen < 2; ++gen)
+                    for (int blur = 0; blur <= 8; ++blur) {
+                        if (!(subset.quality_mask >> q & 1) || !(subset.resolution_mask >> ds & 1) ||
+                            !(subset.precision_mask >> fp & 1))
+                            continue;
+                        const cacao_settings s = {.quality = (cacao_quality)(q + 1), .downsample = ds,
+                                                  .precision = fp ? CACAO_PRECISION_FP16 : CACAO_PRECISION_FP32,
+                                                  .generate_normals = gen,
+                                                  .blur_pass_count = blur ? blur : CACAO_BLUR_NONE};
+                        cacao_plan plan;
+                        char err[256];
+                        if (cacao_plan_build(&s, 1920, 1080, &plan, err, sizeof err) != CACAO_SUCCESS) {
+                            fprintf(stderr, "plan failed: %s\n", err);
+                            ++errors;
+                            continue;
+                        }
+                        ++configs;
+                        for (uint32_t i = 0; i < plan.step_count; ++i) {
+                            const cacao_key key = {plan.steps[i].key[0], plan.steps[i].key[1], plan.steps[i].key[2],
+                                                   plan.steps[i].key[3], plan.steps[i].key[4]};
+                            if (!cacao_table_find(table, &key)) {
+                                fprintf(stderr, "missing: %s (quality %s)\n", plan.steps[i].key_name, quality_words[q]);
+                                ++missing;
+                            }
+                        }
+                    }
+    printf("%u configurations of subset '%s' planned: %s\n", configs, table->subset,
+           missing ? "some keys are NOT embedded" : "every key they dispatch is embedded");
+    return errors || missing ? 1 : 0;
+}
+
+static void usage(FILE *out) {
+    fprintf(out, "usage: cacao-inspect list [--pass NAME] [--quality LEVEL] [--json]\n"
+                 "       cacao-inspect show KEY\n"
+                 "       cacao-inspect plan --size WxH [--quality LEVEL] [--downsample] [--blur N]\n"
+                 "                          [--precision fp16|fp32] [--no-normals]\n"
+                 "       cacao-inspect stats\n"
+                 "       cacao-inspect verify\n");
+}
+
+int main(int argc, char **argv) {
+    if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
+        usage(argc < 2 ? stderr : stdout);
+        return argc < 2 ? 2 : 0;
+    }
+    const char *cmd = argv[1];
+    if (strcmp(cmd, "list") == 0) return cmd_list(argc - 2, argv + 2);
+    if (strcmp(cmd, "show") == 0) return cmd_show(argc - 2, argv + 2);
+    if (strcmp(cmd, "plan") == 0) return cmd_plan(argc - 2, argv + 2);
+    if (strcmp(cmd, "stats") == 0 && argc == 2) return cmd_stats();
+    if (strcmp(cmd, "verify") == 0 && argc == 2) return cmd_verify();
+    usage(stderr);
+    return fail("unknown command '%s'", cmd);
+}
