@@ -382,12 +382,9 @@ layout(local_size_x = CACAO_WG_GENERATE_X, local_size_y = CACAO_WG_GENERATE_Y) i
 #endif
 #endif
 
-const float sample_pattern[128] = float[128](CACAO_SAMPLE_PATTERN_VALUES);
-
-vec4 pattern_entry(int i) /* (x, y, weight, mip term) */
-{
-    return vec4(sample_pattern[4 * i], sample_pattern[4 * i + 1], sample_pattern[4 * i + 2], sample_pattern[4 * i + 3]);
-}
+/* (x, y, weight, mip term). The table lives in the constant block: a GLSL const array indexed by
+ * a loop variable is copied into function memory at every call (40x slower on lavapipe). */
+vec4 pattern_entry(int i) { return cb.sample_pattern[i]; }
 
 /* Deinterleaved depth at slice texel p, mip 0, mirror addressing (AMD: PointMirror gathers). */
 float load_depth_mirror(ivec2 p, ivec2 s, int layer)

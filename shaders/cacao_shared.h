@@ -117,7 +117,7 @@
 #define CACAO_LOWEST_RADIUS_FACTOR 0.8
 
 /* Sample pattern: 32 entries of (x, y, weight, mip term), spec: constants.md section 1.
- * Usable as a C initialiser (float[32][4]) and as a GLSL float[128] constructor argument. */
+ * A C initialiser for float[128]; the host copies it into the constant block (sample_pattern). */
 #define CACAO_SAMPLE_PATTERN_VALUES                                                                \
     0.78488064, 0.56661671, 1.500000, -0.126083, 0.26022232, -0.29575172, 1.500000, -1.064030,     \
     0.10459357, 0.08372527, 1.110000, -2.730563, -0.68286800, 0.04963045, 1.090000, -0.498827,     \
@@ -198,6 +198,8 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(VEC2, importance_map_inverse_dimensions)                                                     \
     A(VEC4, per_slice_full_res_uv_offset, 4) /* xy = (dx / Sw, dy / Sh) per slice */               \
     A(VEC4, pattern_rot_scale, 20)      /* [slice * 5 + j] = (m0, m1, m2, m3) */                   \
+    A(VEC4, sample_pattern, 32)         /* CACAO_SAMPLE_PATTERN_VALUES; in the block because a */  \
+                                        /* dynamically indexed GLSL const array is copied per call */ \
     M(MAT4, normals_to_view)            /* n'_j = sum_i E[j][i] n_i, stored column-major */
 
 #ifdef CACAO_GLSL

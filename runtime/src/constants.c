@@ -125,6 +125,8 @@ void cacao_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao_
     for (int k = 0; k < 4; ++k)
         c->per_slice_full_res_uv_offset[k] = (cacao_vec4){(float)(k % 2) / sw, (float)(k / 2) / sh, 0.0f, 0.0f};
     fill_pattern(c);
+    static const float sample_pattern[128] = {CACAO_SAMPLE_PATTERN_VALUES};
+    memcpy(c->sample_pattern, sample_pattern, sizeof sample_pattern);
 
     /* GLSL reads the mat4 column-major: m[4*col + row] = N(row, col), so n' = N * n. */
     const bool identity = s->generate_normals || all_zero(in->normals_to_view);
