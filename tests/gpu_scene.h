@@ -41,15 +41,7 @@ static inline void scene_buffers_free(scene_buffers *b) {
 static inline vkdev_frame scene_frame(const scene_buffers *b, bool reversed, bool with_normals) {
     vkdev_frame f = {.width = b->width, .height = b->height, .depth = reversed ? b->depth_reversed : b->depth};
     memcpy(f.projection, reversed ? b->projection_reversed : b->projection, sizeof f.projection);
-    if (with_normals) {
-        f.normals = b->normals;
-        f.normals_to_view[0] = 1.0f;
-        f.normals_to_view[5] = 1.0f;
-        f.normals_to_view[10] = -1.0f;
-        f.normals_to_view[15] = 1.0f;
-        f.normals_unpack_mul = 1.0f;
-        f.normals_unpack_add = 0.0f;
-    }
+    if (with_normals) vkdev_frame_set_view_normals(&f, b->normals);
     return f;
 }
 

@@ -78,12 +78,7 @@ int main(int argc, char **argv) {
                              .height = d->depth.height,
                              .depth = a->reversed ? d->depth_reversed.data : d->depth.data};
             memcpy(f.projection, a->reversed ? d->cam.projection_reversed : d->cam.projection, sizeof f.projection);
-            if (a->normals_given) { /* scenes: right-handed view-space float normals */
-                f.normals = d->normals.data;
-                f.normals_to_view[0] = f.normals_to_view[5] = f.normals_to_view[15] = 1.0f;
-                f.normals_to_view[10] = -1.0f;
-                f.normals_unpack_mul = 1.0f;
-            }
+            if (a->normals_given) vkdev_frame_set_view_normals(&f, d->normals.data);
             const cacao_settings s = {.quality = (cacao_quality)q,
                                       .downsample = a->downsample,
                                       .generate_normals = !a->normals_given,

@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define MAX_CHANNELS 3
+#define MAX_CHANNELS 4
 
 /* Receives the library's first error message for the file at hand (via the context's user data). */
 typedef struct exr_job {
@@ -266,7 +266,8 @@ bool cacao_exr_read_vector(const char *path, cacao_img *out, char *err, size_t e
 
 /* ---- Writing ---------------------------------------------------------------------------- */
 
-static bool check_writable(const char *path, const cacao_img *img, char *err, size_t err_size) {
+static bool check_writable(const char *path, const cacao_img *img, const char *const *names, char *err,
+                           size_t err_size) {
     if (!img || !img->data) {
         set_err(err, err_size, "%s: nothing to write (image or its data is NULL)", path);
         return false;
@@ -276,25 +277,25 @@ static bool check_writable(const char *path, const cacao_img *img, char *err, si
                 CACAO_IMG_MAX_SIZE);
         return false;
     }
-    if (img->channels != 1 && img->channels != 3) {
-        set_err(err, err_size, "%s: cannot write an image with %u channels as EXR (1 or 3)", path, img->channels);
+    if (img->channels < 1 || img->channels > MAX_CHANNELS) {
+        set_err(err, err_size, "%s: cannot write an image with %u channels as EXR (1 to %d)", path, img->channels,
+                MAX_CHANNELS);
         return false;
     }
+    for (uint32_t k = 0; k < img->channels; ++k)
+        if (!names[k] || !names[k][0]) {
+            set_err(err, err_size, "%s: channel %u has no name", path, k);
+            return false;
+        }
     return true;
 }
 
-static const char *const *write_channel_names(uint32_t channels) {
-    static const char *const scalar[] = {"Y"}, *const vector[] = {"R", "G", "B"};
-    return channels == 1 ? scalar : vector;
-}
-
-static exr_result_t write_header(exr_context_t ctx, const cacao_img *img) {
+static exr_result_t write_header(exr_context_t ctx, const cacao_img *img, const char *const *names) {
     int part = 0;
     exr_result_t rv = exr_add_part(ctx, NULL, EXR_STORAGE_SCANLINE, &part);
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_initialize_required_attr_simple(ctx, part, (int32_t)img->width, (int32_t)img->height,
                                                  EXR_COMPRESSION_ZIP);
-    const char *const *names = write_channel_names(img->channels);
     for (uint32_t k = 0; k < img->channels && rv == EXR_ERR_SUCCESS; ++k)
         rv = exr_add_channel(ctx, part, names[k], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
     if (rv == EXR_ERR_SUCCESS) rv = exr_write_header(ctx);
@@ -302,8 +303,7 @@ static exr_result_t write_header(exr_context_t ctx, const cacao_img *img) {
 }
 
 /* Points the encoder's channels at rows y.. of the image. */
-static void aim_encoder(exr_encode_pipeline_t *enc, const cacao_img *img, uint32_t y) {
-    const char *const *names = write_channel_names(img->channels);
+static void aim_encoder(exr_encode_pipeline_t *enc, const cacao_img *img, const char *const *names, uint32_t y) {
     for (int c = 0; c < enc->channel_count; ++c) {
         exr_coding_channel_info_t *ch = &enc->channels[c];
         for (uint32_t k = 0; k < img->channels; ++k) {
@@ -317,7 +317,7 @@ static void aim_encoder(exr_encode_pipeline_t *enc, const cacao_img *img, uint32
     }
 }
 
-static exr_result_t write_pixels(exr_context_t ctx, const cacao_img *img) {
+static exr_result_t write_pixels(exr_context_t ctx, const cacao_img *img, const char *const *names) {
     int32_t lines = 0;
     exr_result_t rv = exr_get_scanlines_per_chunk(ctx, 0, &lines);
     if (rv == EXR_ERR_SUCCESS && lines < 1) rv = EXR_ERR_INVALID_ARGUMENT;
@@ -329,7 +329,7 @@ static exr_result_t write_pixels(exr_context_t ctx, const cacao_img *img) {
         if (rv != EXR_ERR_SUCCESS) break;
         rv = started ? exr_encoding_update(ctx, 0, &chunk, &enc) : exr_encoding_initialize(ctx, 0, &chunk, &enc);
         if (rv != EXR_ERR_SUCCESS) break;
-        aim_encoder(&enc, img, y);
+        aim_encoder(&enc, img, names, y);
         if (!started) rv = exr_encoding_choose_default_routines(ctx, 0, &enc);
         started = true;
         if (rv == EXR_ERR_SUCCESS) rv = exr_encoding_run(ctx, 0, &enc);
@@ -339,7 +339,17 @@ static exr_result_t write_pixels(exr_context_t ctx, const cacao_img *img) {
 }
 
 bool cacao_exr_write(const char *path, const cacao_img *img, char *err, size_t err_size) {
-    if (!check_writable(path, img, err, err_size)) return false;
+    static const char *const scalar[] = {"Y"}, *const vector[] = {"R", "G", "B"};
+    if (img && img->channels != 1 && img->channels != 3) {
+        set_err(err, err_size, "%s: cannot write an image with %u channels as EXR (1 or 3)", path, img->channels);
+        return false;
+    }
+    return cacao_exr_write_named(path, img, img && img->channels == 1 ? scalar : vector, err, err_size);
+}
+
+bool cacao_exr_write_named(const char *path, const cacao_img *img, const char *const *names, char *err,
+                           size_t err_size) {
+    if (!check_writable(path, img, names, err, err_size)) return false;
     const size_t length = strlen(path);
     char *temp = malloc(length + 5);
     if (!temp) {
@@ -352,8 +362,8 @@ bool cacao_exr_write(const char *path, const cacao_img *img, char *err, size_t e
     const exr_context_initializer_t init = job_initializer(&job);
     exr_context_t ctx = NULL;
     exr_result_t rv = exr_start_write(&ctx, temp, EXR_WRITE_FILE_DIRECTLY, &init);
-    if (rv == EXR_ERR_SUCCESS) rv = write_header(ctx, img);
-    if (rv == EXR_ERR_SUCCESS) rv = write_pixels(ctx, img);
+    if (rv == EXR_ERR_SUCCESS) rv = write_header(ctx, img, names);
+    if (rv == EXR_ERR_SUCCESS) rv = write_pixels(ctx, img, names);
     const exr_result_t finished = ctx ? exr_finish(&ctx) : EXR_ERR_SUCCESS;
     if (rv == EXR_ERR_SUCCESS) rv = finished;
     bool ok = rv == EXR_ERR_SUCCESS;

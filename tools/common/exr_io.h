@@ -31,4 +31,9 @@ bool cacao_exr_read_vector(const char *path, cacao_img *out, char *err, size_t e
  * samples, ZIP compression (lossless), scanlines top to bottom. */
 bool cacao_exr_write(const char *path, const cacao_img *img, char *err, size_t err_size);
 
+/* The same with the channels named by the caller: names[k] for channel k (1 to 4 channels,
+ * distinct names). */
+bool cacao_exr_write_named(const char *path, const cacao_img *img, const char *const *names, char *err,
+                           size_t err_size);
+
 #endif /* CACAO_EXR_IO_H */

@@ -261,6 +261,17 @@ bool vkdev_list(FILE *out, char *err, size_t n) {
     return true;
 }
 
+void vkdev_frame_set_view_normals(vkdev_frame *frame, const float *normals) {
+    frame->normals = normals;
+    memset(frame->normals_to_view, 0, sizeof frame->normals_to_view);
+    frame->normals_to_view[0] = 1.0f;
+    frame->normals_to_view[5] = 1.0f;
+    frame->normals_to_view[10] = -1.0f;
+    frame->normals_to_view[15] = 1.0f;
+    frame->normals_unpack_mul = 1.0f;
+    frame->normals_unpack_add = 0.0f;
+}
+
 /* ---- Resources of one run ---- */
 
 typedef struct gpu_image {

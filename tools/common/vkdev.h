@@ -58,6 +58,10 @@ typedef struct vkdev_frame {
     void *user;
 } vkdev_frame;
 
+/* Gives the frame float normals in the scenes' convention (right-handed view space, camera-facing
+ * +z, unit length, as shared/scenes' normals.pfm): normals_to_view = diag(1, 1, -1), unpack 1, 0. */
+void vkdev_frame_set_view_normals(vkdev_frame *frame, const float *normals);
+
 /* Host-visible buffer helpers for after_record callbacks. */
 typedef struct vkdev_buffer {
     VkBuffer buffer;

@@ -1,0 +1,26 @@
+# --compare reports the known error of a synthetic pair: a plane facing the camera occludes nothing
+# (every sample lies in its tangent plane), so its AO is 1 everywhere; against a ground truth of
+# 0.9 everywhere every pixel is off by 0.1, so RMSE, mean-abs and p99 must all be 0.1, over all
+# 160x90 pixels (none is background). The printed line and the --json report must agree.
+include(${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake)
+tool(ignored const ${WORK}/gt.pfm 160 90 0.9)
+cacao_ok(run --scene ${PLANE} --validate --compare ${WORK}/gt.pfm --json ${WORK}/report.json -o ${WORK}/ao.pfm)
+if(NOT run_out MATCHES "over ([0-9]+) non-background pixels: rmse ([0-9.]+) mean_abs ([0-9.]+) p99 ([0-9.]+)")
+  message(FATAL_ERROR "no comparison line on stdout: ${run_out}")
+endif()
+if(NOT CMAKE_MATCH_1 EQUAL 14400)
+  message(FATAL_ERROR "compared ${CMAKE_MATCH_1} pixels, expected all 14400")
+endif()
+expect_between("printed rmse" ${CMAKE_MATCH_2} 0.0995 0.1005)
+expect_between("printed mean_abs" ${CMAKE_MATCH_3} 0.0995 0.1005)
+expect_between("printed p99" ${CMAKE_MATCH_4} 0.0995 0.1005)
+file(READ ${WORK}/report.json report)
+foreach(key rmse mean_abs p99)
+  string(JSON value GET "${report}" compare ${key})
+  expect_between("--json compare.${key}" ${value} 0.0995 0.1005)
+endforeach()
+string(JSON pixels GET "${report}" compare pixels)
+string(JSON gt GET "${report}" compare ground_truth)
+if(NOT pixels EQUAL 14400 OR NOT gt STREQUAL "${WORK}/gt.pfm")
+  message(FATAL_ERROR "--json compare block is wrong: ${report}")
+endif()

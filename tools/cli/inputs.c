@@ -1,0 +1,207 @@
+/* inputs.c - loading the `cacao` command's depth, normals and camera (see inputs.h). */
+#include "inputs.h"
+
+#include <ctype.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "camera_json.h"
+#include "exr_io.h"
+#include "scene.h"
+
+static void set_err(char *err, size_t n, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, n, fmt, ap);
+    va_end(ap);
+}
+
+void cli_extension(const char *path, char *out, size_t out_size) {
+    const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
+    out[0] = '\0';
+    if (!dot || (slash && dot < slash) || out_size == 0) return;
+    size_t i = 0;
+    for (; dot[i] && i + 1 < out_size; ++i) out[i] = (char)tolower((unsigned char)dot[i]);
+    out[i] = '\0';
+}
+
+static bool check_channels(const cacao_img *img, uint32_t want, const char *path, const char *role, char *err,
+                           size_t n) {
+    if (img->channels == want) return true;
+    set_err(err, n, "%s: wrong channel count for %s: needs %u, the file has %u", path, role, want, img->channels);
+    return false;
+}
+
+static bool read_png_scalar(const char *path, const char *role, bool allow_8bit, cacao_img *out, char *err,
+                            size_t n) {
+    bool is16 = false;
+    if (!cacao_png_read(path, out, &is16, err, n)) return false;
+    if (!is16 && !allow_8bit) {
+        set_err(err, n, "%s: 8-bit PNG %s is too coarse; use a 16-bit grey PNG (value/65535 = raw depth), PFM or EXR",
+                path, role);
+        return false;
+    }
+    return check_channels(out, 1, path, role, err, n);
+}
+
+bool cli_read_scalar_image(const char *path, const char *role, bool allow_8bit, cacao_img *out, char *err,
+                           size_t n) {
+    char ext[16];
+    cli_extension(path, ext, sizeof ext);
+    bool ok;
+    if (strcmp(ext, ".pfm") == 0) ok = cacao_pfm_read(path, out, err, n) && check_channels(out, 1, path, role, err, n);
+    else if (strcmp(ext, ".exr") == 0) ok = cacao_exr_read_scalar(path, out, err, n);
+    else if (strcmp(ext, ".png") == 0) ok = read_png_scalar(path, role, allow_8bit, out, err, n);
+    else {
+        set_err(err, n, "%s: unknown %s format '%s' (use .pfm, .exr or .png)", path, role, ext);
+        ok = false;
+    }
+    if (!ok) cacao_img_free(out);
+    return ok;
+}
+
+static bool read_normals_image(const char *path, cacao_img *out, char *err, size_t n) {
+    char ext[16];
+    cli_extension(path, ext, sizeof ext);
+    bool ok;
+    if (strcmp(ext, ".pfm") == 0) ok = cacao_pfm_read(path, out, err, n) && check_channels(out, 3, path, "normals", err, n);
+    else if (strcmp(ext, ".exr") == 0) ok = cacao_exr_read_vector(path, out, err, n);
+    else {
+        set_err(err, n, "%s: unknown normals format '%s' (use float .pfm or .exr)", path, ext);
+        ok = false;
+    }
+    if (!ok) cacao_img_free(out);
+    return ok;
+}
+
+/* ---- Projection ------------------------------------------------------------------------------ */
+
+/* The projection of the run: the camera file's matrix for the depth convention when the file has
+ * it and no --fov/--near/--far overrides it, else the scenes' perspective built from the
+ * effective fov/near/far with aspect = width/height. */
+static bool build_projection(const cli_options *o, const cacao_camera_file *file, const char *camera_path,
+                             uint32_t width, uint32_t height, float out[16], char *err, size_t n) {
+    const bool overridden = o->fov_y_deg > 0 || o->near_z > 0 || o->far_z > 0;
+    const double fov = o->fov_y_deg > 0 ? o->fov_y_deg : file ? file->fov_y_deg : 0;
+    const double near_z = o->near_z > 0 ? o->near_z : file ? file->near_z : 0;
+    const double far_z = o->far_z > 0 ? o->far_z : file ? file->far_z : 0;
+    if (!file && !(fov > 0 && near_z > 0 && far_z > 0)) {
+        set_err(err, n, "--depth: needs --camera FILE, or all of --fov, --near and --far");
+        return false;
+    }
+    if (!(fov < 180) || !(far_z > near_z)) {
+        set_err(err, n, "--fov/--near/--far: need fov below 180 degrees and near < far (fov %g, near %g, far %g)", fov,
+                near_z, far_z);
+        return false;
+    }
+    if (file && (file->width || file->height) && ((uint32_t)file->width != width || (uint32_t)file->height != height)) {
+        set_err(err, n, "%s: camera is %dx%d but the depth is %ux%u", camera_path, file->width, file->height, width,
+                height);
+        return false;
+    }
+    const bool has_matrix = file && (o->reverse_z ? file->has_projection_reversed : file->has_projection);
+    if (has_matrix && !overridden)
+        memcpy(out, o->reverse_z ? file->projection_reversed : file->projection, 16 * sizeof(float));
+    else
+        cacao_perspective(fov, (double)width / height, near_z, far_z, o->reverse_z, out);
+    return true;
+}
+
+/* ---- Sources ------------------------------------------------------------------------------- */
+
+static bool load_default_scene(const cli_options *o, cli_inputs *in, char *err, size_t n) {
+    if (o->fov_y_deg > 0 || o->near_z > 0 || o->far_z > 0) {
+        set_err(err, n, "--fov/--near/--far: the default scene has its own camera; give --depth or --scene");
+        return false;
+    }
+    const cacao_scene *scene = cacao_default_scene(1280, 720);
+    const uint32_t w = scene->camera.width, h = scene->camera.height;
+    in->depth = (cacao_img){w, h, 1, malloc(sizeof(float) * w * h)};
+    in->normals = (cacao_img){w, h, 3, malloc(sizeof(float) * 3 * w * h)};
+    if (!in->depth.data || !in->normals.data) {
+        set_err(err, n, "default scene: out of memory");
+        return false;
+    }
+    float *standard = o->reverse_z ? malloc(sizeof(float) * w * h) : in->depth.data; /* always rendered */
+    if (!standard) {
+        set_err(err, n, "default scene: out of memory");
+        return false;
+    }
+    cacao_scene_render(scene, standard, o->reverse_z ? in->depth.data : NULL, in->normals.data);
+    if (standard != in->depth.data) free(standard);
+    cacao_camera_projection(&scene->camera, o->reverse_z, in->projection);
+    in->ao_radius_world = scene->ao_radius_world;
+    return true;
+}
+
+static bool file_exists(const char *path) {
+    FILE *f = fopen(path, "rb");
+    if (f) fclose(f);
+    return f != NULL;
+}
+
+static bool check_same_size(const cacao_img *depth, const cacao_img *normals, const char *depth_path,
+                            const char *normals_path, char *err, size_t n) {
+    if (!normals->data || (normals->width == depth->width && normals->height == depth->height)) return true;
+    set_err(err, n, "%s: normals are %ux%u but the depth (%s) is %ux%u", normals_path, normals->width, normals->height,
+            depth_path, depth->width, depth->height);
+    return false;
+}
+
+/* Depth, optional normals and the camera from their paths (camera_path may be NULL). */
+static bool load_files(const cli_options *o, const char *depth_path, const char *normals_path,
+                       const char *camera_path, cli_inputs *in, char *err, size_t n) {
+    cacao_camera_file camera;
+    if (camera_path && !cacao_camera_json_read(camera_path, &camera, err, n)) return false;
+    if (!cli_read_scalar_image(depth_path, "depth", false, &in->depth, err, n)) return false;
+    if (normals_path && !read_normals_image(normals_path, &in->normals, err, n)) return false;
+    if (!check_same_size(&in->depth, &in->normals, depth_path, normals_path, err, n)) return false;
+    in->ao_radius_world = camera_path ? camera.ao_radius_world : 0.0;
+    return build_projection(o, camera_path ? &camera : NULL, camera_path, in->depth.width, in->depth.height,
+                            in->projection, err, n);
+}
+
+static bool load_scene_dir(const cli_options *o, cli_inputs *in, char *err, size_t n) {
+    char depth[4096], normals[4096], camera[4096];
+    snprintf(depth, sizeof depth, "%s/%s", o->scene_dir, o->reverse_z ? "depth_reversed.pfm" : "depth.pfm");
+    snprintf(normals, sizeof normals, "%s/normals.pfm", o->scene_dir);
+    snprintf(camera, sizeof camera, "%s/camera.json", o->scene_dir);
+    if (!file_exists(depth)) {
+        set_err(err, n, "--scene %s: no %s in the folder", o->scene_dir, o->reverse_z ? "depth_reversed.pfm" : "depth.pfm");
+        return false;
+    }
+    if (!file_exists(camera)) {
+        set_err(err, n, "--scene %s: no camera.json in the folder", o->scene_dir);
+        return false;
+    }
+    return load_files(o, depth, file_exists(normals) ? normals : NULL, camera, in, err, n);
+}
+
+static bool check_source_flags(const cli_options *o, char *err, size_t n) {
+    if (o->scene_dir && (o->depth_path || o->normals_path || o->camera_path)) {
+        set_err(err, n, "--scene: cannot be combined with --depth, --normals or --camera");
+        return false;
+    }
+    if (!o->depth_path && (o->normals_path || o->camera_path)) {
+        set_err(err, n, "%s: needs --depth", o->normals_path ? "--normals" : "--camera");
+        return false;
+    }
+    return true;
+}
+
+bool cli_inputs_load(const cli_options *o, cli_inputs *in, char *err, size_t n) {
+    memset(in, 0, sizeof *in);
+    bool ok = check_source_flags(o, err, n);
+    if (ok && o->scene_dir) ok = load_scene_dir(o, in, err, n);
+    else if (ok && o->depth_path) ok = load_files(o, o->depth_path, o->normals_path, o->camera_path, in, err, n);
+    else if (ok) ok = load_default_scene(o, in, err, n);
+    if (!ok) cli_inputs_free(in);
+    return ok;
+}
+
+void cli_inputs_free(cli_inputs *in) {
+    cacao_img_free(&in->depth);
+    cacao_img_free(&in->normals);
+}

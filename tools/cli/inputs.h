@@ -1,0 +1,34 @@
+/* inputs.h - what the `cacao` command renders: depth, optional normals and a projection, from a
+ * scene folder, separate files or the embedded default scene (options.h says which). */
+#ifndef CACAO_CLI_INPUTS_H
+#define CACAO_CLI_INPUTS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "image_io.h"
+#include "options.h"
+
+typedef struct cli_inputs {
+    cacao_img depth;          /* 1 channel, raw [0,1] depth in the run's convention */
+    cacao_img normals;        /* 3 channels, right-handed view space; data NULL when none */
+    float projection[16];     /* row-major, acting on column vectors */
+    double ao_radius_world;   /* the scene's radius; 0 = none given */
+} cli_inputs;
+
+/* Loads and checks everything the options name. On error writes one line naming the file or
+ * flag into err and returns false (with nothing held). */
+bool cli_inputs_load(const cli_options *options, cli_inputs *inputs, char *err, size_t err_size);
+
+void cli_inputs_free(cli_inputs *inputs);
+
+/* Reads a 1-channel image by extension: .pfm, .exr (channel Z, R, Y or the only one) or .png.
+ * PNG must be 16-bit grey unless allow_8bit (values are sample / 65535 or / 255). `role` names
+ * the image in messages ("depth", "ground truth"). */
+bool cli_read_scalar_image(const char *path, const char *role, bool allow_8bit, cacao_img *out, char *err,
+                           size_t err_size);
+
+/* Lower-case extension of path including the dot (".pfm"), or "" when it has none. */
+void cli_extension(const char *path, char *out, size_t out_size);
+
+#endif /* CACAO_CLI_INPUTS_H */

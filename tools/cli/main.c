@@ -1,0 +1,226 @@
+/* main.c - the `cacao` command: screen-space AO of a depth buffer (and optional normals) on a
+ * Vulkan device, written as an image. Flags: options.c (or `cacao --help`).
+ *
+ * Order of work, so that a failure at any step leaves no output file: parse the flags (and the
+ * --settings file), load and check every input, resolve the settings, load the ground truth, run
+ * on the device, check the validation layer's count, and only then write the image and the JSON
+ * report (each atomically; if the report cannot be written the image is removed again). */
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cjson/cJSON.h>
+
+#include "inputs.h"
+#include "options.h"
+#include "outputs.h"
+#include "vkdev.h"
+
+#define ERR_SIZE 1024
+
+static int fail(const char *message) {
+    fprintf(stderr, "cacao: %s\n", message);
+    return 1;
+}
+
+static void set_err(char *err, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, ERR_SIZE, fmt, ap);
+    va_end(ap);
+}
+
+static unsigned png_bits(const cli_options *o) { return o->png16 ? 16u : o->png_bits ? o->png_bits : 8u; }
+
+static bool check_output_flags(const cli_options *o, char *err) {
+    const cli_format format = cli_output_format(o->output_path);
+    if (format == CLI_FORMAT_UNKNOWN) {
+        set_err(err, "--output %s: unknown format (use .png, .pfm or .exr)", o->output_path);
+        return false;
+    }
+    if ((o->png16 || o->png_bits) && format != CLI_FORMAT_PNG) {
+        set_err(err, "--bits/--png16: only for .png output, not %s", o->output_path);
+        return false;
+    }
+    if (o->png16 && o->png_bits == 8) {
+        set_err(err, "--png16 contradicts --bits 8");
+        return false;
+    }
+    return true;
+}
+
+/* The settings the runtime gets (its encoding) and their resolved literal values. The camera's
+ * ao_radius_world is the default radius; without normals they are reconstructed from depth. */
+static bool effective_settings(const cli_options *o, const cli_inputs *in, cacao_settings *encoded,
+                               cacao_settings *resolved, char *err) {
+    *encoded = o->settings;
+    if (!o->radius_given && in->ao_radius_world > 0) encoded->radius = (float)in->ao_radius_world;
+    if (!in->normals.data) encoded->generate_normals = true;
+    char why[512];
+    if (cacao_settings_resolve(encoded, resolved, why, sizeof why) == CACAO_SUCCESS) return true;
+    set_err(err, "settings: %s", why);
+    return false;
+}
+
+static int print_settings(const cacao_settings *resolved) {
+    cJSON *json = cli_settings_to_json(resolved);
+    char *text = json ? cJSON_Print(json) : NULL;
+    cJSON_Delete(json);
+    if (!text) return fail("--print-settings: out of memory");
+    printf("%s\n", text);
+    cJSON_free(text);
+    return 0;
+}
+
+static bool load_ground_truth(const cli_options *o, const cli_inputs *in, cacao_img *gt, char *err) {
+    if (!cli_read_scalar_image(o->compare_path, "ground truth", true, gt, err, ERR_SIZE)) return false;
+    if (gt->width == in->depth.width && gt->height == in->depth.height) return true;
+    set_err(err, "%s: ground truth is %ux%u but the depth is %ux%u", o->compare_path, gt->width, gt->height,
+            in->depth.width, in->depth.height);
+    cacao_img_free(gt);
+    return false;
+}
+
+/* ---- The device run ------------------------------------------------------------------------- */
+
+typedef struct render_result {
+    cacao_img ao;                 /* 1 channel */
+    cacao_plan plan;              /* the steps that ran (their key names label the timings) */
+    vkdev_timings timings;
+    char device_name[256];
+} render_result;
+
+static vkdev_frame make_frame(const cli_inputs *in, const cacao_settings *encoded) {
+    vkdev_frame frame = {.width = in->depth.width, .height = in->depth.height, .depth = in->depth.data};
+    memcpy(frame.projection, in->projection, sizeof frame.projection);
+    if (in->normals.data && !encoded->generate_normals) vkdev_frame_set_view_normals(&frame, in->normals.data);
+    return frame;
+}
+
+/* The plan the context builds: the same function on the same settings, with the runtime's
+ * documented fallback from fp16 to fp32 where the device lacks shaderFloat16. */
+static bool plan_of_run(const vkdev *dev, const cacao_settings *encoded, uint32_t w, uint32_t h, cacao_plan *plan,
+                        char *err) {
+    cacao_settings s = *encoded;
+    if (s.precision == CACAO_PRECISION_FP16 && !dev->fp16) s.precision = CACAO_PRECISION_FP32;
+    char why[512];
+    if (cacao_plan_build(&s, w, h, plan, why, sizeof why) == CACAO_SUCCESS) return true;
+    set_err(err, "settings: %s", why);
+    return false;
+}
+
+static bool run_on_device(vkdev *dev, const cli_options *o, const cli_inputs *in, const cacao_settings *encoded,
+                          render_result *out, char *err) {
+    const vkdev_frame frame = make_frame(in, encoded);
+    if (!plan_of_run(dev, encoded, frame.width, frame.height, &out->plan, err)) return false;
+    char why[ERR_SIZE - 128];
+    const cacao_result r = vkdev_run(dev, encoded, &frame, o->repeat ? o->repeat : 1, out->ao.data, &out->timings,
+                                     why, sizeof why);
+    if (r == CACAO_SUCCESS) return true;
+    set_err(err, "%s: %s", cacao_result_string(r), why);
+    return false;
+}
+
+static bool render(const cli_options *o, const cli_inputs *in, const cacao_settings *encoded, render_result *out,
+                   char *err) {
+    const uint32_t w = in->depth.width, h = in->depth.height;
+    out->ao = (cacao_img){w, h, 1, malloc(sizeof(float) * w * h)};
+    if (!out->ao.data) {
+        set_err(err, "out of memory for the %ux%u output", w, h);
+        return false;
+    }
+    vkdev dev;
+    if (!vkdev_create(&(vkdev_options){.validation = o->validate, .device = o->device}, &dev, err, ERR_SIZE))
+        return false;
+    snprintf(out->device_name, sizeof out->device_name, "%s", dev.device_name);
+    bool ok = run_on_device(&dev, o, in, encoded, out, err);
+    vkdev_destroy(&dev); /* keeps validation_messages, which counts messages from teardown too */
+    if (ok && dev.validation_messages) {
+        set_err(err, "--validate: the validation layer reported %u message(s) (above); no output written",
+                dev.validation_messages);
+        ok = false;
+    }
+    return ok;
+}
+
+/* ---- Reporting and writing ------------------------------------------------------------------ */
+
+static bool write_outputs(const cli_options *o, const cli_report *report, const cacao_img *ao, char *err) {
+    if (!cli_write_ao(o->output_path, ao, png_bits(o), err, ERR_SIZE)) return false;
+    if (o->json_path && !cli_write_report(o->json_path, report, err, ERR_SIZE)) {
+        remove(o->output_path); /* all or nothing */
+        return false;
+    }
+    return true;
+}
+
+static int render_and_write(const cli_options *o, const cli_inputs *in, const cacao_settings *encoded,
+                            const cacao_settings *resolved, const cacao_img *gt) {
+    char err[ERR_SIZE];
+    render_result result = {0};
+    if (!render(o, in, encoded, &result, err)) {
+        cacao_img_free(&result.ao);
+        return fail(err);
+    }
+    cli_ao_errors errors = {0};
+    if (gt->data && !cli_compare_ao(&result.ao, gt, &in->depth, o->reverse_z, &errors)) {
+        cacao_img_free(&result.ao);
+        return fail("--compare: out of memory");
+    }
+    const unsigned repeat = o->repeat ? o->repeat : 1;
+    const cli_report report = {resolved, result.device_name, in->depth.width, in->depth.height, repeat, &result.plan,
+                               &result.timings, o->output_path, o->compare_path, gt->data ? &errors : NULL};
+    const bool written = write_outputs(o, &report, &result.ao, err);
+    cacao_img_free(&result.ao);
+    if (!written) return fail(err);
+    if (o->timings) cli_print_timings(stdout, &result.plan, &result.timings, repeat);
+    if (gt->data) cli_print_errors(stdout, o->compare_path, &errors);
+    printf("cacao: wrote %s (%ux%u AO on %s)\n", o->output_path, in->depth.width, in->depth.height,
+           result.device_name);
+    return 0;
+}
+
+static int run_with_inputs(const cli_options *o, const cli_inputs *in) {
+    char err[ERR_SIZE];
+    cacao_settings encoded, resolved;
+    if (!effective_settings(o, in, &encoded, &resolved, err)) return fail(err);
+    if (o->print_settings) return print_settings(&resolved);
+    cacao_img gt = {0};
+    if (o->compare_path && !load_ground_truth(o, in, &gt, err)) return fail(err);
+    const int rc = render_and_write(o, in, &encoded, &resolved, &gt);
+    cacao_img_free(&gt);
+    return rc;
+}
+
+static int run(const cli_options *o) {
+    char err[ERR_SIZE];
+    if (!check_output_flags(o, err)) return fail(err);
+    cli_inputs in;
+    if (!cli_inputs_load(o, &in, err, sizeof err)) return fail(err);
+    const int rc = run_with_inputs(o, &in);
+    cli_inputs_free(&in);
+    return rc;
+}
+
+static int list_devices(void) {
+    char err[ERR_SIZE];
+    return vkdev_list(stdout, err, sizeof err) ? 0 : fail(err);
+}
+
+int main(int argc, char **argv) {
+    char err[ERR_SIZE];
+    cli_options o;
+    if (!cli_parse(argc, argv, &o, err, sizeof err)) return fail(err);
+    if (o.help) {
+        cli_print_help(stdout);
+        return 0;
+    }
+    if (o.version) {
+        printf("cacao %d.%d.%d (%u embedded shader permutations)\n", CACAO_VERSION_MAJOR, CACAO_VERSION_MINOR,
+               CACAO_VERSION_PATCH, cacao_embedded_permutation_count());
+        return 0;
+    }
+    if (o.list_devices) return list_devices();
+    return run(&o);
+}

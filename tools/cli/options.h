@@ -1,0 +1,61 @@
+/* options.h - the `cacao` command's flags and its settings JSON.
+ *
+ * One table (options.c) defines every flag: its name, value, help text and, for the runtime's
+ * settings, the cacao_settings field and the JSON key. --help, parsing, --settings and
+ * --print-settings all read that table, so each setting is defined once.
+ *
+ * Values on the command line and in the JSON are literal (--horizon 0 means 0, --blur 0 means no
+ * blur); they are stored in cacao_settings' encoding (0 = default, CACAO_ZERO, CACAO_BLUR_NONE).
+ * Precedence: the --settings file is applied first, then every settings flag, wherever it stands
+ * on the command line.
+ */
+#ifndef CACAO_CLI_OPTIONS_H
+#define CACAO_CLI_OPTIONS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "cacao.h"
+
+typedef struct cli_options {
+    /* Input: a scene folder, or separate files; neither = the embedded default scene. */
+    const char *scene_dir;
+    const char *depth_path;
+    const char *normals_path;
+    const char *camera_path;
+    double fov_y_deg, near_z, far_z; /* 0 = not given */
+    bool reverse_z;
+    /* Output. */
+    const char *output_path;         /* default cacao-out.png */
+    uint32_t png_bits;               /* 8 or 16 (0 = 8) */
+    bool png16;
+    const char *json_path;
+    const char *compare_path;
+    bool print_settings;
+    bool timings;
+    uint32_t repeat;                 /* 0 = 1 */
+    /* Device. */
+    const char *device;
+    bool validate;
+    /* Actions that replace the run. */
+    bool help, version, list_devices;
+    /* Runtime settings, in cacao_settings' encoding. radius_given: the radius came from a flag
+     * or the settings file (otherwise the camera's ao_radius_world is the default). */
+    const char *settings_path;
+    cacao_settings settings;
+    bool radius_given;
+} cli_options;
+
+/* Parses argv (the --settings file first, then the flags). On error writes one line naming the
+ * flag or file into err and returns false. */
+bool cli_parse(int argc, char **argv, cli_options *options, char *err, size_t err_size);
+
+/* Writes the --help text, generated from the flag table. */
+void cli_print_help(FILE *out);
+
+/* The resolved settings as a JSON object in the --settings schema (cJSON *, caller deletes). */
+struct cJSON *cli_settings_to_json(const cacao_settings *resolved);
+
+#endif /* CACAO_CLI_OPTIONS_H */
