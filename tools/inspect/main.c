@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "cacao.h"
+#include "options.h"
 #include "shadergen.h"
 
 extern const char cacao_inspect_shader_source[];
@@ -167,33 +168,24 @@ static int cmd_show(int argc, char **argv) {
     return 0;
 }
 
-/* The settings flags understood by `plan` (the same names as the cacao command). */
+/* `plan` takes --size WxH and the settings flags of the cacao command (the same flag table). */
 static int parse_plan_flags(int argc, char **argv, cacao_settings *s, uint32_t *w, uint32_t *h) {
+    char *rest[64];
+    int n = 0;
+    rest[n++] = "cacao-inspect plan";
     for (int i = 0; i < argc; ++i) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--downsample") == 0) s->downsample = true;
-        else if (strcmp(a, "--no-normals") == 0) s->generate_normals = true;
-        else if (!v) return fail("%s needs a value", a);
-        else if (strcmp(a, "--size") == 0) {
-            if (sscanf(v, "%ux%u", w, h) != 2) return fail("--size: '%s' is not WxH", v);
+        if (strcmp(argv[i], "--size") == 0) {
+            if (i + 1 >= argc || sscanf(argv[i + 1], "%ux%u", w, h) != 2)
+                return fail("--size: '%s' is not WxH", i + 1 < argc ? argv[i + 1] : "");
             ++i;
-        } else if (strcmp(a, "--quality") == 0) {
-            int q = quality_from_word(v);
-            if (q < 0) return fail("--quality: unknown level '%s'", v);
-            s->quality = (cacao_quality)(q + 1);
-            ++i;
-        } else if (strcmp(a, "--blur") == 0) {
-            char *end;
-            long n = strtol(v, &end, 10);
-            if (*end || n < 0 || n > 8) return fail("--blur: '%s' is not 0..8", v);
-            s->blur_pass_count = n ? (int)n : CACAO_BLUR_NONE;
-            ++i;
-        } else if (strcmp(a, "--precision") == 0) {
-            if (strcmp(v, "fp16") && strcmp(v, "fp32")) return fail("--precision: '%s' is not fp16 or fp32", v);
-            s->precision = strcmp(v, "fp16") == 0 ? CACAO_PRECISION_FP16 : CACAO_PRECISION_FP32;
-            ++i;
-        } else return fail("plan: unknown argument '%s'", a);
+        } else if (n < 64) {
+            rest[n++] = argv[i];
+        }
     }
+    cli_options options;
+    char err[1024];
+    if (!cli_parse(n, rest, &options, err, sizeof err)) return fail("plan: %s", err);
+    *s = options.settings;
     return 0;
 }
 
@@ -298,8 +290,8 @@ static int cmd_verify(void) {
 static void usage(FILE *out) {
     fprintf(out, "usage: cacao-inspect list [--pass NAME] [--quality LEVEL] [--json]\n"
                  "       cacao-inspect show KEY\n"
-                 "       cacao-inspect plan --size WxH [--quality LEVEL] [--downsample] [--blur N]\n"
-                 "                          [--precision fp16|fp32] [--no-normals]\n"
+                 "       cacao-inspect plan --size WxH [settings flags of the cacao command, e.g.\n"
+                 "                          --quality LEVEL --downsample --blur N --precision fp16 --no-normals]\n"
                  "       cacao-inspect stats\n"
                  "       cacao-inspect verify\n");
 }
