@@ -99,7 +99,8 @@ static double laplacian_energy(const float *a, uint32_t w, uint32_t h) {
 }
 
 static void test_blur_reduces_noise(vkdev *dev) {
-    const cacao_scene *scene = cacao_default_scene(320, 180);
+    const cacao_scene scene_storage = cacao_default_scene(320, 180);
+    const cacao_scene *scene = &scene_storage;
     scene_buffers b;
     scene_buffers_render(scene, &b);
     float *ao = malloc(sizeof(float) * b.width * b.height);
@@ -209,7 +210,8 @@ static void copy_intermediates(vkdev *dev, cacao_context *ctx, VkCommandBuffer c
 }
 
 static void test_adaptive(vkdev *dev) {
-    const cacao_scene *scene = cacao_default_scene(320, 180);
+    const cacao_scene scene_storage = cacao_default_scene(320, 180);
+    const cacao_scene *scene = &scene_storage;
     scene_buffers b;
     scene_buffers_render(scene, &b);
     const size_t n = (size_t)b.width * b.height;

@@ -21,7 +21,8 @@ static void stats_diff(const float *a, const float *b, size_t n, double *mean, d
 static void test_odd_sizes(vkdev *dev) {
     static const uint32_t sizes[][2] = {{97, 61}, {33, 35}, {1001, 37}};
     for (size_t k = 0; k < 3; ++k) {
-        const cacao_scene *scene = cacao_default_scene(sizes[k][0], sizes[k][1]);
+        const cacao_scene scene_storage = cacao_default_scene(sizes[k][0], sizes[k][1]);
+        const cacao_scene *scene = &scene_storage;
         scene_buffers b;
         scene_buffers_render(scene, &b);
         float *ao = malloc(sizeof(float) * b.width * b.height);
@@ -45,7 +46,8 @@ static void test_odd_sizes(vkdev *dev) {
 /* NaN and infinities in the depth buffer must not poison the image: the output stays finite and
  * in [0,1] everywhere, and pixels well away from the bad block are exactly as without it. */
 static void test_nan_depth(vkdev *dev) {
-    const cacao_scene *scene = cacao_default_scene(256, 144);
+    const cacao_scene scene_storage = cacao_default_scene(256, 144);
+    const cacao_scene *scene = &scene_storage;
     scene_buffers b;
     scene_buffers_render(scene, &b);
     const size_t n = (size_t)b.width * b.height;
@@ -90,7 +92,8 @@ static void test_nan_depth(vkdev *dev) {
 /* The same geometry in standard and reverse-Z depth must give the same AO (up to the float
  * rounding of the two depth encodings), at every quality and resolution. */
 static void test_reverse_z(vkdev *dev) {
-    const cacao_scene *scene = cacao_default_scene(320, 180);
+    const cacao_scene scene_storage = cacao_default_scene(320, 180);
+    const cacao_scene *scene = &scene_storage;
     scene_buffers b;
     scene_buffers_render(scene, &b);
     const size_t n = (size_t)b.width * b.height;
@@ -152,7 +155,8 @@ static void test_fp16(vkdev *dev) {
         printf("fp16: device has no shaderFloat16, fp16 comparison not applicable\n");
         return;
     }
-    const cacao_scene *scene = cacao_default_scene(320, 180);
+    const cacao_scene scene_storage = cacao_default_scene(320, 180);
+    const cacao_scene *scene = &scene_storage;
     scene_buffers b;
     scene_buffers_render(scene, &b);
     const size_t n = (size_t)b.width * b.height;

@@ -105,7 +105,7 @@ static int write_scene_folder(const char *dir, const cacao_scene *scene) {
 
 static int make_scene(const char *dir, uint32_t w, uint32_t h, bool plane) {
     static const cacao_prim facing[] = {{CACAO_PRIM_PLANE, {0, 0, -6}, {0, 0, 1}, 0}};
-    cacao_scene scene = *cacao_default_scene(w, h);
+    cacao_scene scene = cacao_default_scene(w, h);
     if (plane) scene = (cacao_scene){facing, 1, {w, h, 60.0, 0.1, 100.0, {0, 0, 0}, {0, 0, -1}, {0, 1, 0}}, 1.0};
     return write_scene_folder(dir, &scene);
 }

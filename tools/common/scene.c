@@ -238,7 +238,7 @@ static const cacao_prim default_prims[] = {
     BOX(-0.6, 0.0, -9.0, 0.6, 0.45, -8.5),
 };
 
-static cacao_scene default_scene = {
+static const cacao_scene default_scene = {
     .prims = default_prims,
     .prim_count = sizeof(default_prims) / sizeof(default_prims[0]),
     .camera =
@@ -253,8 +253,9 @@ static cacao_scene default_scene = {
     .ao_radius_world = 0.5,
 };
 
-const cacao_scene *cacao_default_scene(uint32_t width, uint32_t height) {
-    default_scene.camera.width = width ? width : 1280;
-    default_scene.camera.height = height ? height : 720;
-    return &default_scene;
+cacao_scene cacao_default_scene(uint32_t width, uint32_t height) {
+    cacao_scene scene = default_scene;
+    scene.camera.width = width ? width : 1280;
+    scene.camera.height = height ? height : 720;
+    return scene;
 }

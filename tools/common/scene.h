@@ -65,8 +65,7 @@ void cacao_camera_view_from_world(const cacao_camera *cam, float out[16]);
  * spheres resting on the floor and against the walls; one side is open and the floor plane runs
  * out to the far plane there. fov_y 60 degrees, near 0.1, far 500, ao_radius_world 0.5 m.
  * width/height set the camera's image size (0 means the default 1280x720).
- * Returns a pointer to static storage that each call overwrites (not thread-safe across calls
- * with different sizes); copy the struct to keep it. */
-const cacao_scene *cacao_default_scene(uint32_t width, uint32_t height);
+ * Returned by value; its primitives point to constant static storage. */
+cacao_scene cacao_default_scene(uint32_t width, uint32_t height);
 
 #endif /* CACAO_SCENE_H */
