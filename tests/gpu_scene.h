@@ -7,6 +7,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <sys/stat.h>
+
+#include "camera_json.h"
+#include "image_io.h"
 #include "scene.h"
 #include "test_util.h"
 #include "vkdev.h"
@@ -85,6 +89,34 @@ static inline bool run(vkdev *dev, const cacao_settings *s, const vkdev_frame *f
         return false;
     }
     return true;
+}
+
+/* Tests of the shared data (scenes, AMD reference): argv[1] is CACAO_SHARED_DIR; exits with the
+ * "skipped" code when it is absent, so a clone without ../shared reports skips, not failures. */
+static inline const char *require_shared_dir(int argc, char **argv) {
+    struct stat st;
+    if (argc < 2 || stat(argv[1], &st) != 0) {
+        printf("skipped: shared data directory '%s' not found (set CACAO_SHARED_DIR)\n", argc > 1 ? argv[1] : "");
+        exit(TEST_SKIP_CODE);
+    }
+    return argv[1];
+}
+
+/* A shared scene's standard depth, ray-traced ao_gt_falloff and camera (a failure is a test failure). */
+static inline bool load_shared_scene(const char *shared, const char *scene, cacao_img *depth, cacao_img *gt,
+                                     cacao_camera_file *cam) {
+    char path[4096], err[512];
+    snprintf(path, sizeof path, "%s/scenes/%s/depth.pfm", shared, scene);
+    bool ok = cacao_pfm_read(path, depth, err, sizeof err);
+    snprintf(path, sizeof path, "%s/scenes/%s/ao_gt_falloff.pfm", shared, scene);
+    ok = ok && cacao_pfm_read(path, gt, err, sizeof err);
+    snprintf(path, sizeof path, "%s/scenes/%s/camera.json", shared, scene);
+    ok = ok && cacao_camera_json_read(path, cam, err, sizeof err) && cam->has_projection;
+    if (!ok) {
+        fprintf(stderr, "%s: %s\n", scene, err);
+        ++test_failures;
+    }
+    return ok;
 }
 
 #endif

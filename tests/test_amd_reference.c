@@ -14,12 +14,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
-#include "camera_json.h"
-#include "image_io.h"
-#include "test_util.h"
-#include "vkdev.h"
+#include "gpu_scene.h"
 
 static const char *const scenes[] = {"interior_fzkhaus", "statues_scanned", "street_track"};
 static const char *const qualities[] = {"LOWEST", "LOW", "MEDIUM", "HIGH", "HIGHEST"};
@@ -57,17 +53,7 @@ static bool run_scene(vkdev *dev, const char *shared, const char *scene) {
     char path[4096], err[512];
     cacao_img depth = {0}, gt = {0};
     cacao_camera_file cam;
-    snprintf(path, sizeof path, "%s/scenes/%s/depth.pfm", shared, scene);
-    bool ok = cacao_pfm_read(path, &depth, err, sizeof err);
-    snprintf(path, sizeof path, "%s/scenes/%s/ao_gt_falloff.pfm", shared, scene);
-    ok = ok && cacao_pfm_read(path, &gt, err, sizeof err);
-    snprintf(path, sizeof path, "%s/scenes/%s/camera.json", shared, scene);
-    ok = ok && cacao_camera_json_read(path, &cam, err, sizeof err) && cam.has_projection;
-    if (!ok) {
-        fprintf(stderr, "%s: %s\n", scene, err);
-        ++test_failures;
-        return false;
-    }
+    if (!load_shared_scene(shared, scene, &depth, &gt, &cam)) return false;
     vkdev_frame frame = {.width = depth.width, .height = depth.height, .depth = depth.data};
     memcpy(frame.projection, cam.projection, sizeof frame.projection);
     float *ao = malloc(sizeof(float) * depth.width * depth.height);
@@ -117,17 +103,9 @@ static bool run_scene(vkdev *dev, const char *shared, const char *scene) {
 }
 
 int main(int argc, char **argv) {
-    struct stat st;
-    if (argc < 2 || stat(argv[1], &st) != 0) {
-        printf("skipped: shared data directory '%s' not found (set CACAO_SHARED_DIR)\n", argc > 1 ? argv[1] : "");
-        return TEST_SKIP_CODE;
-    }
+    require_shared_dir(argc, argv);
     vkdev dev;
-    char err[512];
-    if (!vkdev_create(&(vkdev_options){.validation = true}, &dev, err, sizeof err)) {
-        fprintf(stderr, "%s\n", err);
-        return 1;
-    }
+    open_device(&dev);
     if (argc > 2)
         for (int i = 2; i < argc; ++i) run_scene(&dev, argv[1], argv[i]);
     else

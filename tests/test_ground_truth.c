@@ -15,12 +15,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
-#include "camera_json.h"
-#include "image_io.h"
-#include "test_util.h"
-#include "vkdev.h"
+#include "gpu_scene.h"
 
 #define TOLERANCE 0.005
 #define ESTIMATE_MULTIPLIER 0.5f
@@ -40,20 +36,10 @@ static double rmse(const float *ao, const cacao_img *gt, const cacao_img *depth)
 }
 
 static void run_scene(vkdev *dev, const char *shared, const char *scene) {
-    char path[4096], err[512];
+    char err[512];
     cacao_img depth = {0}, gt = {0};
     cacao_camera_file cam;
-    snprintf(path, sizeof path, "%s/scenes/%s/depth.pfm", shared, scene);
-    bool ok = cacao_pfm_read(path, &depth, err, sizeof err);
-    snprintf(path, sizeof path, "%s/scenes/%s/ao_gt_falloff.pfm", shared, scene);
-    ok = ok && cacao_pfm_read(path, &gt, err, sizeof err);
-    snprintf(path, sizeof path, "%s/scenes/%s/camera.json", shared, scene);
-    ok = ok && cacao_camera_json_read(path, &cam, err, sizeof err);
-    CHECK(ok);
-    if (!ok) {
-        fprintf(stderr, "%s: %s\n", scene, err);
-        return;
-    }
+    if (!load_shared_scene(shared, scene, &depth, &gt, &cam)) return;
     vkdev_frame frame = {.width = depth.width, .height = depth.height, .depth = depth.data};
     memcpy(frame.projection, cam.projection, sizeof frame.projection);
     float *ao = malloc(sizeof(float) * depth.width * depth.height);
@@ -91,17 +77,9 @@ static void run_scene(vkdev *dev, const char *shared, const char *scene) {
 }
 
 int main(int argc, char **argv) {
-    struct stat st;
-    if (argc < 2 || stat(argv[1], &st) != 0) {
-        printf("skipped: shared data directory '%s' not found (set CACAO_SHARED_DIR)\n", argc > 1 ? argv[1] : "");
-        return TEST_SKIP_CODE;
-    }
+    require_shared_dir(argc, argv);
     vkdev dev;
-    char err[512];
-    if (!vkdev_create(&(vkdev_options){.validation = true}, &dev, err, sizeof err)) {
-        fprintf(stderr, "%s\n", err);
-        return 1;
-    }
+    open_device(&dev);
     for (size_t i = 0; i < sizeof scenes / sizeof scenes[0]; ++i) run_scene(&dev, argv[1], scenes[i]);
     vkdev_destroy(&dev);
     CHECK(dev.validation_messages == 0);

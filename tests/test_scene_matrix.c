@@ -8,12 +8,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
-#include "camera_json.h"
-#include "image_io.h"
-#include "test_util.h"
-#include "vkdev.h"
+#include "gpu_scene.h"
 
 static const char *const scenes[] = {"interior_fzkhaus", "statues_scanned", "street_track"};
 static const char *const quality_names[] = {"", "lowest", "low", "medium", "high", "highest"};
@@ -54,20 +50,13 @@ static bool load(const char *shared, const char *scene, scene_data *d) {
 }
 
 int main(int argc, char **argv) {
-    struct stat st;
-    if (argc < 2 || stat(argv[1], &st) != 0) {
-        printf("skipped: shared data directory '%s' not found (set CACAO_SHARED_DIR)\n", argc > 1 ? argv[1] : "");
-        return TEST_SKIP_CODE;
-    }
+    require_shared_dir(argc, argv);
     scene_data data[3];
     for (int i = 0; i < 3; ++i)
         if (!load(argv[1], scenes[i], &data[i])) return 1;
     vkdev dev;
     char err[512];
-    if (!vkdev_create(&(vkdev_options){.validation = true}, &dev, err, sizeof err)) {
-        fprintf(stderr, "%s\n", err);
-        return 1;
-    }
+    open_device(&dev);
     unsigned run = 0;
     for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
         for (int k = 0; k < 4; ++k, ++run) {
