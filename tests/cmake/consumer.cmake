@@ -20,7 +20,7 @@ if(MODE STREQUAL "subdir")
 else()
   run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK}/prefix)
   foreach(f include/cacao.h lib/libcacao.a lib/cmake/cacao/cacaoConfig.cmake lib/cmake/cacao/cacaoConfigVersion.cmake
-          lib/pkgconfig/cacao.pc)
+          lib/pkgconfig/cacao.pc bin/cacao bin/cacao-inspect)
     if(NOT EXISTS ${WORK}/prefix/${f})
       message(FATAL_ERROR "cmake --install did not install ${f}")
     endif()
