@@ -34,6 +34,13 @@ static inline void scene_buffers_render(const cacao_scene *scene, scene_buffers 
     cacao_camera_view_from_world(&scene->camera, b->view_from_world);
 }
 
+/* Renders the embedded default scene at w x h into b; returns its AO radius. */
+static inline float scene_buffers_default(uint32_t w, uint32_t h, scene_buffers *b) {
+    const cacao_scene scene = cacao_default_scene(w, h);
+    scene_buffers_render(&scene, b);
+    return (float)scene.ao_radius_world;
+}
+
 static inline void scene_buffers_free(scene_buffers *b) {
     free(b->depth);
     free(b->depth_reversed);

@@ -99,16 +99,14 @@ static double laplacian_energy(const float *a, uint32_t w, uint32_t h) {
 }
 
 static void test_blur_reduces_noise(vkdev *dev) {
-    const cacao_scene scene_storage = cacao_default_scene(320, 180);
-    const cacao_scene *scene = &scene_storage;
     scene_buffers b;
-    scene_buffers_render(scene, &b);
+    const float radius = scene_buffers_default(320, 180, &b);
     float *ao = malloc(sizeof(float) * b.width * b.height);
     for (int q = 0; q < 5; ++q) {
         double energy[2] = {0, 0};
         for (int k = 0; k < 2; ++k) {
             const cacao_settings s = {.quality = all_qualities[q], .generate_normals = true,
-                                      .radius = (float)scene->ao_radius_world,
+                                      .radius = radius,
                                       .blur_pass_count = k ? 4 : CACAO_BLUR_NONE};
             vkdev_frame f = scene_frame(&b, false, false);
             if (run(dev, &s, &f, ao)) energy[k] = laplacian_energy(ao, b.width, b.height);
@@ -210,10 +208,8 @@ static void copy_intermediates(vkdev *dev, cacao_context *ctx, VkCommandBuffer c
 }
 
 static void test_adaptive(vkdev *dev) {
-    const cacao_scene scene_storage = cacao_default_scene(320, 180);
-    const cacao_scene *scene = &scene_storage;
     scene_buffers b;
-    scene_buffers_render(scene, &b);
+    const float radius = scene_buffers_default(320, 180, &b);
     const size_t n = (size_t)b.width * b.height;
     float *ao[2] = {malloc(sizeof(float) * n), malloc(sizeof(float) * n)};
     adaptive_readback rb = {.iw = (b.width / 2 + 1) / 2, .ih = (b.height / 2 + 1) / 2};
@@ -221,7 +217,7 @@ static void test_adaptive(vkdev *dev) {
     CHECK(vkdev_buffer_create(dev, sizeof(uint32_t), &rb.counter));
     for (int k = 0; k < 2; ++k) {
         const cacao_settings s = {.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true,
-                                  .radius = (float)scene->ao_radius_world, .blur_pass_count = CACAO_BLUR_NONE,
+                                  .radius = radius, .blur_pass_count = CACAO_BLUR_NONE,
                                   .adaptive_quality_limit = k ? 1.0f : CACAO_ZERO};
         vkdev_frame f = scene_frame(&b, false, false);
         f.after_record = copy_intermediates;

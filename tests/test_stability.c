@@ -21,14 +21,12 @@ static void stats_diff(const float *a, const float *b, size_t n, double *mean, d
 static void test_odd_sizes(vkdev *dev) {
     static const uint32_t sizes[][2] = {{97, 61}, {33, 35}, {1001, 37}};
     for (size_t k = 0; k < 3; ++k) {
-        const cacao_scene scene_storage = cacao_default_scene(sizes[k][0], sizes[k][1]);
-        const cacao_scene *scene = &scene_storage;
         scene_buffers b;
-        scene_buffers_render(scene, &b);
+        const float radius = scene_buffers_default(sizes[k][0], sizes[k][1], &b);
         float *ao = malloc(sizeof(float) * b.width * b.height);
         for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
             for (int ds = 0; ds < 2; ++ds) {
-                const cacao_settings s = {.quality = q, .downsample = ds, .radius = (float)scene->ao_radius_world,
+                const cacao_settings s = {.quality = q, .downsample = ds, .radius = radius,
                                           .blur_pass_count = 3};
                 vkdev_frame f = scene_frame(&b, false, true);
                 if (!run(dev, &s, &f, ao)) continue;
@@ -46,10 +44,8 @@ static void test_odd_sizes(vkdev *dev) {
 /* NaN and infinities in the depth buffer must not poison the image: the output stays finite and
  * in [0,1] everywhere, and pixels well away from the bad block are exactly as without it. */
 static void test_nan_depth(vkdev *dev) {
-    const cacao_scene scene_storage = cacao_default_scene(256, 144);
-    const cacao_scene *scene = &scene_storage;
     scene_buffers b;
-    scene_buffers_render(scene, &b);
+    const float radius = scene_buffers_default(256, 144, &b);
     const size_t n = (size_t)b.width * b.height;
     float *clean = malloc(sizeof(float) * n), *dirty = malloc(sizeof(float) * n);
     float *depth = malloc(sizeof(float) * n);
@@ -59,7 +55,7 @@ static void test_nan_depth(vkdev *dev) {
     for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
         for (int ds = 0; ds < 2; ++ds) {
             const cacao_settings s = {.quality = q, .downsample = ds, .generate_normals = true,
-                                      .radius = (float)scene->ao_radius_world};
+                                      .radius = radius};
             vkdev_frame f = scene_frame(&b, false, false);
             if (!run(dev, &s, &f, clean)) continue;
             f.depth = depth;
@@ -92,15 +88,13 @@ static void test_nan_depth(vkdev *dev) {
 /* The same geometry in standard and reverse-Z depth must give the same AO (up to the float
  * rounding of the two depth encodings), at every quality and resolution. */
 static void test_reverse_z(vkdev *dev) {
-    const cacao_scene scene_storage = cacao_default_scene(320, 180);
-    const cacao_scene *scene = &scene_storage;
     scene_buffers b;
-    scene_buffers_render(scene, &b);
+    const float radius = scene_buffers_default(320, 180, &b);
     const size_t n = (size_t)b.width * b.height;
     float *a = malloc(sizeof(float) * n), *r = malloc(sizeof(float) * n);
     for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
         for (int ds = 0; ds < 2; ++ds) {
-            const cacao_settings s = {.quality = q, .downsample = ds, .radius = (float)scene->ao_radius_world};
+            const cacao_settings s = {.quality = q, .downsample = ds, .radius = radius};
             vkdev_frame f = scene_frame(&b, false, true), fr = scene_frame(&b, true, true);
             if (!run(dev, &s, &f, a) || !run(dev, &s, &fr, r)) continue;
             double mean, max;
@@ -155,15 +149,13 @@ static void test_fp16(vkdev *dev) {
         printf("fp16: device has no shaderFloat16, fp16 comparison not applicable\n");
         return;
     }
-    const cacao_scene scene_storage = cacao_default_scene(320, 180);
-    const cacao_scene *scene = &scene_storage;
     scene_buffers b;
-    scene_buffers_render(scene, &b);
+    const float radius = scene_buffers_default(320, 180, &b);
     const size_t n = (size_t)b.width * b.height;
     float *a = malloc(sizeof(float) * n), *h = malloc(sizeof(float) * n);
     for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
         for (int ds = 0; ds < 2; ++ds) {
-            cacao_settings s = {.quality = q, .downsample = ds, .radius = (float)scene->ao_radius_world,
+            cacao_settings s = {.quality = q, .downsample = ds, .radius = radius,
                                 .blur_pass_count = 4, .precision = CACAO_PRECISION_FP32};
             vkdev_frame f = scene_frame(&b, false, true);
             if (!run(dev, &s, &f, a)) continue;

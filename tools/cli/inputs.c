@@ -116,8 +116,8 @@ static bool load_default_scene(const cli_options *o, cli_inputs *in, char *err, 
         set_err(err, n, "--fov/--near/--far: the default scene has its own camera; give --depth or --scene");
         return false;
     }
-    const cacao_scene scene_storage = cacao_default_scene(1280, 720);
-    const cacao_scene *scene = &scene_storage;
+    const cacao_scene scene_value = cacao_default_scene(1280, 720);
+    const cacao_scene *scene = &scene_value;
     const uint32_t w = scene->camera.width, h = scene->camera.height;
     in->depth = (cacao_img){w, h, 1, malloc(sizeof(float) * w * h)};
     in->normals = (cacao_img){w, h, 3, malloc(sizeof(float) * 3 * w * h)};

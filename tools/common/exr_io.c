@@ -350,14 +350,11 @@ bool cacao_exr_write(const char *path, const cacao_img *img, char *err, size_t e
 bool cacao_exr_write_named(const char *path, const cacao_img *img, const char *const *names, char *err,
                            size_t err_size) {
     if (!check_writable(path, img, names, err, err_size)) return false;
-    const size_t length = strlen(path);
-    char *temp = malloc(length + 5);
+    char *temp = cacao_temp_path_for(path);
     if (!temp) {
         set_err(err, err_size, "%s: out of memory", path);
         return false;
     }
-    memcpy(temp, path, length);
-    memcpy(temp + length, ".tmp", 5);
     exr_job job = {{0}};
     const exr_context_initializer_t init = job_initializer(&job);
     exr_context_t ctx = NULL;
@@ -368,11 +365,5 @@ bool cacao_exr_write_named(const char *path, const cacao_img *img, const char *c
     if (rv == EXR_ERR_SUCCESS) rv = finished;
     bool ok = rv == EXR_ERR_SUCCESS;
     if (!ok) exr_fail(&job, rv, path, "cannot write", err, err_size);
-    if (ok && rename(temp, path) != 0) {
-        set_err(err, err_size, "%s: cannot rename %s into place: %s", path, temp, strerror(errno));
-        ok = false;
-    }
-    if (!ok) remove(temp);
-    free(temp);
-    return ok;
+    return cacao_commit_temp(temp, path, ok, err, err_size);
 }

@@ -50,8 +50,7 @@ static bool check_image(const char *path, const cacao_img *img, bool channel_ok,
     return true;
 }
 
-/* The temporary a writer fills before renaming it to path; NULL when out of memory. */
-static char *temp_path_for(const char *path) {
+char *cacao_temp_path_for(const char *path) {
     static const char suffix[] = ".tmp";
     size_t length = strlen(path);
     char *temp = malloc(length + sizeof(suffix));
@@ -64,7 +63,7 @@ static char *temp_path_for(const char *path) {
 
 /* Opens the temporary for path; on failure writes err and returns NULL (and *temp_out = NULL). */
 static FILE *open_temp(const char *path, char **temp_out, char *err, size_t err_size) {
-    *temp_out = temp_path_for(path);
+    *temp_out = cacao_temp_path_for(path);
     if (!*temp_out) {
         set_err(err, err_size, "%s: out of memory", path);
         return NULL;
@@ -92,6 +91,11 @@ static bool finish_temp(FILE *file, char *temp, const char *path, bool written_o
         set_err(err, err_size, "%s: closing the written file failed: %s", path, strerror(errno));
         ok = false;
     }
+    return cacao_commit_temp(temp, path, ok, err, err_size);
+}
+
+bool cacao_commit_temp(char *temp, const char *path, bool written_ok, char *err, size_t err_size) {
+    bool ok = written_ok;
     if (ok && rename(temp, path) != 0) {
         set_err(err, err_size, "%s: cannot rename %s into place: %s", path, temp, strerror(errno));
         ok = false;

@@ -50,4 +50,9 @@ bool cacao_png_read(const char *path, cacao_img *out, bool *is16bit, char *err, 
  * Each sample is round(clamp(v, 0, 1) * (2^bits - 1)); NaN is written as 0. */
 bool cacao_png_write(const char *path, const cacao_img *img, int bits, char *err, size_t err_size);
 
+/* Atomic writes, shared by every writer: the temporary a writer fills (path + ".tmp"; NULL when
+ * out of memory), and its commit: renamed to path if written_ok, else deleted. Frees temp. */
+char *cacao_temp_path_for(const char *path);
+bool cacao_commit_temp(char *temp, const char *path, bool written_ok, char *err, size_t err_size);
+
 #endif /* CACAO_IMAGE_IO_H */
