@@ -1,0 +1,63 @@
+/* test_sweep - every configuration the settings can select (5 qualities x native/downsampled x
+ * blur none..8 x fp32/fp16 x normals given/reconstructed = 360) records and runs cleanly under the
+ * Khronos validation layer with synchronization validation, at a small size: any validation
+ * message fails. Why: the barriers, layouts and bindings differ per configuration (mips, importance
+ * maps, ping-pong blur chains, the fp16 permutations), so each one is its own synchronization
+ * case; docs/integration.md promises all of them are clean.
+ * Each output must also be finite and in [0,1], and an fp16 configuration may differ from its
+ * fp32 twin only by rounding (the same bound as test_stability's fp16 comparison).
+ * usage: test_sweep [WIDTH HEIGHT] */
+#include "gpu_scene.h"
+
+static const char *const quality_names[] = {"", "lowest", "low", "medium", "high", "highest"};
+
+int main(int argc, char **argv) {
+    const uint32_t w = argc > 2 ? (uint32_t)atoi(argv[1]) : 64, h = argc > 2 ? (uint32_t)atoi(argv[2]) : 48;
+    vkdev dev;
+    open_device(&dev);
+    scene_buffers b;
+    const float radius = scene_buffers_default(w, h, &b);
+    const size_t n = (size_t)w * h;
+    float *ao = malloc(n * sizeof *ao), *ao32 = malloc(n * sizeof *ao32);
+    unsigned configs = 0, failed = 0;
+    for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
+        for (int ds = 0; ds < 2; ++ds)
+            for (int blur = 0; blur <= 8; ++blur)
+                for (int given = 0; given < 2; ++given)
+                    for (int fp16 = 0; fp16 < 2; ++fp16) {
+                        const cacao_settings s = {.quality = (cacao_quality)q,
+                                                  .downsample = ds,
+                                                  .blur_pass_count = blur ? blur : CACAO_BLUR_NONE,
+                                                  .generate_normals = !given,
+                                                  .precision = fp16 ? CACAO_PRECISION_FP16 : CACAO_PRECISION_FP32,
+                                                  .radius = radius};
+                        const uint32_t messages = dev.validation_messages, before = (uint32_t)test_failures;
+                        vkdev_frame f = scene_frame(&b, false, given);
+                        ++configs;
+                        if (!run(&dev, &s, &f, fp16 ? ao : ao32)) {
+                            ++failed;
+                            continue;
+                        }
+                        CHECK(all_finite_unit(fp16 ? ao : ao32, n));
+                        if (fp16) {
+                            double mean = 0;
+                            for (size_t i = 0; i < n; ++i) mean += fabs((double)ao[i] - ao32[i]);
+                            CHECK(mean / (double)n < 0.25 / 255.0);
+                        }
+                        CHECK(dev.validation_messages == messages);
+                        if ((uint32_t)test_failures != before) {
+                            fprintf(stderr, "  ^ %s %s blur %d normals %s %s\n", quality_names[q],
+                                    ds ? "downsampled" : "native", blur, given ? "given" : "reconstructed",
+                                    fp16 ? "fp16" : "fp32");
+                            ++failed;
+                        }
+                    }
+    printf("sweep %ux%u: %u configurations, %u failed, %u validation messages%s\n", w, h, configs, failed,
+           dev.validation_messages, dev.fp16 ? "" : " (no shaderFloat16: fp16 ran as fp32)");
+    free(ao);
+    free(ao32);
+    scene_buffers_free(&b);
+    vkdev_destroy(&dev);
+    CHECK(configs == 360 && dev.validation_messages == 0);
+    return test_report("test_sweep");
+}
