@@ -426,13 +426,7 @@ static cacao_result vk_error(char *err, size_t n, const char *what) {
 
 cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t repeat,
                        float *ao, vkdev_timings *timings, char *err, size_t n) {
-    const uint32_t w = frame->width, h = frame->height;
-    const VkFormat out_format = frame->output_format ? frame->output_format : VK_FORMAT_R32_SFLOAT;
-    if (out_format != VK_FORMAT_R32_SFLOAT) return vk_error(err, n, "vkdev: only R32_SFLOAT readback");
-    if (repeat == 0) repeat = 1;
     cacao_context *ctx = NULL;
-    gpu_image depth = {0}, normals = {0}, output = {0};
-    gpu_buffer staging = {0};
     cacao_result r = cacao_context_create(
         &(cacao_context_desc){.physical_device = dev->physical_device, .device = dev->device,
                               .shader_float16_enabled = dev->fp16},
@@ -442,11 +436,27 @@ cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_f
         return r;
     }
     r = cacao_context_set_settings(ctx, settings);
-    if (r == CACAO_SUCCESS) r = cacao_context_resize(ctx, w, h, NULL);
-    if (r != CACAO_SUCCESS) {
-        set_err(err, n, "%s", cacao_context_last_error(ctx));
-        goto done;
+    if (r == CACAO_SUCCESS) r = cacao_context_resize(ctx, frame->width, frame->height, NULL);
+    if (r != CACAO_SUCCESS) set_err(err, n, "%s", cacao_context_last_error(ctx));
+    else r = vkdev_run_context(dev, ctx, frame, repeat, ao, timings, err, n);
+    cacao_context_destroy(ctx);
+    return r;
+}
+
+cacao_result vkdev_run_context(vkdev *dev, cacao_context *ctx, const vkdev_frame *frame, uint32_t repeat, float *ao,
+                               vkdev_timings *timings, char *err, size_t n) {
+    const uint32_t w = frame->width, h = frame->height;
+    const VkFormat out_format = frame->output_format ? frame->output_format : VK_FORMAT_R32_SFLOAT;
+    if (out_format != VK_FORMAT_R32_SFLOAT) return vk_error(err, n, "vkdev: only R32_SFLOAT readback");
+    const cacao_plan *plan = cacao_context_plan(ctx);
+    if (!plan || plan->width != w || plan->height != h) {
+        set_err(err, n, "vkdev: the context is not resized to the frame's %ux%u", w, h);
+        return CACAO_ERROR_NOT_READY;
     }
+    if (repeat == 0) repeat = 1;
+    gpu_image depth = {0}, normals = {0}, output = {0};
+    gpu_buffer staging = {0};
+    cacao_result r;
     const VkDeviceSize pixels = (VkDeviceSize)w * h;
     const VkDeviceSize normals_offset = (pixels * 4 + 15) / 16 * 16; /* RGBA32F copies need 16-byte offsets */
     const VkDeviceSize bytes = normals_offset + pixels * 16; /* depth R32 + normals RGBA32; AO read back into the front */
@@ -489,7 +499,6 @@ cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_f
     };
     memcpy(in.projection, frame->projection, sizeof in.projection);
     memcpy(in.normals_to_view, frame->normals_to_view, sizeof in.normals_to_view);
-    const cacao_plan *plan = cacao_context_plan(ctx);
     const uint32_t steps = plan->step_count;
     double *samples = calloc((size_t)repeat * (steps + 1), sizeof *samples);
     if (!samples) goto vk_failed;
@@ -551,6 +560,5 @@ done:
     free_image(dev, &normals);
     free_image(dev, &output);
     free_buffer(dev, &staging);
-    cacao_context_destroy(ctx);
     return r;
 }

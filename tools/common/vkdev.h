@@ -84,4 +84,9 @@ typedef struct vkdev_timings {
 cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t repeat,
                        float *ao, vkdev_timings *timings, char *err, size_t err_size);
 
+/* The same frame on a context the caller created on this device and resized to the frame's size
+ * (settings as it set them); the context stays the caller's, as an engine keeps its own. */
+cacao_result vkdev_run_context(vkdev *dev, cacao_context *ctx, const vkdev_frame *frame, uint32_t repeat, float *ao,
+                               vkdev_timings *timings, char *err, size_t err_size);
+
 #endif
