@@ -1,8 +1,13 @@
 /* test_scene_matrix - every quality level paired with every value of every other axis
  * (native/downsampled, normals given/reconstructed, blur 0/1/4/8, fp16/fp32, standard/reverse-Z)
  * on the real shared scenes: output has no NaN/Inf and lies in [0,1], with zero validation
- * messages. Four configurations per quality cover each axis value at least once (a covering
- * design, not the full product, to keep lavapipe time low); the scenes rotate between them.
+ * messages, and it stays close to the same scene at the same quality in the reference
+ * configuration (native, normals from depth, blur 2, fp32, standard depth): every axis changes
+ * the estimate only a little (noise, resolution, normal source, rounding, depth encoding), so the
+ * mean |AO - reference| over non-background pixels may be at most 1.5x its measured value plus
+ * 0.25/255, while a broken axis (wrong reverse-Z unpack, fp16 overflow, swapped normals, a lost
+ * slice) moves it by far more. Four configurations per quality cover each axis value at least
+ * once (a covering design, not the full product, to keep lavapipe time low); the scenes rotate.
  * usage: test_scene_matrix SHARED_DIR   (exit 77 = skipped when SHARED_DIR is absent) */
 #include <math.h>
 #include <stdio.h>
@@ -26,6 +31,14 @@ static const axes designs[4] = {
     {false, true, false, true, 4},
     {true, false, true, false, 8},
 };
+
+/* mean |AO - reference| of each run, in run order (quality-major, then designs[]), as printed by
+ * this test on lavapipe; the bound is 1.5x this plus 0.25/255. */
+static const double measured_diff[20] = {
+    0.022997, 0.010598, 0.000983, 0.030923, 0.011258, 0.002123, 0.007054, 0.021272, 0.004787, 0.014365,
+    0.004901, 0.004456, 0.013595, 0.009732, 0.000912, 0.027792, 0.007425, 0.001985, 0.005859, 0.018658,
+};
+#define DIFF_BOUND(measured) (1.5 * (measured) + 0.25 / 255.0)
 
 typedef struct scene_data {
     cacao_img depth, depth_reversed, normals;
@@ -57,6 +70,7 @@ int main(int argc, char **argv) {
     vkdev dev;
     char err[512];
     open_device(&dev);
+    if (!dev.fp16) printf("skipped: fp16 coverage (device has no shaderFloat16; fp16 configurations run as fp32)\n");
     unsigned run = 0;
     for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
         for (int k = 0; k < 4; ++k, ++run) {
@@ -74,21 +88,41 @@ int main(int argc, char **argv) {
                                       .blur_pass_count = a->blur ? a->blur : CACAO_BLUR_NONE,
                                       .precision = a->fp16 ? CACAO_PRECISION_FP16 : CACAO_PRECISION_FP32,
                                       .radius = (float)d->cam.ao_radius_world};
-            float *ao = malloc(n * sizeof *ao);
+            float *ao = malloc(n * sizeof *ao), *ref = malloc(n * sizeof *ref);
             cacao_result r = vkdev_run(&dev, &s, &f, 1, ao, NULL, err, sizeof err);
             CHECK(r == CACAO_SUCCESS);
+            vkdev_frame fr = {.width = d->depth.width, .height = d->depth.height, .depth = d->depth.data};
+            memcpy(fr.projection, d->cam.projection, sizeof fr.projection);
+            const cacao_settings sr = {
+                .quality = (cacao_quality)q, .generate_normals = true, .radius = (float)d->cam.ao_radius_world};
+            const cacao_result rr = vkdev_run(&dev, &sr, &fr, 1, ref, NULL, err, sizeof err);
+            CHECK(rr == CACAO_SUCCESS);
+            double diff = 0;
+            size_t counted = 0;
+            for (size_t i = 0; r == CACAO_SUCCESS && rr == CACAO_SUCCESS && i < n; ++i)
+                if (d->depth.data[i] < 1.0f) diff += fabs((double)ao[i] - ref[i]), ++counted;
+            diff = counted ? diff / (double)counted : 0.0;
             size_t bad = 0;
             double sum = 0;
             for (size_t i = 0; r == CACAO_SUCCESS && i < n; ++i) {
-                if (!(ao[i] >= 0.0f && ao[i] <= 1.0f)) ++bad;
-                else sum += ao[i];
+                if (!(ao[i] >= 0.0f && ao[i] <= 1.0f))
+                    ++bad;
+                else
+                    sum += ao[i];
             }
-            printf("%-17s %-7s %-11s normals %-5s blur %d %s %s: mean AO %.4f, %zu values outside [0,1]\n",
+            printf("%-17s %-7s %-11s normals %-5s blur %d %s %s: mean AO %.4f, %zu values outside [0,1], "
+                   "mean |AO - reference| %.6f\n",
                    scenes[run % 3], quality_names[q], a->downsample ? "downsampled" : "native",
                    a->normals_given ? "given" : "depth", a->blur, a->fp16 ? "fp16" : "fp32",
-                   a->reversed ? "reverse-Z" : "standard", sum / (double)n, bad);
+                   a->reversed ? "reverse-Z" : "standard", sum / (double)n, bad, diff);
             CHECK(bad == 0);
+            if (!(diff <= DIFF_BOUND(measured_diff[run]))) {
+                fprintf(stderr, "  ^ mean |AO - reference| %.6f above its bound %.6f (measured %.6f)\n", diff,
+                        DIFF_BOUND(measured_diff[run]), measured_diff[run]);
+                ++test_failures;
+            }
             free(ao);
+            free(ref);
         }
     vkdev_destroy(&dev);
     CHECK(dev.validation_messages == 0);
