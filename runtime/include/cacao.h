@@ -258,10 +258,14 @@ typedef struct cacao_inputs {
     uint32_t timestamp_first_query;
 } cacao_inputs;
 
-/* Records one frame: constant update, barriers and dispatches. Makes the caller's earlier writes
- * to depth/normals visible and prior accesses to output safe (barriers from ALL_COMMANDS);
- * afterwards the output has been written by COMPUTE_SHADER stage with SHADER_WRITE access, and
- * the caller orders its own reads after that. */
+/* Records one frame: constant update, barriers and dispatches. cacao orders itself against the
+ * caller's commands on both sides, so the caller records no barrier for cacao's sake:
+ *   - before: a barrier from ALL_COMMANDS (memory writes) makes earlier writes to depth/normals
+ *     visible and ends earlier accesses to the output;
+ *   - after: a barrier from COMPUTE_SHADER (shader writes) to ALL_COMMANDS (memory reads and
+ *     writes) returns the output to its layout, so later commands may read or overwrite the AO
+ *     directly. A caller that moves the output to another layout afterwards records that
+ *     transition as usual, naming COMPUTE_SHADER / SHADER_WRITE as its source. */
 cacao_result cacao_record(cacao_context *context, VkCommandBuffer command_buffer,
                           const cacao_inputs *inputs);
 
