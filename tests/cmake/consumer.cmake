@@ -1,7 +1,8 @@
 # Engine integration, three ways, each building and running examples/headless.c (a real frame on
 # the first Vulkan device): MODE=subdir (add_subdirectory), MODE=package (cmake --install of this
 # build into a temporary prefix, then find_package), MODE=pkgconfig (pkg-config --cflags --libs
-# cacao with the same prefix). Inputs: MODE, SOURCE_DIR, BUILD_DIR, WORK, GENERATOR, C_FLAGS.
+# cacao with the same prefix). Inputs: MODE, SOURCE_DIR, BUILD_DIR, WORK, GENERATOR, C_FLAGS, and
+# RUN_ENV ("|"-separated VAR=value; the sanitizer build's preloads, see cacao_sanitizer_env).
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 function(run)
@@ -42,5 +43,10 @@ else()
     set(exe ${WORK}/headless)
   endif()
 endif()
-run(${exe})
+string(REPLACE "|" ";" run_env "${RUN_ENV}")
+if(run_env)
+  run(${CMAKE_COMMAND} -E env ${run_env} ${exe})
+else()
+  run(${exe})
+endif()
 message("${MODE} consumer ran: ${last_output}")
