@@ -6,6 +6,9 @@
  * case; docs/integration.md promises all of them are clean.
  * Each output must also be finite and in [0,1], and an fp16 configuration may differ from its
  * fp32 twin only by rounding (the same bound as test_stability's fp16 comparison).
+ * One context serves every configuration, as in an engine whose user changes settings: each is
+ * set_settings + resize on the same context, so the rebuild of intermediates and pipelines is
+ * swept too.
  * usage: test_sweep [WIDTH HEIGHT] */
 #include "gpu_scene.h"
 
@@ -19,6 +22,14 @@ int main(int argc, char **argv) {
     const float radius = scene_buffers_default(w, h, &b);
     const size_t n = (size_t)w * h;
     float *ao = malloc(n * sizeof *ao), *ao32 = malloc(n * sizeof *ao32);
+    cacao_context *ctx = NULL;
+    if (cacao_context_create(&(cacao_context_desc){.physical_device = dev.physical_device,
+                                                   .device = dev.device,
+                                                   .shader_float16_enabled = dev.fp16},
+                             &ctx) != CACAO_SUCCESS) {
+        fprintf(stderr, "cannot create a cacao context\n");
+        return 1;
+    }
     unsigned configs = 0, failed = 0;
     for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
         for (int ds = 0; ds < 2; ++ds)
@@ -34,7 +45,16 @@ int main(int argc, char **argv) {
                         const uint32_t messages = dev.validation_messages, before = (uint32_t)test_failures;
                         vkdev_frame f = scene_frame(&b, false, given);
                         ++configs;
-                        if (!run(&dev, &s, &f, fp16 ? ao : ao32)) {
+                        char err[512] = "";
+                        cacao_result r = cacao_context_set_settings(ctx, &s);
+                        if (r == CACAO_SUCCESS) r = cacao_context_resize(ctx, w, h, NULL);
+                        if (r == CACAO_SUCCESS)
+                            r = vkdev_run_context(&dev, ctx, &f, 1, fp16 ? ao : ao32, NULL, err, sizeof err);
+                        if (r != CACAO_SUCCESS) {
+                            fprintf(stderr, "%s %s blur %d normals %s %s: %s: %s%s\n", quality_names[q],
+                                    ds ? "downsampled" : "native", blur, given ? "given" : "reconstructed",
+                                    fp16 ? "fp16" : "fp32", cacao_result_string(r), err, cacao_context_last_error(ctx));
+                            ++test_failures;
                             ++failed;
                             continue;
                         }
@@ -57,6 +77,7 @@ int main(int argc, char **argv) {
     free(ao);
     free(ao32);
     scene_buffers_free(&b);
+    cacao_context_destroy(ctx);
     vkdev_destroy(&dev);
     CHECK(configs == 360 && dev.validation_messages == 0);
     return test_report("test_sweep");
