@@ -51,10 +51,8 @@ static region_means corner_regions(const scene_buffers *b, const float *ao) {
         double p[3];
         if (!scene_world_position(&corner_scene, b, i, p)) continue;
         const double to_crease = sqrt(p[1] * p[1] + (p[2] + 5.0) * (p[2] + 5.0));
-        if (to_crease < 0.12)
-            crease += ao[i], ++nc;
-        else if (fabs(p[1]) < 1e-3 && p[2] > -3.0 && p[2] < -1.5)
-            open += ao[i], ++no;
+        if (to_crease < 0.12) crease += ao[i], ++nc;
+        else if (fabs(p[1]) < 1e-3 && p[2] > -3.0 && p[2] < -1.5) open += ao[i], ++no;
     }
     CHECK(nc > 50 && no > 200);
     return (region_means){nc ? crease / (double)nc : 0, no ? open / (double)no : 0};
@@ -68,13 +66,13 @@ static void test_corner(vkdev *dev) {
         for (int ds = 0; ds < 2; ++ds) {
             double previous = 2.0;
             for (float radius = 0.25f; radius <= 2.0f; radius *= 2.0f) {
-                const cacao_settings s = {
-                    .quality = all_qualities[q], .downsample = ds, .generate_normals = true, .radius = radius};
+                const cacao_settings s = {.quality = all_qualities[q], .downsample = ds, .generate_normals = true,
+                                          .radius = radius};
                 vkdev_frame f = scene_frame(&b, false, false);
                 if (!run(dev, &s, &f, ao)) continue;
                 region_means m = corner_regions(&b, ao);
-                printf("corner %-7s %-11s radius %.2f: crease %.3f, open floor %.3f\n", quality_names[all_qualities[q]],
-                       ds ? "downsampled" : "native", radius, m.crease, m.open);
+                printf("corner %-7s %-11s radius %.2f: crease %.3f, open floor %.3f\n",
+                       quality_names[all_qualities[q]], ds ? "downsampled" : "native", radius, m.crease, m.open);
                 CHECK(m.open > 0.98);
                 /* At 0.25 m the radius spans under two slice texels in downsampled mode at this
                  * size, below what a screen-space method can resolve; require the crease from 0.5 m. */
@@ -134,19 +132,16 @@ static void test_blur_reduces_noise(vkdev *dev) {
 static void test_grazing_floor(vkdev *dev) {
     const cacao_prim prims[] = {{CACAO_PRIM_PLANE, {0, 0, 0}, {0, 1, 0}, 0}};
     const double pitch = 25.0 * 3.14159265358979323846 / 180.0;
-    const cacao_scene scene = {
-        prims, 1, {960, 540, 60.0, 0.1, 500.0, {0, 1.6, 0}, {0, 1.6 - sin(pitch), -cos(pitch)}, {0, 1, 0}}, 0.5};
+    const cacao_scene scene = {prims, 1, {960, 540, 60.0, 0.1, 500.0, {0, 1.6, 0}, {0, 1.6 - sin(pitch), -cos(pitch)},
+                                          {0, 1, 0}}, 0.5};
     scene_buffers b;
     scene_buffers_render(&scene, &b);
     float *ao = malloc(sizeof(float) * b.width * b.height);
     double *row_mean = malloc(sizeof(double) * b.height);
     for (int q = 0; q < 5; ++q)
         for (int ds = 0; ds < 2; ++ds) {
-            const cacao_settings s = {.quality = all_qualities[q],
-                                      .downsample = ds,
-                                      .generate_normals = true,
-                                      .radius = 0.5f,
-                                      .blur_pass_count = CACAO_BLUR_NONE};
+            const cacao_settings s = {.quality = all_qualities[q], .downsample = ds, .generate_normals = true,
+                                      .radius = 0.5f, .blur_pass_count = CACAO_BLUR_NONE};
             vkdev_frame f = scene_frame(&b, false, false);
             if (!run(dev, &s, &f, ao)) continue;
             double worst_step = 0, min_ao = 1;
@@ -228,10 +223,8 @@ static void test_adaptive(vkdev *dev) {
     CHECK(vkdev_buffer_create(dev, (VkDeviceSize)rb.iw * rb.ih, &rb.importance));
     CHECK(vkdev_buffer_create(dev, sizeof(uint32_t), &rb.counter));
     for (int k = 0; k < 2; ++k) {
-        const cacao_settings s = {.quality = CACAO_QUALITY_HIGHEST,
-                                  .generate_normals = true,
-                                  .radius = radius,
-                                  .blur_pass_count = CACAO_BLUR_NONE,
+        const cacao_settings s = {.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true,
+                                  .radius = radius, .blur_pass_count = CACAO_BLUR_NONE,
                                   .adaptive_quality_limit = k ? 1.0f : CACAO_ZERO};
         vkdev_frame f = scene_frame(&b, false, false);
         f.after_record = copy_intermediates;
@@ -246,10 +239,8 @@ static void test_adaptive(vkdev *dev) {
     const uint32_t gw = (rb.iw + 7) / 8 * 8, gh = (rb.ih + 7) / 8 * 8;
     for (uint32_t y = 0; y < gh; y += 3)
         for (uint32_t x = 0; x < gw; x += 3) {
-            if (x < rb.iw && y < rb.ih)
-                inside += imp[(size_t)y * rb.iw + x];
-            else
-                ++outside;
+            if (x < rb.iw && y < rb.ih) inside += imp[(size_t)y * rb.iw + x];
+            else ++outside;
         }
     printf("adaptive: load counter %u, subsampled map sum %llu (+ at most %llu from %llu threads past the edge)\n",
            counter, (unsigned long long)inside, (unsigned long long)outside * 255, (unsigned long long)outside);
@@ -272,14 +263,12 @@ static void test_adaptive(vkdev *dev) {
                 }
             const size_t i = (size_t)y * b.width + x;
             const double d = fabs(ao[0][i] - ao[1][i]);
-            if (hi == 0)
-                diff_flat += d, ++n_flat;
-            else if (lo >= 128)
-                diff_busy += d, ++n_busy;
+            if (hi == 0) diff_flat += d, ++n_flat;
+            else if (lo >= 128) diff_busy += d, ++n_busy;
         }
     printf("adaptive: mean |AO(limit 1) - AO(limit 0)| = %.5f over %zu zero-importance pixels, %.5f over %zu "
-           "high-importance pixels\n",
-           n_flat ? diff_flat / n_flat : 0.0, n_flat, n_busy ? diff_busy / n_busy : 0.0, n_busy);
+           "high-importance pixels\n", n_flat ? diff_flat / n_flat : 0.0, n_flat, n_busy ? diff_busy / n_busy : 0.0,
+           n_busy);
     CHECK(n_flat > 1000 && n_busy > 100);
     CHECK(diff_flat == 0.0);
     CHECK(n_busy && diff_busy / n_busy > 0.005);

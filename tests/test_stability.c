@@ -93,11 +93,11 @@ static void test_nan_depth(vkdev *dev) {
     float *depth = malloc(sizeof(float) * n);
     memcpy(depth, b.depth, sizeof(float) * n);
     for (uint32_t y = 60; y < 76; ++y)
-        for (uint32_t x = 100; x < 130; ++x)
-            depth[(size_t)y * b.width + x] = (x % 3 == 0) ? NAN : (x % 3 == 1 ? INFINITY : -INFINITY);
+        for (uint32_t x = 100; x < 130; ++x) depth[(size_t)y * b.width + x] = (x % 3 == 0) ? NAN : (x % 3 == 1 ? INFINITY : -INFINITY);
     for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
         for (int ds = 0; ds < 2; ++ds) {
-            const cacao_settings s = {.quality = q, .downsample = ds, .generate_normals = true, .radius = radius};
+            const cacao_settings s = {.quality = q, .downsample = ds, .generate_normals = true,
+                                      .radius = radius};
             vkdev_frame f = scene_frame(&b, false, false);
             if (!run(dev, &s, &f, clean)) continue;
             f.depth = depth;
@@ -176,8 +176,7 @@ static void test_depth_ranges(vkdev *dev) {
             /* Bottom rows see open floor close to the camera, far from the sphere. */
             double worst = 1.0;
             for (size_t i = n - 8 * b.width; i < n; ++i) worst = fmin(worst, ao[i]);
-            if (worst < 0.99)
-                fprintf(stderr, "depth range %s mode %d: open floor AO %.4f\n", quality_names[q], mode, worst);
+            if (worst < 0.99) fprintf(stderr, "depth range %s mode %d: open floor AO %.4f\n", quality_names[q], mode, worst);
             CHECK(worst >= 0.99);
         }
     printf("near 0.01 / far 1e6, standard, reverse-Z and infinite reverse-Z: finite, open floor unoccluded\n");
@@ -198,11 +197,8 @@ static void test_fp16(vkdev *dev) {
     float *a = malloc(sizeof(float) * n), *h = malloc(sizeof(float) * n);
     for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
         for (int ds = 0; ds < 2; ++ds) {
-            cacao_settings s = {.quality = q,
-                                .downsample = ds,
-                                .radius = radius,
-                                .blur_pass_count = 4,
-                                .precision = CACAO_PRECISION_FP32};
+            cacao_settings s = {.quality = q, .downsample = ds, .radius = radius,
+                                .blur_pass_count = 4, .precision = CACAO_PRECISION_FP32};
             vkdev_frame f = scene_frame(&b, false, true);
             if (!run(dev, &s, &f, a)) continue;
             s.precision = CACAO_PRECISION_FP16;
@@ -223,13 +219,14 @@ static void test_fp16(vkdev *dev) {
 /* `test_stability --fp16` (ctest stability_fp16): the fp16 comparison alone, reported skipped
  * (77) where the device lacks shaderFloat16. */
 static int fp16_only(vkdev *dev) {
-    if (dev->fp16)
+    const bool fp16 = dev->fp16; /* vkdev_destroy clears it */
+    if (fp16)
         test_fp16(dev);
     else
         printf("skipped: device has no shaderFloat16\n");
     vkdev_destroy(dev);
     CHECK(dev->validation_messages == 0);
-    return dev->fp16 || test_failures ? test_report("test_stability --fp16") : TEST_SKIP_CODE;
+    return fp16 || test_failures ? test_report("test_stability --fp16") : TEST_SKIP_CODE;
 }
 
 int main(int argc, char **argv) {
