@@ -263,9 +263,10 @@ typedef struct cacao_inputs {
  *   - before: a barrier from ALL_COMMANDS (memory writes) makes earlier writes to depth/normals
  *     visible and ends earlier accesses to the output;
  *   - after: a barrier from COMPUTE_SHADER (shader writes) to ALL_COMMANDS (memory reads and
- *     writes) returns the output to its layout, so later commands may read or overwrite the AO
- *     directly. A caller that moves the output to another layout afterwards records that
- *     transition as usual, naming COMPUTE_SHADER / SHADER_WRITE as its source. */
+ *     writes) returns the output to its layout, so later commands on the same queue may read or
+ *     overwrite the AO directly (another queue needs the caller's semaphore, as always). A caller
+ *     that moves the output to another layout afterwards records that transition as usual,
+ *     naming COMPUTE_SHADER / SHADER_WRITE as its source. */
 cacao_result cacao_record(cacao_context *context, VkCommandBuffer command_buffer,
                           const cacao_inputs *inputs);
 
