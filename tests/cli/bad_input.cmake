@@ -97,8 +97,8 @@ expect_refused("s2.json: \"radious\": unknown setting" --scene ${ROOM} --setting
 file(WRITE ${WORK}/s3.json "{\"quality\": 3}")
 expect_refused("s3.json: \"quality\": must be a string" --scene ${ROOM} --settings ${WORK}/s3.json)
 file(WRITE ${WORK}/s4.json "{\"radius\": ")
-expect_refused("s4.json: not a JSON object" --scene ${ROOM} --settings ${WORK}/s4.json)
-expect_refused("s5.json: cannot open" --scene ${ROOM} --settings ${WORK}/s5.json)
+expect_refused("s4.json: not valid JSON (error at line 1, column 12)" --scene ${ROOM} --settings ${WORK}/s4.json)
+expect_refused("s5.json: cannot open: No such file or directory" --scene ${ROOM} --settings ${WORK}/s5.json)
 
 # ---- Output: unknown format, bit depth for a float format ----
 expect_refused("--output ${WORK}/out.tif: unknown format" --scene ${ROOM} -o ${WORK}/out.tif)
