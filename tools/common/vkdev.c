@@ -486,6 +486,7 @@ cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_f
         .normals_unpack_mul = frame->normals_unpack_mul,
         .normals_unpack_add = frame->normals_unpack_add,
         .timestamp_query_pool = dev->timestamps,
+        .timestamp_query_count = MAX_TIMESTAMPS,
     };
     memcpy(in.projection, frame->projection, sizeof in.projection);
     memcpy(in.normals_to_view, frame->normals_to_view, sizeof in.normals_to_view);
