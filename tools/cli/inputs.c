@@ -147,8 +147,18 @@ static bool file_exists(const char *path) {
     return stat(path, &st) == 0;
 }
 
+/* Depth and normals go to the device through one staging buffer of 20 bytes a pixel, and a
+ * buffer must stay below 4 GiB (lavapipe's limit): depth alone reaches 16384x16384, with normals less. */
+#define MAX_PIXELS_WITH_NORMALS (((uint64_t)1 << 32) / 20)
+
 static bool check_same_size(const cacao_img *depth, const cacao_img *normals, const char *depth_path,
                             const char *normals_path, char *err, size_t n) {
+    if (normals->data && (uint64_t)depth->width * depth->height > MAX_PIXELS_WITH_NORMALS) {
+        set_err(err, n, "%s: %ux%u with normals is more than the %llu pixels the tools stage at once; give the depth "
+                "alone (normals are then reconstructed)", normals_path, depth->width, depth->height,
+                (unsigned long long)MAX_PIXELS_WITH_NORMALS);
+        return false;
+    }
     if (!normals->data || (normals->width == depth->width && normals->height == depth->height)) return true;
     set_err(err, n, "%s: normals are %ux%u but the depth (%s) is %ux%u", normals_path, normals->width, normals->height,
             depth_path, depth->width, depth->height);

@@ -64,10 +64,12 @@ static const flag_def flags[] = {
         "scene folder: depth.pfm (depth_reversed.pfm with --reverse-z), optional normals.pfm, camera.json"),
     OPT("--depth", NULL, "FILE", FLAG_PATH, depth_path,
         "depth image, raw [0,1] depth as the projection writes it: 1-channel .pfm, .exr (channel Z, R, Y or the "
-        "only one) or 16-bit grey .png (value/65535; 8-bit PNG is refused as too coarse)"),
+        "only one) or 16-bit grey .png (value/65535; 8-bit PNG is refused as too coarse); 32 to 16384 pixels per "
+        "side"),
     OPT("--normals", NULL, "FILE", FLAG_PATH, normals_path,
         "unit view-space normals, right-handed (+z towards the camera): 3-channel .pfm or .exr (R,G,B or X,Y,Z); "
-        "without it normals are reconstructed from depth"),
+        "without it normals are reconstructed from depth; depth with normals is staged together, at most "
+        "214,748,364 pixels (about 14650x14650)"),
     OPT("--camera", NULL, "FILE", FLAG_PATH, camera_path,
         "camera.json: fov_y_deg, near, far; optional projection, projection_reversed, ao_radius_world"),
     OPT("--fov", NULL, "DEG", FLAG_POSITIVE, fov_y_deg,
