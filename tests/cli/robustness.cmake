@@ -14,26 +14,6 @@
 include(${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake)
 set(CAM --camera ${ROOM}/camera.json)
 
-# expect_refused(<substring> <args...>): non-zero exit, one line naming <substring>, no control bytes.
-function(expect_refused needle)
-  execute_process(COMMAND ${CACAO} ${ARGN} WORKING_DIRECTORY ${WORK} RESULT_VARIABLE rc OUTPUT_VARIABLE out
-                  ERROR_VARIABLE err TIMEOUT 60)
-  string(REGEX REPLACE "\n$" "" message "${err}")
-  if(NOT rc MATCHES "^[1-9][0-9]*$")
-    message(FATAL_ERROR "cacao ${ARGN}: expected a failure exit, got '${rc}': ${err}")
-  endif()
-  string(FIND "${message}" "${needle}" at)
-  if(at LESS 0)
-    message(FATAL_ERROR "cacao ${ARGN}: message does not name '${needle}': ${err}")
-  endif()
-  string(ASCII 27 esc)
-  string(FIND "${message}" "${esc}" escape_at)
-  if(message MATCHES "\n" OR NOT escape_at EQUAL -1)
-    message(FATAL_ERROR "cacao ${ARGN}: message spans lines or carries an escape: ${err}")
-  endif()
-  message("refused as expected: ${message}")
-endfunction()
-
 function(expect_same_bytes what path expected_text)
   file(READ ${path} now)
   if(NOT now STREQUAL expected_text)
@@ -42,13 +22,13 @@ function(expect_same_bytes what path expected_text)
 endfunction()
 
 # ---- Output collisions (no device needed) ----
-expect_refused("name the same file" --scene ${ROOM} -o ${WORK}/same.png --json ${WORK}/same.png)
+expect_cacao_refused("name the same file" --scene ${ROOM} -o ${WORK}/same.png --json ${WORK}/same.png)
 file(COPY ${ROOM}/depth.pfm DESTINATION ${WORK})
 file(READ ${WORK}/depth.pfm depth_before HEX)
-expect_refused("is also the --depth input" --depth ${WORK}/depth.pfm ${CAM} -o ${WORK}/depth.pfm)
-expect_refused("is also the --depth input" --depth depth.pfm ${CAM} -o ${WORK}/depth.pfm)
+expect_cacao_refused("is also the --depth input" --depth ${WORK}/depth.pfm ${CAM} -o ${WORK}/depth.pfm)
+expect_cacao_refused("is also the --depth input" --depth depth.pfm ${CAM} -o ${WORK}/depth.pfm)
 file(COPY ${ROOM}/camera.json DESTINATION ${WORK})
-expect_refused("is also the --camera input" --depth ${WORK}/depth.pfm --camera ${WORK}/camera.json -o x.png
+expect_cacao_refused("is also the --camera input" --depth ${WORK}/depth.pfm --camera ${WORK}/camera.json -o x.png
                --json ${WORK}/camera.json)
 file(READ ${WORK}/depth.pfm depth_after HEX)
 if(NOT depth_before STREQUAL depth_after)
@@ -57,7 +37,7 @@ endif()
 
 # ---- A failed --json leaves an existing -o file alone ----
 file(WRITE ${WORK}/keep.png "the user's own file")
-expect_refused("r.json" --scene ${ROOM} --validate -o ${WORK}/keep.png --json ${WORK}/no/such/folder/r.json)
+expect_cacao_refused("r.json" --scene ${ROOM} --validate -o ${WORK}/keep.png --json ${WORK}/no/such/folder/r.json)
 expect_same_bytes("failed --json" ${WORK}/keep.png "the user's own file")
 file(GLOB staged ${WORK}/keep.png.* ${WORK}/*.new ${WORK}/*.tmp)
 if(staged)
@@ -79,30 +59,30 @@ if(NOT skipped EQUAL 1)
 endif()
 
 # ---- Messages ----
-expect_refused("--quality: needs a value" --scene ${ROOM} --quality -o x.png)
+expect_cacao_refused("--quality: needs a value" --scene ${ROOM} --quality -o x.png)
 string(ASCII 27 esc)
-expect_refused("--\\x1b[2Jbad\\x0a: unknown flag" "--${esc}[2Jbad\n")
+expect_cacao_refused("--\\x1b[2Jbad\\x0a: unknown flag" "--${esc}[2Jbad\n")
 file(MAKE_DIRECTORY ${WORK}/dir.pfm)
-expect_refused("dir.pfm: is a directory" --depth ${WORK}/dir.pfm ${CAM})
-expect_refused("gone.pfm: cannot open: No such file or directory" --depth ${WORK}/gone.pfm ${CAM})
+expect_cacao_refused("dir.pfm: is a directory" --depth ${WORK}/dir.pfm ${CAM})
+expect_cacao_refused("gone.pfm: cannot open: No such file or directory" --depth ${WORK}/gone.pfm ${CAM})
 execute_process(COMMAND mkfifo ${WORK}/pipe.exr ${WORK}/pipe.json RESULT_VARIABLE fifo_rc)
 if(NOT fifo_rc EQUAL 0)
   message(FATAL_ERROR "mkfifo failed")
 endif()
-expect_refused("pipe.exr: is not a regular file" --depth ${WORK}/pipe.exr ${CAM})
-expect_refused("pipe.json: is not a regular file" --scene ${ROOM} --settings ${WORK}/pipe.json --print-settings)
+expect_cacao_refused("pipe.exr: is not a regular file" --depth ${WORK}/pipe.exr ${CAM})
+expect_cacao_refused("pipe.json: is not a regular file" --scene ${ROOM} --settings ${WORK}/pipe.json --print-settings)
 
 # ---- Settings JSON ----
 file(WRITE ${WORK}/twice.json "{\"radius\": 1.0, \"radius\": 2.0}")
-expect_refused("twice.json: key \"radius\" is given more than once" --scene ${ROOM} --settings ${WORK}/twice.json
+expect_cacao_refused("twice.json: key \"radius\" is given more than once" --scene ${ROOM} --settings ${WORK}/twice.json
                --print-settings)
 file(WRITE ${WORK}/trailing.json "{\"radius\": 1.0}\n}")
-expect_refused("trailing.json: unexpected text after the JSON value at line 2, column 1" --scene ${ROOM} --settings
+expect_cacao_refused("trailing.json: unexpected text after the JSON value at line 2, column 1" --scene ${ROOM} --settings
                ${WORK}/trailing.json --print-settings)
 file(WRITE ${WORK}/evil_key.json "{\"ra${esc}[31mdius\": 1.0}")
-expect_refused("\"ra\\x1b[31mdius\": unknown setting" --scene ${ROOM} --settings ${WORK}/evil_key.json --print-settings)
+expect_cacao_refused("\"ra\\x1b[31mdius\": unknown setting" --scene ${ROOM} --settings ${WORK}/evil_key.json --print-settings)
 file(WRITE ${WORK}/bad_radius.json "{\"radius\": -3, \"blur_pass_count\": 3}")
-expect_refused("bad_radius.json: \"radius\"" --scene ${ROOM} --settings ${WORK}/bad_radius.json --print-settings)
+expect_cacao_refused("bad_radius.json: \"radius\"" --scene ${ROOM} --settings ${WORK}/bad_radius.json --print-settings)
 cacao_ok(merged --scene ${ROOM} --settings ${WORK}/bad_radius.json --radius 0.7 --print-settings)
 string(JSON radius GET "${merged_out}" radius)
 string(JSON blur GET "${merged_out}" blur_pass_count)
