@@ -129,9 +129,14 @@ FILE *cacao_open_input(const char *path, char *err, size_t err_size) {
 char *cacao_read_whole_file(const char *path, size_t max_bytes, char *err, size_t err_size) {
     FILE *file = cacao_open_input(path, err, err_size);
     if (!file) return NULL;
-    char *text = malloc(max_bytes + 1);
-    const size_t length = text ? fread(text, 1, max_bytes, file) : 0;
-    const bool too_big = text && length == max_bytes && fgetc(file) != EOF;
+    /* Sized by the file (a regular file: checked above), not by the limit; a file that grows while
+     * being read is cut at the size it had, and one larger than the limit is refused. */
+    struct stat st;
+    const bool sized = fstat(fileno(file), &st) == 0 && st.st_size >= 0;
+    const size_t capacity = sized && (unsigned long long)st.st_size < max_bytes ? (size_t)st.st_size : max_bytes;
+    char *text = sized ? malloc(capacity + 1) : NULL;
+    const size_t length = text ? fread(text, 1, capacity, file) : 0;
+    const bool too_big = text && (unsigned long long)st.st_size > max_bytes;
     const bool failed = !text || ferror(file) || too_big;
     fclose(file);
     if (failed) {
