@@ -125,6 +125,14 @@ static cacao_context *test_context_errors(vkdev *dev) {
     in = good;
     in.depth.layout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
     CHECK_RESULT(cacao_record(ctx, dev->cmd, &in), CACAO_ERROR_INVALID_ARGUMENT, ctx, "inputs.depth.layout");
+    in = good; /* needs separateDepthStencilLayouts, which this context was not told is enabled */
+    in.depth.layout = VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL;
+    CHECK_RESULT(cacao_record(ctx, dev->cmd, &in), CACAO_ERROR_INVALID_ARGUMENT, ctx, "separateDepthStencilLayouts");
+    in = good; /* a pool one query short of plan.step_count + 1 from timestamp_first_query */
+    in.timestamp_query_pool = (VkQueryPool)(uintptr_t)0x3000;
+    in.timestamp_first_query = 2;
+    in.timestamp_query_count = 2 + cacao_context_plan(ctx)->step_count;
+    CHECK_RESULT(cacao_record(ctx, dev->cmd, &in), CACAO_ERROR_INVALID_ARGUMENT, ctx, "inputs.timestamp_query_count");
     in = good;
     in.output.layout = VK_IMAGE_LAYOUT_UNDEFINED;
     CHECK_RESULT(cacao_record(ctx, dev->cmd, &in), CACAO_ERROR_INVALID_ARGUMENT, ctx, "inputs.output.layout");

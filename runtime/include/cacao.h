@@ -189,12 +189,15 @@ typedef struct cacao_context_desc {
     const VkAllocationCallbacks *allocation_callbacks; /* optional */
     VkPipelineCache pipeline_cache;                 /* optional */
     bool shader_float16_enabled;                    /* the device was created with shaderFloat16 on */
+    bool separate_depth_stencil_layouts_enabled;    /* ... with separateDepthStencilLayouts on (Vulkan
+                                                       1.2 or VK_KHR_separate_depth_stencil_layouts) */
 } cacao_context_desc;
 
 /* Creates a context. Creates no pipelines and allocates no images yet. */
 cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context **out_context);
 
-/* Destroys everything the context created. The caller makes sure the GPU is done with it. */
+/* Destroys everything the context created. The caller makes sure the GPU is done with it. NULL is
+ * ignored; destroying the same context twice is undefined behaviour, as with free(). */
 void cacao_context_destroy(cacao_context *context);
 
 /* Replaces the settings (validated; see cacao_settings_resolve). Takes effect at the next
@@ -233,7 +236,8 @@ typedef struct cacao_image {
 typedef struct cacao_inputs {
     /* Depth: D32_SFLOAT, D16_UNORM, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT, D32_SFLOAT_S8_UINT, R32_SFLOAT
      * or R16_SFLOAT; width x height of the resize. Layout: SHADER_READ_ONLY_OPTIMAL,
-     * DEPTH(_STENCIL)_READ_ONLY_OPTIMAL or GENERAL. */
+     * DEPTH_STENCIL_READ_ONLY_OPTIMAL or GENERAL; DEPTH_READ_ONLY_OPTIMAL only where the device was
+     * created with separateDepthStencilLayouts and cacao_context_desc says so (refused otherwise). */
     cacao_image depth;
     /* Normals (required unless settings.generate_normals): any sampled float or UNORM colour
      * format; rgb unpacked as rgb * normals_unpack_mul + normals_unpack_add. */
@@ -253,9 +257,11 @@ typedef struct cacao_inputs {
     float normals_unpack_add;
     /* Optional GPU timing: when set, cacao writes plan.step_count + 1 timestamps (compute stage)
      * starting at timestamp_first_query: one before the first step and one after each step. The
-     * caller resets those queries before and reads them after. */
+     * caller resets those queries before and reads them after. timestamp_query_count is the pool's
+     * queryCount (required with a pool): a pool too small for the plan is refused, not written past. */
     VkQueryPool timestamp_query_pool;
     uint32_t timestamp_first_query;
+    uint32_t timestamp_query_count;
 } cacao_inputs;
 
 /* Records one frame: constant update, barriers and dispatches. cacao orders itself against the

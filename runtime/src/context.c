@@ -113,6 +113,7 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
     VkPhysicalDeviceFeatures2 features = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f16};
     vkGetPhysicalDeviceFeatures2(ctx->physical_device, &features);
     ctx->fp16_available = desc->shader_float16_enabled && f16.shaderFloat16;
+    ctx->separate_depth_layouts = desc->separate_depth_stencil_layouts_enabled;
     if (r == CACAO_SUCCESS && !features.features.shaderStorageImageWriteWithoutFormat)
         r = cacao_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
                        "context_desc.physical_device lacks shaderStorageImageWriteWithoutFormat");

@@ -64,6 +64,19 @@ static cacao_result check_inputs(cacao_context *ctx, const cacao_inputs *in) {
     if (r == CACAO_SUCCESS)
         r = check_image(ctx, &in->output, "output", output_formats,
                         sizeof output_formats / sizeof output_formats[0], false);
+    if (r == CACAO_SUCCESS && in->depth.layout == VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL &&
+        !ctx->separate_depth_layouts)
+        r = cacao_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT,
+                       "inputs.depth.layout DEPTH_READ_ONLY_OPTIMAL needs separateDepthStencilLayouts enabled on the "
+                       "device and cacao_context_desc.separate_depth_stencil_layouts_enabled; use "
+                       "DEPTH_STENCIL_READ_ONLY_OPTIMAL");
+    const uint64_t queries_needed = (uint64_t)in->timestamp_first_query + ctx->plan.step_count + 1;
+    if (r == CACAO_SUCCESS && in->timestamp_query_pool && in->timestamp_query_count < queries_needed)
+        r = cacao_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT,
+                       "inputs.timestamp_query_count %u is too small: from timestamp_first_query %u, %u timestamps "
+                       "need %llu queries",
+                       in->timestamp_query_count, in->timestamp_first_query, ctx->plan.step_count + 1,
+                       (unsigned long long)queries_needed);
     if (r == CACAO_SUCCESS) r = cacao_check_projection(in, ctx->last_error, sizeof ctx->last_error);
     return r;
 }

@@ -24,6 +24,7 @@ struct cacao_context {
     VkPipelineCache pipeline_cache;
     PFN_vkCmdPushDescriptorSetKHR push_descriptor;
     bool fp16_available;
+    bool separate_depth_layouts; /* DEPTH_READ_ONLY_OPTIMAL may be used (the caller enabled the feature) */
 
     cacao_settings settings;  /* as given (zero = default) */
     bool ready;               /* plan, intermediates and pipelines exist */

@@ -7,6 +7,7 @@
  *   cli_tool const FILE W H V     a 1-channel image of W x H, every pixel V (format by extension)
  *   cli_tool convert IN OUT [8]   re-writes an image in OUT's format (.png: 16-bit, or 8-bit with 8)
  *   cli_tool truncate IN OUT N    copies the first N bytes of IN
+ *   cli_tool poke IN OUT X Y V    copies IN with channel 0 of pixel (X, Y) set to V (e.g. nan)
  *   cli_tool info FILE            prints "W H CHANNELS BITS" (BITS 8/16 for PNG, 32 otherwise)
  *   cli_tool diff A B             prints "mean_abs M max_abs X" over all pixels of two images
  *   cli_tool foreground DEPTH     prints the number of pixels with depth < 1 (standard depth)
@@ -139,6 +140,18 @@ static int truncate_copy(const char *in, const char *out, long bytes) {
     return ok ? 0 : die("truncate: cannot copy");
 }
 
+static int poke(const char *in, const char *out, uint32_t x, uint32_t y, float value) {
+    cacao_img img;
+    bool is16;
+    char err[512];
+    if (!read_any(in, &img, &is16, err, sizeof err)) return die(err);
+    bool ok = x < img.width && y < img.height;
+    if (ok) img.data[((size_t)y * img.width + x) * img.channels] = value;
+    ok = ok && write_any(out, &img, 16, err, sizeof err);
+    cacao_img_free(&img);
+    return ok ? 0 : die(x < img.width && y < img.height ? err : "poke: pixel outside the image");
+}
+
 static int info(const char *path) {
     cacao_img img;
     bool is16;
@@ -188,6 +201,8 @@ int main(int argc, char **argv) {
         return make_const(argv[2], (uint32_t)atoi(argv[3]), (uint32_t)atoi(argv[4]), strtof(argv[5], NULL));
     if (strcmp(cmd, "convert") == 0 && (argc == 4 || argc == 5)) return convert(argv[2], argv[3], argc == 5 ? 8 : 16);
     if (strcmp(cmd, "truncate") == 0 && argc == 5) return truncate_copy(argv[2], argv[3], atol(argv[4]));
+    if (strcmp(cmd, "poke") == 0 && argc == 7)
+        return poke(argv[2], argv[3], (uint32_t)atoi(argv[4]), (uint32_t)atoi(argv[5]), strtof(argv[6], NULL));
     if (strcmp(cmd, "info") == 0 && argc == 3) return info(argv[2]);
     if (strcmp(cmd, "diff") == 0 && argc == 4) return diff(argv[2], argv[3]);
     if (strcmp(cmd, "foreground") == 0 && argc == 3) return foreground(argv[2]);

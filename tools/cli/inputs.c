@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "camera_json.h"
 #include "exr_io.h"
@@ -34,8 +35,7 @@ static bool check_channels(const cacao_img *img, uint32_t want, const char *path
     return false;
 }
 
-static bool read_png_scalar(const char *path, const char *role, bool allow_8bit, cacao_img *out, char *err,
-                            size_t n) {
+static bool read_png_scalar(const char *path, const char *role, bool allow_8bit, cacao_img *out, char *err, size_t n) {
     bool is16 = false;
     if (!cacao_png_read(path, out, &is16, err, n)) return false;
     if (!is16 && !allow_8bit) {
@@ -46,14 +46,16 @@ static bool read_png_scalar(const char *path, const char *role, bool allow_8bit,
     return check_channels(out, 1, path, role, err, n);
 }
 
-bool cli_read_scalar_image(const char *path, const char *role, bool allow_8bit, cacao_img *out, char *err,
-                           size_t n) {
+bool cli_read_scalar_image(const char *path, const char *role, bool allow_8bit, cacao_img *out, char *err, size_t n) {
     char ext[16];
     cli_extension(path, ext, sizeof ext);
     bool ok;
-    if (strcmp(ext, ".pfm") == 0) ok = cacao_pfm_read(path, out, err, n) && check_channels(out, 1, path, role, err, n);
-    else if (strcmp(ext, ".exr") == 0) ok = cacao_exr_read_scalar(path, out, err, n);
-    else if (strcmp(ext, ".png") == 0) ok = read_png_scalar(path, role, allow_8bit, out, err, n);
+    if (strcmp(ext, ".pfm") == 0)
+        ok = cacao_pfm_read(path, out, err, n) && check_channels(out, 1, path, role, err, n);
+    else if (strcmp(ext, ".exr") == 0)
+        ok = cacao_exr_read_scalar(path, out, err, n);
+    else if (strcmp(ext, ".png") == 0)
+        ok = read_png_scalar(path, role, allow_8bit, out, err, n);
     else {
         set_err(err, n, "%s: unknown %s format '%s' (use .pfm, .exr or .png)", path, role, ext);
         ok = false;
@@ -66,8 +68,10 @@ static bool read_normals_image(const char *path, cacao_img *out, char *err, size
     char ext[16];
     cli_extension(path, ext, sizeof ext);
     bool ok;
-    if (strcmp(ext, ".pfm") == 0) ok = cacao_pfm_read(path, out, err, n) && check_channels(out, 3, path, "normals", err, n);
-    else if (strcmp(ext, ".exr") == 0) ok = cacao_exr_read_vector(path, out, err, n);
+    if (strcmp(ext, ".pfm") == 0)
+        ok = cacao_pfm_read(path, out, err, n) && check_channels(out, 3, path, "normals", err, n);
+    else if (strcmp(ext, ".exr") == 0)
+        ok = cacao_exr_read_vector(path, out, err, n);
     else {
         set_err(err, n, "%s: unknown normals format '%s' (use float .pfm or .exr)", path, ext);
         ok = false;
@@ -137,14 +141,24 @@ static bool load_default_scene(const cli_options *o, cli_inputs *in, char *err, 
     return true;
 }
 
+/* Whether path is there (a stat, not an open: a FIFO must not block here; the reader refuses it). */
 static bool file_exists(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (f) fclose(f);
-    return f != NULL;
+    struct stat st;
+    return stat(path, &st) == 0;
 }
+
+/* Depth and normals go to the device through one staging buffer of 20 bytes a pixel, and a
+ * buffer must stay below 4 GiB (lavapipe's limit): depth alone reaches 16384x16384, with normals less. */
+#define MAX_PIXELS_WITH_NORMALS (((uint64_t)1 << 32) / 20)
 
 static bool check_same_size(const cacao_img *depth, const cacao_img *normals, const char *depth_path,
                             const char *normals_path, char *err, size_t n) {
+    if (normals->data && (uint64_t)depth->width * depth->height > MAX_PIXELS_WITH_NORMALS) {
+        set_err(err, n, "%s: %ux%u with normals is more than the %llu pixels the tools stage at once; give the depth "
+                "alone (normals are then reconstructed)", normals_path, depth->width, depth->height,
+                (unsigned long long)MAX_PIXELS_WITH_NORMALS);
+        return false;
+    }
     if (!normals->data || (normals->width == depth->width && normals->height == depth->height)) return true;
     set_err(err, n, "%s: normals are %ux%u but the depth (%s) is %ux%u", normals_path, normals->width, normals->height,
             depth_path, depth->width, depth->height);
@@ -152,8 +166,8 @@ static bool check_same_size(const cacao_img *depth, const cacao_img *normals, co
 }
 
 /* Depth, optional normals and the camera from their paths (camera_path may be NULL). */
-static bool load_files(const cli_options *o, const char *depth_path, const char *normals_path,
-                       const char *camera_path, cli_inputs *in, char *err, size_t n) {
+static bool load_files(const cli_options *o, const char *depth_path, const char *normals_path, const char *camera_path,
+                       cli_inputs *in, char *err, size_t n) {
     cacao_camera_file camera;
     if (camera_path && !cacao_camera_json_read(camera_path, &camera, err, n)) return false;
     if (!cli_read_scalar_image(depth_path, "depth", false, &in->depth, err, n)) return false;
@@ -170,7 +184,8 @@ static bool load_scene_dir(const cli_options *o, cli_inputs *in, char *err, size
     snprintf(normals, sizeof normals, "%s/normals.pfm", o->scene_dir);
     snprintf(camera, sizeof camera, "%s/camera.json", o->scene_dir);
     if (!file_exists(depth)) {
-        set_err(err, n, "--scene %s: no %s in the folder", o->scene_dir, o->reverse_z ? "depth_reversed.pfm" : "depth.pfm");
+        set_err(err, n, "--scene %s: no %s in the folder", o->scene_dir,
+                o->reverse_z ? "depth_reversed.pfm" : "depth.pfm");
         return false;
     }
     if (!file_exists(camera)) {
@@ -195,9 +210,12 @@ static bool check_source_flags(const cli_options *o, char *err, size_t n) {
 bool cli_inputs_load(const cli_options *o, cli_inputs *in, char *err, size_t n) {
     memset(in, 0, sizeof *in);
     bool ok = check_source_flags(o, err, n);
-    if (ok && o->scene_dir) ok = load_scene_dir(o, in, err, n);
-    else if (ok && o->depth_path) ok = load_files(o, o->depth_path, o->normals_path, o->camera_path, in, err, n);
-    else if (ok) ok = load_default_scene(o, in, err, n);
+    if (ok && o->scene_dir)
+        ok = load_scene_dir(o, in, err, n);
+    else if (ok && o->depth_path)
+        ok = load_files(o, o->depth_path, o->normals_path, o->camera_path, in, err, n);
+    else if (ok)
+        ok = load_default_scene(o, in, err, n);
     if (!ok) cli_inputs_free(in);
     return ok;
 }

@@ -4,11 +4,13 @@
  * Order of work, so that a failure at any step leaves no output file: parse the flags (and the
  * --settings file), load and check every input, resolve the settings, load the ground truth, run
  * on the device, check the validation layer's count, and only then write the image and the JSON
- * report (each atomically; if the report cannot be written the image is removed again). */
+ * report (both staged beside their destinations and renamed into place only when both are complete). */
+#include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include <cjson/cJSON.h>
 
@@ -33,7 +35,37 @@ static void set_err(char *err, const char *fmt, ...) {
 
 static unsigned png_bits(const cli_options *o) { return o->png16 ? 16u : o->png_bits ? o->png_bits : 8u; }
 
+/* Whether a and b name the same file: the same text, or the same existing file. */
+static bool same_file(const char *a, const char *b) {
+    struct stat sa, sb;
+    if (!a || !b) return false;
+    if (strcmp(a, b) == 0) return true;
+    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+/* -o and --json must not name each other or any input (the output would overwrite it). */
+static bool check_output_collisions(const cli_options *o, char *err) {
+    if (same_file(o->output_path, o->json_path)) {
+        set_err(err, "--output %s and --json %s name the same file", o->output_path, o->json_path);
+        return false;
+    }
+    const struct {
+        const char *flag, *path;
+    } inputs[] = {{"--depth", o->depth_path},     {"--normals", o->normals_path},   {"--camera", o->camera_path},
+                  {"--compare", o->compare_path}, {"--settings", o->settings_path}, {"--scene", o->scene_dir}};
+    const struct { const char *flag, *path; } outputs[] = {{"--output", o->output_path}, {"--json", o->json_path}};
+    for (size_t k = 0; k < sizeof outputs / sizeof outputs[0]; ++k)
+        for (size_t i = 0; i < sizeof inputs / sizeof inputs[0]; ++i)
+            if (same_file(outputs[k].path, inputs[i].path)) {
+                set_err(err, "%s %s: is also the %s input; it would be overwritten", outputs[k].flag, outputs[k].path,
+                        inputs[i].flag);
+                return false;
+            }
+    return true;
+}
+
 static bool check_output_flags(const cli_options *o, char *err) {
+    if (!check_output_collisions(o, err)) return false;
     const cli_format format = cli_output_format(o->output_path);
     if (format == CLI_FORMAT_UNKNOWN) {
         set_err(err, "--output %s: unknown format (use .png, .pfm or .exr)", o->output_path);
@@ -85,8 +117,8 @@ static bool load_ground_truth(const cli_options *o, const cli_inputs *in, cacao_
 /* ---- The device run ------------------------------------------------------------------------- */
 
 typedef struct render_result {
-    cacao_img ao;                 /* 1 channel */
-    cacao_plan plan;              /* the steps that ran (their key names label the timings) */
+    cacao_img ao;    /* 1 channel */
+    cacao_plan plan; /* the steps that ran (their key names label the timings) */
     vkdev_timings timings;
     char device_name[256];
 } render_result;
@@ -115,8 +147,8 @@ static bool run_on_device(vkdev *dev, const cli_options *o, const cli_inputs *in
     const vkdev_frame frame = make_frame(in, encoded);
     if (!plan_of_run(dev, encoded, frame.width, frame.height, &out->plan, err)) return false;
     char why[ERR_SIZE - 128];
-    const cacao_result r = vkdev_run(dev, encoded, &frame, o->repeat ? o->repeat : 1, out->ao.data, &out->timings,
-                                     why, sizeof why);
+    const cacao_result r =
+        vkdev_run(dev, encoded, &frame, o->repeat ? o->repeat : 1, out->ao.data, &out->timings, why, sizeof why);
     if (r == CACAO_SUCCESS) return true;
     set_err(err, "%s: %s", cacao_result_string(r), why);
     return false;
@@ -146,13 +178,25 @@ static bool render(const cli_options *o, const cli_inputs *in, const cacao_setti
 
 /* ---- Reporting and writing ------------------------------------------------------------------ */
 
+/* All or nothing: the image and the report are written beside their destinations (path + ".new")
+ * and renamed into place only once both are complete, so a failure touches no existing file. */
 static bool write_outputs(const cli_options *o, const cli_report *report, const cacao_img *ao, char *err) {
-    if (!cli_write_ao(o->output_path, ao, png_bits(o), err, ERR_SIZE)) return false;
-    if (o->json_path && !cli_write_report(o->json_path, report, err, ERR_SIZE)) {
-        remove(o->output_path); /* all or nothing */
-        return false;
+    char image_new[4200], json_new[4200];
+    snprintf(image_new, sizeof image_new, "%s.new", o->output_path);
+    snprintf(json_new, sizeof json_new, "%s.new", o->json_path ? o->json_path : "");
+    bool ok = cli_write_ao(cli_output_format(o->output_path), image_new, ao, png_bits(o), err, ERR_SIZE);
+    if (ok && o->json_path) ok = cli_write_report(json_new, report, err, ERR_SIZE);
+    if (ok && o->json_path && rename(json_new, o->json_path) != 0) {
+        set_err(err, "%s: cannot rename %s into place: %s", o->json_path, json_new, strerror(errno));
+        ok = false;
     }
-    return true;
+    if (ok && rename(image_new, o->output_path) != 0) {
+        set_err(err, "%s: cannot rename %s into place: %s", o->output_path, image_new, strerror(errno));
+        ok = false;
+    }
+    remove(image_new);
+    if (o->json_path) remove(json_new);
+    return ok;
 }
 
 static int render_and_write(const cli_options *o, const cli_inputs *in, const cacao_settings *encoded,
@@ -169,15 +213,15 @@ static int render_and_write(const cli_options *o, const cli_inputs *in, const ca
         return fail("--compare: out of memory");
     }
     const unsigned repeat = o->repeat ? o->repeat : 1;
-    const cli_report report = {resolved, result.device_name, in->depth.width, in->depth.height, repeat, &result.plan,
-                               &result.timings, o->output_path, o->compare_path, gt->data ? &errors : NULL};
+    const cli_report report = {
+        resolved,     result.device_name, in->depth.width, in->depth.height, repeat,
+        &result.plan, &result.timings,    o->output_path,  o->compare_path,  gt->data ? &errors : NULL};
     const bool written = write_outputs(o, &report, &result.ao, err);
     cacao_img_free(&result.ao);
     if (!written) return fail(err);
     if (o->timings) cli_print_timings(stdout, &result.plan, &result.timings, repeat);
     if (gt->data) cli_print_errors(stdout, o->compare_path, &errors);
-    printf("cacao: wrote %s (%ux%u AO on %s)\n", o->output_path, in->depth.width, in->depth.height,
-           result.device_name);
+    printf("cacao: wrote %s (%ux%u AO on %s)\n", o->output_path, in->depth.width, in->depth.height, result.device_name);
     return 0;
 }
 

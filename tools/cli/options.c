@@ -7,6 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "camera_json.h"
+#include "image_io.h"
+
 _Static_assert(sizeof(cacao_quality) == sizeof(int) && sizeof(cacao_precision) == sizeof(int),
                "enum settings are stored through int");
 
@@ -26,27 +29,34 @@ typedef enum flag_kind {
 } flag_kind;
 
 typedef struct flag_def {
-    const char *name;          /* "--radius" (FLAG_SECTION: the heading) */
-    const char *alias;         /* "-o" or NULL */
-    const char *value;         /* the value's name in --help; NULL for switches */
+    const char *name;  /* "--radius" (FLAG_SECTION: the heading) */
+    const char *alias; /* "-o" or NULL */
+    const char *value; /* the value's name in --help; NULL for switches */
     flag_kind kind;
-    size_t offset;             /* into cli_options (FLAG_*) or cacao_settings (SET_*) */
-    const char *json;          /* SET_*: key in the settings JSON */
+    size_t offset;    /* into cli_options (FLAG_*) or cacao_settings (SET_*) */
+    const char *json; /* SET_*: key in the settings JSON */
     const char *help;
-    size_t offset2;            /* SET_FLOAT_PAIR: the second field */
+    size_t offset2; /* SET_FLOAT_PAIR: the second field */
     const char *json2;
-    const char *const *names;  /* SET_ENUM: names by enum value (index 0 = the runtime's default, unnamed) */
+    const char *const *names; /* SET_ENUM: names by enum value (index 0 = the runtime's default, unnamed) */
     int name_count;
 } flag_def;
 
 static const char *const quality_names[] = {NULL, "lowest", "low", "medium", "high", "highest"};
 static const char *const precision_names[] = {NULL, "fp32", "fp16"};
 
-#define SECTION(title) {.name = title, .kind = FLAG_SECTION}
-#define OPT(flag, alias_, value_, kind_, field, help_) \
-    {.name = flag, .alias = alias_, .value = value_, .kind = kind_, .offset = offsetof(cli_options, field), .help = help_}
-#define SET(flag, value_, kind_, field, help_) \
-    {.name = flag, .value = value_, .kind = kind_, .offset = offsetof(cacao_settings, field), .json = #field, .help = help_}
+#define SECTION(title)                                                                                                 \
+    { .name = title, .kind = FLAG_SECTION }
+#define OPT(flag, alias_, value_, kind_, field, help_)                                                                 \
+    {                                                                                                                  \
+        .name = flag, .alias = alias_, .value = value_, .kind = kind_, .offset = offsetof(cli_options, field),         \
+        .help = help_                                                                                                  \
+    }
+#define SET(flag, value_, kind_, field, help_)                                                                         \
+    {                                                                                                                  \
+        .name = flag, .value = value_, .kind = kind_, .offset = offsetof(cacao_settings, field), .json = #field,       \
+        .help = help_                                                                                                  \
+    }
 
 static const flag_def flags[] = {
     SECTION("Input (none given: the embedded test scene, 1280x720)"),
@@ -54,14 +64,17 @@ static const flag_def flags[] = {
         "scene folder: depth.pfm (depth_reversed.pfm with --reverse-z), optional normals.pfm, camera.json"),
     OPT("--depth", NULL, "FILE", FLAG_PATH, depth_path,
         "depth image, raw [0,1] depth as the projection writes it: 1-channel .pfm, .exr (channel Z, R, Y or the "
-        "only one) or 16-bit grey .png (value/65535; 8-bit PNG is refused as too coarse)"),
+        "only one) or 16-bit grey .png (value/65535; 8-bit PNG is refused as too coarse); 32 to 16384 pixels per "
+        "side"),
     OPT("--normals", NULL, "FILE", FLAG_PATH, normals_path,
         "unit view-space normals, right-handed (+z towards the camera): 3-channel .pfm or .exr (R,G,B or X,Y,Z); "
-        "without it normals are reconstructed from depth"),
+        "without it normals are reconstructed from depth; depth with normals is staged together, at most "
+        "214,748,364 pixels (about 14650x14650)"),
     OPT("--camera", NULL, "FILE", FLAG_PATH, camera_path,
         "camera.json: fov_y_deg, near, far; optional projection, projection_reversed, ao_radius_world"),
-    OPT("--fov", NULL, "DEG", FLAG_POSITIVE, fov_y_deg, "vertical field of view (with --near/--far instead of, or "
-                                                         "overriding, the camera file)"),
+    OPT("--fov", NULL, "DEG", FLAG_POSITIVE, fov_y_deg,
+        "vertical field of view (with --near/--far instead of, or "
+        "overriding, the camera file)"),
     OPT("--near", NULL, "Z", FLAG_POSITIVE, near_z, "near plane distance"),
     OPT("--far", NULL, "Z", FLAG_POSITIVE, far_z, "far plane distance"),
     OPT("--reverse-z", NULL, NULL, FLAG_SWITCH, reverse_z, "depth is reverse-Z (1 = near, 0 = far)"),
@@ -82,8 +95,14 @@ static const flag_def flags[] = {
     SECTION("Settings (defaults are the runtime's; flags override --settings wherever they stand)"),
     OPT("--settings", NULL, "FILE", FLAG_SETTINGS_FILE, settings_path,
         "read settings from JSON (keys as --print-settings writes them; absent keys keep their defaults)"),
-    {.name = "--quality", .value = "LEVEL", .kind = SET_ENUM, .offset = offsetof(cacao_settings, quality),
-     .json = "quality", .help = "lowest, low, medium, high or highest", .names = quality_names, .name_count = 6},
+    {.name = "--quality",
+     .value = "LEVEL",
+     .kind = SET_ENUM,
+     .offset = offsetof(cacao_settings, quality),
+     .json = "quality",
+     .help = "lowest, low, medium, high or highest",
+     .names = quality_names,
+     .name_count = 6},
     SET("--downsample", NULL, SET_BOOL, downsample, "compute AO at quarter resolution, bilateral upsample"),
     SET("--blur", "N", SET_BLUR, blur_pass_count, "edge-aware blur passes, 0 (none) to 8"),
     SET("--radius", "R", SET_FLOAT, radius, "world-space AO radius; a camera's ao_radius_world replaces the default"),
@@ -91,8 +110,13 @@ static const flag_def flags[] = {
     SET("--power", "X", SET_FLOAT, shadow_power, "AO contrast exponent, 0..10"),
     SET("--clamp", "X", SET_FLOAT, shadow_clamp, "largest occlusion before shaping, 0..1"),
     SET("--horizon", "X", SET_FLOAT, horizon_angle_threshold, "ignore samples this close to the surface plane, 0..1"),
-    {.name = "--fade-out", .value = "FROM,TO", .kind = SET_FLOAT_PAIR, .offset = offsetof(cacao_settings, fade_out_from),
-     .json = "fade_out_from", .offset2 = offsetof(cacao_settings, fade_out_to), .json2 = "fade_out_to",
+    {.name = "--fade-out",
+     .value = "FROM,TO",
+     .kind = SET_FLOAT_PAIR,
+     .offset = offsetof(cacao_settings, fade_out_from),
+     .json = "fade_out_from",
+     .offset2 = offsetof(cacao_settings, fade_out_to),
+     .json2 = "fade_out_to",
      .help = "view distances where AO starts and finishes fading out"},
     SET("--sharpness", "X", SET_FLOAT, sharpness, "blur edge sharpness, 0..1"),
     SET("--detail", "X", SET_FLOAT, detail_shadow_strength, "small-scale detail AO strength, 0..5"),
@@ -100,9 +124,14 @@ static const flag_def flags[] = {
     SET("--bilateral-sigma", "X", SET_FLOAT, bilateral_sigma_squared, "downsampled upsample: spatial variance"),
     SET("--bilateral-similarity", "X", SET_FLOAT, bilateral_similarity_distance_sigma,
         "downsampled upsample: depth variance"),
-    {.name = "--precision", .value = "P", .kind = SET_ENUM, .offset = offsetof(cacao_settings, precision),
-     .json = "precision", .help = "fp32 or fp16 (fp16 falls back to fp32 where the device lacks it)",
-     .names = precision_names, .name_count = 3},
+    {.name = "--precision",
+     .value = "P",
+     .kind = SET_ENUM,
+     .offset = offsetof(cacao_settings, precision),
+     .json = "precision",
+     .help = "fp32 or fp16 (fp16 falls back to fp32 where the device lacks it)",
+     .names = precision_names,
+     .name_count = 3},
     SET("--no-normals", NULL, SET_BOOL, generate_normals,
         "reconstruct normals from depth even when normals are given (automatic without normals)"),
     SECTION("Device"),
@@ -183,8 +212,7 @@ static bool store_enum(const flag_def *def, const char *name, cacao_settings *s,
         }
     char choices[128] = "";
     for (int i = 1; i < def->name_count; ++i)
-        snprintf(choices + strlen(choices), sizeof choices - strlen(choices), "%s%s", i > 1 ? ", " : "",
-                 def->names[i]);
+        snprintf(choices + strlen(choices), sizeof choices - strlen(choices), "%s%s", i > 1 ? ", " : "", def->names[i]);
     set_err(err, n, "%s: unknown value '%s' (one of %s)", label, name, choices);
     return false;
 }
@@ -245,13 +273,23 @@ static bool apply_setting_flag(const flag_def *def, const char *value, cli_optio
     bool ok = true;
     switch (def->kind) {
     case SET_FLOAT:
-        ok = parse_number_flag(value, &number, label, err, n) && store_float(def->offset, number, &o->settings, label, err, n);
+        ok = parse_number_flag(value, &number, label, err, n) &&
+             store_float(def->offset, number, &o->settings, label, err, n);
         break;
-    case SET_FLOAT_PAIR: ok = apply_pair_flag(def, value, &o->settings, label, err, n); break;
-    case SET_BLUR: ok = parse_number_flag(value, &number, label, err, n) && store_blur(number, &o->settings, label, err, n); break;
-    case SET_ENUM: ok = store_enum(def, value, &o->settings, label, err, n); break;
-    case SET_BOOL: *bool_field(&o->settings, def->offset) = true; break;
-    default: break;
+    case SET_FLOAT_PAIR:
+        ok = apply_pair_flag(def, value, &o->settings, label, err, n);
+        break;
+    case SET_BLUR:
+        ok = parse_number_flag(value, &number, label, err, n) && store_blur(number, &o->settings, label, err, n);
+        break;
+    case SET_ENUM:
+        ok = store_enum(def, value, &o->settings, label, err, n);
+        break;
+    case SET_BOOL:
+        *bool_field(&o->settings, def->offset) = true;
+        break;
+    default:
+        break;
     }
     if (!ok || !check_with_runtime(def, &o->settings, label, err, n)) return false;
     note_setting(def, o);
@@ -270,7 +308,9 @@ static bool apply_option_flag(const flag_def *def, const char *value, cli_option
         }
         *(const char **)field = value;
         return true;
-    case FLAG_SWITCH: *(bool *)field = true; return true;
+    case FLAG_SWITCH:
+        *(bool *)field = true;
+        return true;
     case FLAG_POSITIVE:
         if (!parse_number(value, &number) || !isfinite(number) || number <= 0) {
             set_err(err, n, "%s %s: must be a finite number greater than 0", def->name, value);
@@ -284,13 +324,15 @@ static bool apply_option_flag(const flag_def *def, const char *value, cli_option
         const bool ok = parse_number(value, &number) && number == floor(number) &&
                         (bits ? (number == 8 || number == 16) : (number >= 1 && number <= 100000));
         if (!ok) {
-            set_err(err, n, "%s %s: must be %s", def->name, value, bits ? "8 or 16" : "a whole number from 1 to 100000");
+            set_err(err, n, "%s %s: must be %s", def->name, value,
+                    bits ? "8 or 16" : "a whole number from 1 to 100000");
             return false;
         }
         *(uint32_t *)field = (uint32_t)number;
         return true;
     }
-    default: return false;
+    default:
+        return false;
     }
 }
 
@@ -299,20 +341,25 @@ static bool parse_pass(int argc, char **argv, cli_options *o, bool settings_file
     for (int i = 1; i < argc; ++i) {
         const flag_def *def = find_flag(argv[i]);
         if (!def) {
-            set_err(err, n, argv[i][0] == '-' ? "%s: unknown flag (see --help)" : "%s: unexpected argument (see --help)",
-                    argv[i]);
+            char shown[256];
+            cacao_escape_text(argv[i], shown, sizeof shown);
+            set_err(err, n,
+                    argv[i][0] == '-' ? "%s: unknown flag (see --help)" : "%s: unexpected argument (see --help)",
+                    shown);
             return false;
         }
         const char *value = NULL;
         if (def->value) {
-            if (i + 1 >= argc) {
-                set_err(err, n, "%s: needs a value (%s)", argv[i], def->value);
+            if (i + 1 >= argc || find_flag(argv[i + 1])) { /* "--quality -o x.png": --quality lacks its value */
+                set_err(err, n, "%s: needs a value (%s)%s%s", argv[i], def->value, i + 1 < argc ? " before " : "",
+                        i + 1 < argc ? argv[i + 1] : "");
                 return false;
             }
             value = argv[++i];
         }
         if ((def->kind == FLAG_SETTINGS_FILE) != settings_file_pass) continue;
-        const bool ok = is_setting(def) ? apply_setting_flag(def, value, o, err, n) : apply_option_flag(def, value, o, err, n);
+        const bool ok =
+            is_setting(def) ? apply_setting_flag(def, value, o, err, n) : apply_option_flag(def, value, o, err, n);
         if (!ok) return false;
     }
     return true;
@@ -320,32 +367,15 @@ static bool parse_pass(int argc, char **argv, cli_options *o, bool settings_file
 
 /* ---- Settings JSON -------------------------------------------------------------------------- */
 
-static char *read_small_file(const char *path, char *err, size_t n) {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        set_err(err, n, "%s: cannot open", path);
-        return NULL;
-    }
-    char *text = malloc(1 << 20);
-    size_t length = text ? fread(text, 1, (1 << 20) - 1, f) : 0;
-    const bool too_big = text && length == (1 << 20) - 1 && fgetc(f) != EOF;
-    const bool failed = !text || ferror(f) || too_big;
-    fclose(f);
-    if (failed) {
-        set_err(err, n, "%s: cannot read (or larger than 1 MiB)", path);
-        free(text);
-        return NULL;
-    }
-    text[length] = '\0';
-    return text;
-}
-
 static const flag_def *find_json_key(const char *key, size_t *offset) {
     for (size_t i = 0; i < FLAG_COUNT_ALL; ++i) {
         if (!is_setting(&flags[i])) continue;
-        if (strcmp(key, flags[i].json) == 0) *offset = flags[i].offset;
-        else if (flags[i].json2 && strcmp(key, flags[i].json2) == 0) *offset = flags[i].offset2;
-        else continue;
+        if (strcmp(key, flags[i].json) == 0)
+            *offset = flags[i].offset;
+        else if (flags[i].json2 && strcmp(key, flags[i].json2) == 0)
+            *offset = flags[i].offset2;
+        else
+            continue;
         return &flags[i];
     }
     return NULL;
@@ -364,26 +394,37 @@ static bool apply_json_item(const flag_def *def, size_t offset, const cJSON *ite
     }
     switch (def->kind) {
     case SET_FLOAT:
-    case SET_FLOAT_PAIR: return store_float(offset, item->valuedouble, &o->settings, label, err, n);
-    case SET_BLUR: return store_blur(item->valuedouble, &o->settings, label, err, n);
-    case SET_ENUM: return store_enum(def, item->valuestring, &o->settings, label, err, n);
-    case SET_BOOL: *bool_field(&o->settings, offset) = cJSON_IsTrue(item); return true;
-    default: return false;
+    case SET_FLOAT_PAIR:
+        return store_float(offset, item->valuedouble, &o->settings, label, err, n);
+    case SET_BLUR:
+        return store_blur(item->valuedouble, &o->settings, label, err, n);
+    case SET_ENUM:
+        return store_enum(def, item->valuestring, &o->settings, label, err, n);
+    case SET_BOOL:
+        *bool_field(&o->settings, offset) = cJSON_IsTrue(item);
+        return true;
+    default:
+        return false;
     }
 }
 
-/* Applies every key, then checks each setting the file gave (pairs once both halves are in). */
-static bool apply_json_settings(const cJSON *root, const char *path, cli_options *o, char *err, size_t n) {
+/* Applies every key, then checks each setting the file gave (pairs once both halves are in).
+ * Flags override the file: a key whose flag is on the command line (overridden[flag]) is checked
+ * to be a known key and is otherwise left alone, so only the values that are used are validated. */
+static bool apply_json_settings(const cJSON *root, const char *path, const bool *overridden, cli_options *o, char *err,
+                                size_t n) {
     bool given[FLAG_COUNT_ALL] = {false};
-    char label[512];
+    char label[512], key[256];
     for (const cJSON *item = root->child; item; item = item->next) {
         size_t offset = 0;
         const flag_def *def = find_json_key(item->string, &offset);
-        snprintf(label, sizeof label, "%s: \"%s\"", path, item->string);
+        cacao_escape_text(item->string, key, sizeof key);
+        snprintf(label, sizeof label, "%s: \"%s\"", path, key);
         if (!def) {
             set_err(err, n, "%s: unknown setting (see --print-settings for the schema)", label);
             return false;
         }
+        if (overridden[def - flags]) continue;
         if (!apply_json_item(def, offset, item, o, label, err, n)) return false;
         given[def - flags] = true;
         note_setting(def, o);
@@ -395,23 +436,31 @@ static bool apply_json_settings(const cJSON *root, const char *path, cli_options
     return true;
 }
 
-static bool load_settings_file(const char *path, cli_options *o, char *err, size_t n) {
-    char *text = read_small_file(path, err, n);
-    if (!text) return false;
-    cJSON *root = cJSON_Parse(text);
-    free(text);
-    bool ok = root && cJSON_IsObject(root);
-    if (!ok) set_err(err, n, "%s: not a JSON object", path);
-    else ok = apply_json_settings(root, path, o, err, n);
+static bool load_settings_file(const char *path, const bool *overridden, cli_options *o, char *err, size_t n) {
+    cJSON *root = cacao_json_read_object(path, (size_t)1 << 20, err, n);
+    if (!root) return false;
+    const bool ok = apply_json_settings(root, path, overridden, o, err, n);
     cJSON_Delete(root);
     return ok;
+}
+
+/* Which setting flags the command line gives (they override the settings file). */
+static void flags_given(int argc, char **argv, bool *given) {
+    for (int i = 1; i < argc; ++i) {
+        const flag_def *def = find_flag(argv[i]);
+        if (!def) return; /* parse_pass has already refused it */
+        if (is_setting(def)) given[def - flags] = true;
+        if (def->value) ++i;
+    }
 }
 
 bool cli_parse(int argc, char **argv, cli_options *o, char *err, size_t n) {
     memset(o, 0, sizeof *o);
     o->output_path = "cacao-out.png";
     if (!parse_pass(argc, argv, o, true, err, n)) return false;
-    if (o->settings_path && !load_settings_file(o->settings_path, o, err, n)) return false;
+    bool overridden[FLAG_COUNT_ALL] = {false};
+    flags_given(argc, argv, overridden);
+    if (o->settings_path && !load_settings_file(o->settings_path, overridden, o, err, n)) return false;
     return parse_pass(argc, argv, o, false, err, n);
 }
 
@@ -436,15 +485,22 @@ cJSON *cli_settings_to_json(const cacao_settings *resolved) {
             cJSON_AddNumberToObject(root, def->json, shortest_decimal(*float_field(&s, def->offset)));
             cJSON_AddNumberToObject(root, def->json2, shortest_decimal(*float_field(&s, def->offset2)));
             break;
-        case SET_FLOAT: cJSON_AddNumberToObject(root, def->json, shortest_decimal(*float_field(&s, def->offset))); break;
-        case SET_BLUR: cJSON_AddNumberToObject(root, def->json, s.blur_pass_count); break;
+        case SET_FLOAT:
+            cJSON_AddNumberToObject(root, def->json, shortest_decimal(*float_field(&s, def->offset)));
+            break;
+        case SET_BLUR:
+            cJSON_AddNumberToObject(root, def->json, s.blur_pass_count);
+            break;
         case SET_ENUM: {
             const int v = *int_field(&s, def->offset);
             cJSON_AddStringToObject(root, def->json, v > 0 && v < def->name_count ? def->names[v] : "?");
             break;
         }
-        case SET_BOOL: cJSON_AddBoolToObject(root, def->json, *bool_field(&s, def->offset)); break;
-        default: break;
+        case SET_BOOL:
+            cJSON_AddBoolToObject(root, def->json, *bool_field(&s, def->offset));
+            break;
+        default:
+            break;
         }
     }
     return root;
@@ -457,14 +513,21 @@ static void default_text(const flag_def *def, const cacao_settings *d, char *tex
     cacao_settings s = *d;
     text[0] = '\0';
     switch (def->kind) {
-    case SET_FLOAT: snprintf(text, size, "%g", shortest_decimal(*float_field(&s, def->offset))); break;
+    case SET_FLOAT:
+        snprintf(text, size, "%g", shortest_decimal(*float_field(&s, def->offset)));
+        break;
     case SET_FLOAT_PAIR:
         snprintf(text, size, "%g,%g", shortest_decimal(*float_field(&s, def->offset)),
                  shortest_decimal(*float_field(&s, def->offset2)));
         break;
-    case SET_BLUR: snprintf(text, size, "%d", s.blur_pass_count); break;
-    case SET_ENUM: snprintf(text, size, "%s", def->names[*int_field(&s, def->offset)]); break;
-    default: break;
+    case SET_BLUR:
+        snprintf(text, size, "%d", s.blur_pass_count);
+        break;
+    case SET_ENUM:
+        snprintf(text, size, "%s", def->names[*int_field(&s, def->offset)]);
+        break;
+    default:
+        break;
     }
 }
 

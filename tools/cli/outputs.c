@@ -28,12 +28,17 @@ cli_format cli_output_format(const char *path) {
     return CLI_FORMAT_UNKNOWN;
 }
 
-bool cli_write_ao(const char *path, const cacao_img *ao, unsigned png_bits, char *err, size_t n) {
-    switch (cli_output_format(path)) {
-    case CLI_FORMAT_PNG: return cacao_png_write(path, ao, (int)png_bits, err, n);
-    case CLI_FORMAT_PFM: return cacao_pfm_write(path, ao, err, n);
-    case CLI_FORMAT_EXR: return cacao_exr_write(path, ao, err, n);
-    default: set_err(err, n, "%s: unknown output format", path); return false;
+bool cli_write_ao(cli_format format, const char *path, const cacao_img *ao, unsigned png_bits, char *err, size_t n) {
+    switch (format) {
+    case CLI_FORMAT_PNG:
+        return cacao_png_write(path, ao, (int)png_bits, err, n);
+    case CLI_FORMAT_PFM:
+        return cacao_pfm_write(path, ao, err, n);
+    case CLI_FORMAT_EXR:
+        return cacao_exr_write(path, ao, err, n);
+    default:
+        set_err(err, n, "%s: unknown output format", path);
+        return false;
     }
 }
 
@@ -53,17 +58,21 @@ bool cli_compare_ao(const cacao_img *ao, const cacao_img *gt, const cacao_img *d
     const size_t count = (size_t)ao->width * ao->height;
     double *diffs = malloc((count ? count : 1) * sizeof *diffs);
     if (!diffs) return false;
-    size_t used = 0;
+    size_t used = 0, skipped = 0;
     double sum_sq = 0, sum_abs = 0;
     for (size_t i = 0; i < count; ++i) {
         if (is_background(depth->data[i], reverse_z)) continue;
+        if (!isfinite(gt->data[i])) { /* a NaN or infinite truth pixel has no error to measure */
+            ++skipped;
+            continue;
+        }
         const double d = fabs((double)ao->data[i] - (double)gt->data[i]);
         diffs[used++] = d;
         sum_sq += d * d;
         sum_abs += d;
     }
     qsort(diffs, used, sizeof *diffs, compare_doubles);
-    *out = (cli_ao_errors){.pixels = used};
+    *out = (cli_ao_errors){.pixels = used, .skipped_truth = skipped};
     if (used) {
         out->rmse = sqrt(sum_sq / (double)used);
         out->mean_abs = sum_abs / (double)used;
@@ -74,8 +83,10 @@ bool cli_compare_ao(const cacao_img *ao, const cacao_img *gt, const cacao_img *d
 }
 
 void cli_print_errors(FILE *out, const char *gt_path, const cli_ao_errors *e) {
-    fprintf(out, "compare %s over %zu non-background pixels: rmse %.6f mean_abs %.6f p99 %.6f\n", gt_path, e->pixels,
+    fprintf(out, "compare %s over %zu non-background pixels: rmse %.6f mean_abs %.6f p99 %.6f", gt_path, e->pixels,
             e->rmse, e->mean_abs, e->p99);
+    if (e->skipped_truth) fprintf(out, " (%zu non-finite truth pixels skipped)", e->skipped_truth);
+    fputc('\n', out);
 }
 
 /* ---- Timings ---------------------------------------------------------------------------------- */
@@ -104,6 +115,7 @@ static cJSON *errors_json(const char *gt_path, const cli_ao_errors *e) {
     cJSON *compare = cJSON_CreateObject();
     cJSON_AddStringToObject(compare, "ground_truth", gt_path);
     cJSON_AddNumberToObject(compare, "pixels", (double)e->pixels);
+    cJSON_AddNumberToObject(compare, "skipped_nonfinite_truth", (double)e->skipped_truth);
     cJSON_AddNumberToObject(compare, "rmse", e->rmse);
     cJSON_AddNumberToObject(compare, "mean_abs", e->mean_abs);
     cJSON_AddNumberToObject(compare, "p99", e->p99);

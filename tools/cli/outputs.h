@@ -15,13 +15,16 @@ typedef enum cli_format { CLI_FORMAT_UNKNOWN, CLI_FORMAT_PNG, CLI_FORMAT_PFM, CL
 /* The output format by the path's extension (.png, .pfm, .exr, any case). */
 cli_format cli_output_format(const char *path);
 
-/* Writes the 1-channel AO image atomically (temp + rename) in the path's format; png_bits 8 or 16. */
-bool cli_write_ao(const char *path, const cacao_img *ao, unsigned png_bits, char *err, size_t err_size);
+/* Writes the 1-channel AO image atomically (temp + rename) to path in the given format; png_bits 8 or 16. */
+bool cli_write_ao(cli_format format, const char *path, const cacao_img *ao, unsigned png_bits, char *err,
+                  size_t err_size);
 
 /* Errors of the AO against a ground truth over the non-background pixels: depth < 1 for standard
- * depth, depth > 0 for reverse-Z (and finite). p99 is the nearest-rank 99th percentile of |AO - GT|. */
+ * depth, depth > 0 for reverse-Z (and finite), whose truth is finite. p99 is the nearest-rank 99th percentile of |AO -
+ * GT|. */
 typedef struct cli_ao_errors {
     size_t pixels;
+    size_t skipped_truth; /* non-background pixels whose truth is NaN or infinite (not counted) */
     double rmse, mean_abs, p99;
 } cli_ao_errors;
 

@@ -1,32 +1,86 @@
 /* camera_json.c - camera.json reading with cJSON; every field is checked before use. */
 #include "camera_json.h"
 
+#include "image_io.h"
+
 #include <cjson/cJSON.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-static char *read_text(const char *path, char *err, size_t n) {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(err, n, "%s: cannot open", path);
+/* Line and column (from 1) of position at in text. */
+static void line_column(const char *text, const char *at, int *line, int *column) {
+    *line = 1;
+    *column = 1;
+    for (const char *c = text; c < at && *c; ++c) {
+        if (*c == '\n') {
+            ++*line;
+            *column = 1;
+        } else {
+            ++*column;
+        }
+    }
+}
+
+static int compare_keys(const void *a, const void *b) {
+    return strcmp((*(const cJSON *const *)a)->string, (*(const cJSON *const *)b)->string);
+}
+
+/* The first key (in sorted order) that the object holds twice, or NULL. */
+static const char *duplicate_key(const cJSON *object, bool *out_of_memory) {
+    const int count = cJSON_GetArraySize(object);
+    *out_of_memory = false;
+    if (count < 2) return NULL;
+    const cJSON **items = malloc((size_t)count * sizeof *items);
+    if (!items) {
+        *out_of_memory = true;
         return NULL;
     }
-    char *buf = NULL;
-    long size = -1;
-    if (fseek(f, 0, SEEK_END) == 0) size = ftell(f);
-    if (size < 0 || size > (1 << 24) || fseek(f, 0, SEEK_SET) != 0) {
-        snprintf(err, n, "%s: cannot read (or larger than 16 MiB)", path);
-    } else if ((buf = malloc((size_t)size + 1)) && fread(buf, 1, (size_t)size, f) == (size_t)size) {
-        buf[size] = '\0';
-    } else {
-        free(buf);
-        buf = NULL;
-        snprintf(err, n, "%s: cannot read", path);
+    int k = 0;
+    for (const cJSON *item = object->child; item && k < count; item = item->next) items[k++] = item;
+    qsort(items, (size_t)k, sizeof *items, compare_keys);
+    const char *found = NULL;
+    for (int i = 1; i < k && !found; ++i)
+        if (strcmp(items[i - 1]->string, items[i]->string) == 0) found = items[i]->string;
+    free(items);
+    return found;
+}
+
+cJSON *cacao_json_read_object(const char *path, size_t max_bytes, char *err, size_t n) {
+    char *text = cacao_read_whole_file(path, max_bytes, err, n);
+    if (!text) return NULL;
+    const char *end = NULL;
+    cJSON *root = cJSON_ParseWithOpts(text, &end, false);
+    while (root && end && (*end == ' ' || *end == '\t' || *end == '\n' || *end == '\r')) ++end;
+    const bool trailing = root && end && *end;
+    if (!root || trailing || !cJSON_IsObject(root)) {
+        int line = 0, column = 0;
+        line_column(text, end ? end : text, &line, &column);
+        if (trailing)
+            snprintf(err, n, "%s: unexpected text after the JSON value at line %d, column %d", path, line, column);
+        else if (root)
+            snprintf(err, n, "%s: not a JSON object", path);
+        else
+            snprintf(err, n, "%s: not valid JSON (error at line %d, column %d)", path, line, column);
+        cJSON_Delete(root);
+        free(text);
+        return NULL;
     }
-    fclose(f);
-    return buf;
+    free(text);
+    bool out_of_memory = false;
+    const char *twice = duplicate_key(root, &out_of_memory);
+    if (twice || out_of_memory) {
+        char key[256];
+        cacao_escape_text(twice, key, sizeof key);
+        if (twice)
+            snprintf(err, n, "%s: key \"%s\" is given more than once", path, key);
+        else
+            snprintf(err, n, "%s: out of memory", path);
+        cJSON_Delete(root);
+        return NULL;
+    }
+    return root;
 }
 
 static bool get_number(const cJSON *root, const char *name, bool required, double *out, const char *path, char *err,
@@ -77,24 +131,17 @@ void cacao_perspective(double fov_y_deg, double aspect, double near_z, double fa
 
 bool cacao_camera_json_read(const char *path, cacao_camera_file *out, char *err, size_t n) {
     memset(out, 0, sizeof *out);
-    char *text = read_text(path, err, n);
-    if (!text) return false;
-    cJSON *root = cJSON_Parse(text);
-    free(text);
-    if (!root || !cJSON_IsObject(root)) {
-        snprintf(err, n, "%s: not a JSON object", path);
-        cJSON_Delete(root);
-        return false;
-    }
+    cJSON *root = cacao_json_read_object(path, (size_t)1 << 24, err, n);
+    if (!root) return false;
     double w = 0, h = 0;
-    bool ok = get_number(root, "width", false, &w, path, err, n) && get_number(root, "height", false, &h, path, err, n) &&
-              get_number(root, "fov_y_deg", true, &out->fov_y_deg, path, err, n) &&
-              get_number(root, "near", true, &out->near_z, path, err, n) &&
-              get_number(root, "far", true, &out->far_z, path, err, n) &&
-              get_number(root, "ao_radius_world", false, &out->ao_radius_world, path, err, n) &&
-              get_matrix(root, "projection", &out->has_projection, out->projection, path, err, n) &&
-              get_matrix(root, "projection_reversed", &out->has_projection_reversed, out->projection_reversed, path,
-                         err, n);
+    bool ok =
+        get_number(root, "width", false, &w, path, err, n) && get_number(root, "height", false, &h, path, err, n) &&
+        get_number(root, "fov_y_deg", true, &out->fov_y_deg, path, err, n) &&
+        get_number(root, "near", true, &out->near_z, path, err, n) &&
+        get_number(root, "far", true, &out->far_z, path, err, n) &&
+        get_number(root, "ao_radius_world", false, &out->ao_radius_world, path, err, n) &&
+        get_matrix(root, "projection", &out->has_projection, out->projection, path, err, n) &&
+        get_matrix(root, "projection_reversed", &out->has_projection_reversed, out->projection_reversed, path, err, n);
     cJSON_Delete(root);
     if (!ok) return false;
     if (w < 0 || h < 0 || w > 16384 || h > 16384 || w != floor(w) || h != floor(h)) {

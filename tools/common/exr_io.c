@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "image_io.h"
+
 #define MAX_CHANNELS 4
 
 /* Receives the library's first error message for the file at hand (via the context's user data). */
@@ -28,7 +30,8 @@ static void on_exr_error(exr_const_context_t ctxt, exr_result_t code, const char
     void *user = NULL;
     if (!ctxt || exr_get_user_data(ctxt, &user) != EXR_ERR_SUCCESS || !user) return;
     exr_job *job = user;
-    if (!job->message[0]) snprintf(job->message, sizeof job->message, "%s", msg ? msg : exr_get_default_error_message(code));
+    if (!job->message[0])
+        snprintf(job->message, sizeof job->message, "%s", msg ? msg : exr_get_default_error_message(code));
 }
 
 static exr_context_initializer_t job_initializer(exr_job *job) {
@@ -41,7 +44,8 @@ static exr_context_initializer_t job_initializer(exr_job *job) {
 /* Reports a failed library call, preferring the library's own detailed message. */
 static bool exr_fail(const exr_job *job, exr_result_t rv, const char *path, const char *what, char *err,
                      size_t err_size) {
-    set_err(err, err_size, "%s: %s: %s", path, what, job->message[0] ? job->message : exr_get_default_error_message(rv));
+    set_err(err, err_size, "%s: %s: %s", path, what,
+            job->message[0] ? job->message : exr_get_default_error_message(rv));
     return false;
 }
 
@@ -78,7 +82,9 @@ static void list_channel_names(const exr_attr_chlist_t *list, char *text, size_t
     text[0] = '\0';
     for (int i = 0; i < list->num_channels; ++i) {
         size_t used = strlen(text);
-        snprintf(text + used, size - used, "%s%s", i ? ", " : "", list->entries[i].name.str);
+        char name[64];
+        cacao_escape_text(list->entries[i].name.str, name, sizeof name);
+        snprintf(text + used, size - used, "%s%s", i ? ", " : "", name);
     }
 }
 
@@ -92,8 +98,9 @@ static bool choose_scalar_channel(const exr_attr_chlist_t *list, const char *pat
     }
     char found[256];
     list_channel_names(list, found, sizeof found);
-    set_err(err, err_size, "%s: wrong channels: expected one channel named Z, R or Y (or a single channel), found %d (%s)",
-            path, list->num_channels, found);
+    set_err(err, err_size,
+            "%s: wrong channels: expected one channel named Z, R or Y (or a single channel), found %d (%s)", path,
+            list->num_channels, found);
     return false;
 }
 
@@ -134,7 +141,10 @@ static bool read_layout(exr_const_context_t ctx, const exr_job *job, const char 
                 CACAO_IMG_MAX_SIZE);
         return false;
     }
-    *layout = (exr_layout){.x0 = window.min.x, .y0 = window.min.y, .width = (uint32_t)w, .height = (uint32_t)h,
+    *layout = (exr_layout){.x0 = window.min.x,
+                           .y0 = window.min.y,
+                           .width = (uint32_t)w,
+                           .height = (uint32_t)h,
                            .tiled = storage == EXR_STORAGE_TILED};
     rv = layout->tiled ? exr_get_tile_sizes(ctx, 0, 0, 0, &layout->tile_width, &layout->tile_height)
                        : exr_get_scanlines_per_chunk(ctx, 0, &layout->lines_per_chunk);
@@ -152,19 +162,27 @@ static bool check_sampling(const exr_attr_chlist_t *list, const exr_selection *s
     for (int k = 0; k < sel->count; ++k) {
         const exr_attr_chlist_entry_t *e = &list->entries[sel->channel_index[k]];
         if (e->x_sampling != 1 || e->y_sampling != 1) {
-            set_err(err, err_size, "%s: channel %s is subsampled, which is not supported", path, e->name.str);
+            char name[64];
+            cacao_escape_text(e->name.str, name, sizeof name);
+            set_err(err, err_size, "%s: channel %s is subsampled, which is not supported", path, name);
             return false;
         }
     }
     return true;
 }
 
-/* Points the decoder's selected channels at the image (pixel x, y of the data window); others are skipped. */
+/* Points the decoder's selected channels at the image (pixel x, y of the data window) and every
+ * other channel at scratch (a chunk's worth of floats). Unused channels are decoded too, not
+ * skipped: OpenEXR 3.1.5 writes through a NULL pointer when some channels of a chunk are skipped. */
 static void aim_decoder(exr_decode_pipeline_t *dec, const exr_attr_chlist_t *list, const exr_selection *sel,
-                        cacao_img *img, uint32_t x, uint32_t y) {
+                        cacao_img *img, uint32_t x, uint32_t y, float *scratch) {
     for (int c = 0; c < dec->channel_count; ++c) {
         exr_coding_channel_info_t *ch = &dec->channels[c];
-        ch->decode_to_ptr = NULL;
+        ch->decode_to_ptr = (uint8_t *)scratch;
+        ch->user_pixel_stride = (int32_t)sizeof(float);
+        ch->user_line_stride = (int32_t)(ch->width * sizeof(float));
+        ch->user_bytes_per_element = (int16_t)sizeof(float);
+        ch->user_data_type = EXR_PIXEL_FLOAT;
         for (int k = 0; k < sel->count; ++k) {
             if (strcmp(ch->channel_name, list->entries[sel->channel_index[k]].name.str) != 0) continue;
             float *first = img->data + ((size_t)y * img->width + x) * img->channels + (size_t)k;
@@ -183,14 +201,17 @@ static exr_result_t decode_chunk(exr_const_context_t ctx, const exr_chunk_info_t
     if (chunk->width < 1 || chunk->height < 1 || x + (uint32_t)chunk->width > img->width ||
         y + (uint32_t)chunk->height > img->height)
         return EXR_ERR_CORRUPT_CHUNK;
+    float *scratch = malloc((size_t)chunk->width * (size_t)chunk->height * sizeof(float));
+    if (!scratch) return EXR_ERR_OUT_OF_MEMORY;
     exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
     exr_result_t rv = exr_decoding_initialize(ctx, 0, chunk, &dec);
     if (rv == EXR_ERR_SUCCESS) {
-        aim_decoder(&dec, list, sel, img, x, y);
+        aim_decoder(&dec, list, sel, img, x, y, scratch);
         rv = exr_decoding_choose_default_routines(ctx, 0, &dec);
     }
     if (rv == EXR_ERR_SUCCESS) rv = exr_decoding_run(ctx, 0, &dec);
     exr_decoding_destroy(ctx, &dec);
+    free(scratch);
     return rv;
 }
 
@@ -201,7 +222,8 @@ static exr_result_t decode_all(exr_const_context_t ctx, const exr_layout *layout
     if (!layout->tiled) {
         for (uint32_t y = 0; y < layout->height && rv == EXR_ERR_SUCCESS; y += (uint32_t)layout->lines_per_chunk) {
             rv = exr_read_scanline_chunk_info(ctx, 0, layout->y0 + (int32_t)y, &chunk);
-            if (rv == EXR_ERR_SUCCESS) rv = decode_chunk(ctx, &chunk, list, sel, img, 0, (uint32_t)(chunk.start_y - layout->y0));
+            if (rv == EXR_ERR_SUCCESS)
+                rv = decode_chunk(ctx, &chunk, list, sel, img, 0, (uint32_t)(chunk.start_y - layout->y0));
         }
         return rv;
     }
@@ -226,25 +248,23 @@ static bool read_part(exr_context_t ctx, const exr_job *job, const char *path, c
     if (rv != EXR_ERR_SUCCESS || !list) return exr_fail(job, rv, path, "bad channel list", err, err_size);
     if (!choose(list, path, &sel, err, err_size) || !check_sampling(list, &sel, path, err, err_size)) return false;
     const size_t floats = (size_t)layout.width * layout.height * (size_t)sel.count;
-    *out = (cacao_img){.width = layout.width, .height = layout.height, .channels = (uint32_t)sel.count,
+    *out = (cacao_img){.width = layout.width,
+                       .height = layout.height,
+                       .channels = (uint32_t)sel.count,
                        .data = calloc(floats, sizeof(float))};
     if (!out->data) {
         set_err(err, err_size, "%s: out of memory", path);
         return false;
     }
     rv = decode_all(ctx, &layout, list, &sel, out);
-    if (rv != EXR_ERR_SUCCESS) return exr_fail(job, rv, path, "cannot decode the pixels (truncated or corrupt?)", err, err_size);
+    if (rv != EXR_ERR_SUCCESS)
+        return exr_fail(job, rv, path, "cannot decode the pixels (truncated or corrupt?)", err, err_size);
     return true;
 }
 
 static bool read_exr(const char *path, channel_chooser choose, cacao_img *out, char *err, size_t err_size) {
     memset(out, 0, sizeof *out);
-    FILE *probe = fopen(path, "rb");
-    if (!probe) {
-        set_err(err, err_size, "%s: cannot open: %s", path, strerror(errno));
-        return false;
-    }
-    fclose(probe);
+    if (!cacao_check_input(path, err, err_size)) return false; /* the library opens it, once */
     exr_job job = {{0}};
     const exr_context_initializer_t init = job_initializer(&job);
     exr_context_t ctx = NULL;
@@ -317,11 +337,28 @@ static void aim_encoder(exr_encode_pipeline_t *enc, const cacao_img *img, const 
     }
 }
 
+/* OpenEXR 3.1.5 stores a chunk whose compressed size equals its raw size with the compressed bytes,
+ * which every reader takes for raw data (the file reads back as garbage). This wraps the library's
+ * compressor: in that one case the raw bytes are stored instead, as a raw-size chunk must be. */
+typedef struct exr_compressor {
+    exr_result_t (*fn)(exr_encode_pipeline_t *);
+} exr_compressor;
+
+static exr_result_t compress_or_store_raw(exr_encode_pipeline_t *enc) {
+    const exr_compressor *library = enc->encoding_user_data;
+    const exr_result_t rv = library->fn(enc);
+    if (rv == EXR_ERR_SUCCESS && enc->compressed_bytes == enc->packed_bytes &&
+        enc->compressed_buffer != enc->packed_buffer)
+        memcpy(enc->compressed_buffer, enc->packed_buffer, enc->packed_bytes);
+    return rv;
+}
+
 static exr_result_t write_pixels(exr_context_t ctx, const cacao_img *img, const char *const *names) {
     int32_t lines = 0;
     exr_result_t rv = exr_get_scanlines_per_chunk(ctx, 0, &lines);
     if (rv == EXR_ERR_SUCCESS && lines < 1) rv = EXR_ERR_INVALID_ARGUMENT;
     exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
+    exr_compressor library = {NULL};
     bool started = false;
     for (uint32_t y = 0; y < img->height && rv == EXR_ERR_SUCCESS; y += (uint32_t)lines) {
         exr_chunk_info_t chunk;
@@ -331,6 +368,11 @@ static exr_result_t write_pixels(exr_context_t ctx, const cacao_img *img, const 
         if (rv != EXR_ERR_SUCCESS) break;
         aim_encoder(&enc, img, names, y);
         if (!started) rv = exr_encoding_choose_default_routines(ctx, 0, &enc);
+        if (rv == EXR_ERR_SUCCESS && enc.compress_fn && enc.compress_fn != compress_or_store_raw) {
+            library = (exr_compressor){enc.compress_fn};
+            enc.encoding_user_data = &library;
+            enc.compress_fn = compress_or_store_raw;
+        }
         started = true;
         if (rv == EXR_ERR_SUCCESS) rv = exr_encoding_run(ctx, 0, &enc);
     }

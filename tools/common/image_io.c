@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 _Static_assert(sizeof(float) == 4, "PFM stores IEEE-754 binary32 floats");
 
@@ -31,20 +32,18 @@ void cacao_img_free(cacao_img *img) {
 static bool size_in_range(uint32_t n) { return n >= 1 && n <= CACAO_IMG_MAX_SIZE; }
 
 /* Checks an image handed to a writer; channel_ok says which channel counts the format takes. */
-static bool check_image(const char *path, const cacao_img *img, bool channel_ok, char *err,
-                        size_t err_size) {
+static bool check_image(const char *path, const cacao_img *img, bool channel_ok, char *err, size_t err_size) {
     if (!img || !img->data) {
         set_err(err, err_size, "%s: nothing to write (image or its data is NULL)", path);
         return false;
     }
     if (!size_in_range(img->width) || !size_in_range(img->height)) {
-        set_err(err, err_size, "%s: image size %ux%u is zero or larger than %u", path, img->width,
-                img->height, CACAO_IMG_MAX_SIZE);
+        set_err(err, err_size, "%s: image size %ux%u is zero or larger than %u", path, img->width, img->height,
+                CACAO_IMG_MAX_SIZE);
         return false;
     }
     if (!channel_ok) {
-        set_err(err, err_size, "%s: cannot write an image with %u channels in this format", path,
-                img->channels);
+        set_err(err, err_size, "%s: cannot write an image with %u channels in this format", path, img->channels);
         return false;
     }
     return true;
@@ -70,8 +69,7 @@ static FILE *open_temp(const char *path, char **temp_out, char *err, size_t err_
     }
     FILE *file = fopen(*temp_out, "wb");
     if (!file) {
-        set_err(err, err_size, "%s: cannot create temporary file %s: %s", path, *temp_out,
-                strerror(errno));
+        set_err(err, err_size, "%s: cannot create temporary file %s: %s", path, *temp_out, strerror(errno));
         free(*temp_out);
         *temp_out = NULL;
     }
@@ -80,8 +78,7 @@ static FILE *open_temp(const char *path, char **temp_out, char *err, size_t err_
 
 /* Closes the temporary and, if everything was written (written_ok), renames it to path.
  * Any failure deletes the temporary. Frees temp. */
-static bool finish_temp(FILE *file, char *temp, const char *path, bool written_ok, char *err,
-                        size_t err_size) {
+static bool finish_temp(FILE *file, char *temp, const char *path, bool written_ok, char *err, size_t err_size) {
     bool ok = written_ok;
     if (ok && (fflush(file) != 0 || ferror(file))) {
         set_err(err, err_size, "%s: write failed: %s", path, strerror(errno));
@@ -105,6 +102,74 @@ bool cacao_commit_temp(char *temp, const char *path, bool written_ok, char *err,
     return ok;
 }
 
+bool cacao_check_input(const char *path, char *err, size_t err_size) {
+    struct stat st;
+    if (stat(path, &st) != 0) {
+        set_err(err, err_size, "%s: cannot open: %s", path, strerror(errno));
+        return false;
+    }
+    if (S_ISDIR(st.st_mode)) {
+        set_err(err, err_size, "%s: is a directory, not a file", path);
+        return false;
+    }
+    if (!S_ISREG(st.st_mode)) {
+        set_err(err, err_size, "%s: is not a regular file (a FIFO, socket or device); give a file", path);
+        return false;
+    }
+    return true;
+}
+
+FILE *cacao_open_input(const char *path, char *err, size_t err_size) {
+    if (!cacao_check_input(path, err, err_size)) return NULL;
+    FILE *file = fopen(path, "rb");
+    if (!file) set_err(err, err_size, "%s: cannot open: %s", path, strerror(errno));
+    return file;
+}
+
+char *cacao_read_whole_file(const char *path, size_t max_bytes, char *err, size_t err_size) {
+    FILE *file = cacao_open_input(path, err, err_size);
+    if (!file) return NULL;
+    /* Sized by the file (a regular file: checked above), not by the limit; a file that grows while
+     * being read is cut at the size it had, and one larger than the limit is refused. */
+    struct stat st;
+    const bool sized = fstat(fileno(file), &st) == 0 && st.st_size >= 0;
+    const size_t capacity = sized && (unsigned long long)st.st_size < max_bytes ? (size_t)st.st_size : max_bytes;
+    char *text = sized ? malloc(capacity + 1) : NULL;
+    const size_t length = text ? fread(text, 1, capacity, file) : 0;
+    const bool too_big = text && (unsigned long long)st.st_size > max_bytes;
+    const bool failed = !text || ferror(file) || too_big;
+    fclose(file);
+    if (failed) {
+        if (too_big)
+            set_err(err, err_size, "%s: larger than %zu bytes", path, max_bytes);
+        else
+            set_err(err, err_size, "%s: cannot read%s", path, text ? "" : " (out of memory)");
+        free(text);
+        return NULL;
+    }
+    text[length] = '\0';
+    return text;
+}
+
+void cacao_escape_text(const char *text, char *out, size_t size) {
+    static const char hex[] = "0123456789abcdef";
+    size_t used = 0;
+    if (size == 0) return;
+    for (const unsigned char *c = (const unsigned char *)(text ? text : ""); *c; ++c) {
+        const bool plain = *c >= 0x20 && *c < 0x7f && *c != '\\';
+        if (used + (plain ? 1 : 4) >= size) break;
+        if (plain) {
+            out[used++] = (char)*c;
+        } else {
+            out[used++] = '\\';
+            out[used++] = 'x';
+            out[used++] = hex[*c >> 4];
+            out[used++] = hex[*c & 15];
+        }
+    }
+    out[used] = '\0';
+}
+
 /* ---- PFM ---------------------------------------------------------------------------------- */
 
 typedef struct pfm_header {
@@ -116,8 +181,8 @@ static bool is_space(int c) { return c == ' ' || c == '\t' || c == '\n' || c == 
 
 /* Reads one whitespace-terminated header field (the terminator is consumed, as PFM requires
  * exactly one whitespace byte between the scale and the pixel data). */
-static bool pfm_read_field(FILE *file, const char *path, const char *name, char *field,
-                           size_t capacity, char *err, size_t err_size) {
+static bool pfm_read_field(FILE *file, const char *path, const char *name, char *field, size_t capacity, char *err,
+                           size_t err_size) {
     int c = getc(file);
     while (is_space(c)) c = getc(file);
     size_t length = 0;
@@ -131,41 +196,37 @@ static bool pfm_read_field(FILE *file, const char *path, const char *name, char 
     }
     field[length] = '\0';
     if (c == EOF) {
-        set_err(err, err_size, "%s: truncated: file ends in the PFM header (reading the %s)", path,
-                name);
+        set_err(err, err_size, "%s: truncated: file ends in the PFM header (reading the %s)", path, name);
         return false;
     }
     return true;
 }
 
-static bool pfm_parse_size(const char *field, const char *path, const char *name, uint32_t *out,
-                           char *err, size_t err_size) {
+static bool pfm_parse_size(const char *field, const char *path, const char *name, uint32_t *out, char *err,
+                           size_t err_size) {
     uint32_t value = 0;
     size_t length = strlen(field);
     for (size_t i = 0; i < length; i++) {
         if (field[i] < '0' || field[i] > '9') {
-            set_err(err, err_size, "%s: bad PFM header: %s \"%s\" is not a number", path, name,
-                    field);
+            set_err(err, err_size, "%s: bad PFM header: %s \"%s\" is not a number", path, name, field);
             return false;
         }
         if (value <= CACAO_IMG_MAX_SIZE) value = value * 10 + (uint32_t)(field[i] - '0');
     }
     if (!size_in_range(value)) {
-        set_err(err, err_size, "%s: bad PFM header: %s %s is zero or larger than %u", path, name,
-                field, CACAO_IMG_MAX_SIZE);
+        set_err(err, err_size, "%s: bad PFM header: %s %s is zero or larger than %u", path, name, field,
+                CACAO_IMG_MAX_SIZE);
         return false;
     }
     *out = value;
     return true;
 }
 
-static bool pfm_read_header(FILE *file, const char *path, pfm_header *header, char *err,
-                            size_t err_size) {
+static bool pfm_read_header(FILE *file, const char *path, pfm_header *header, char *err, size_t err_size) {
     int magic[3]; /* read one at a time: initialiser evaluation order is unspecified */
     for (int i = 0; i < 3; i++) magic[i] = getc(file);
     if (magic[0] != 'P' || (magic[1] != 'f' && magic[1] != 'F') || !is_space(magic[2])) {
-        set_err(err, err_size,
-                "%s: bad header: not a PFM file (does not start with \"Pf\" or \"PF\")", path);
+        set_err(err, err_size, "%s: bad header: not a PFM file (does not start with \"Pf\" or \"PF\")", path);
         return false;
     }
     header->channels = magic[1] == 'F' ? 3 : 1;
@@ -185,8 +246,7 @@ static bool pfm_read_header(FILE *file, const char *path, pfm_header *header, ch
         return false;
     }
     if (isnan(scale) || isinf(scale) || scale == 0.0) {
-        set_err(err, err_size,
-                "%s: bad PFM header: scale \"%s\" is NaN, infinite or zero (no byte order)", path,
+        set_err(err, err_size, "%s: bad PFM header: scale \"%s\" is NaN, infinite or zero (no byte order)", path,
                 field);
         return false;
     }
@@ -195,11 +255,10 @@ static bool pfm_read_header(FILE *file, const char *path, pfm_header *header, ch
 }
 
 static float pfm_decode_float(const unsigned char *bytes, bool little_endian) {
-    uint32_t bits = little_endian
-                        ? (uint32_t)bytes[0] | (uint32_t)bytes[1] << 8 | (uint32_t)bytes[2] << 16 |
-                              (uint32_t)bytes[3] << 24
-                        : (uint32_t)bytes[3] | (uint32_t)bytes[2] << 8 | (uint32_t)bytes[1] << 16 |
-                              (uint32_t)bytes[0] << 24;
+    uint32_t bits =
+        little_endian
+            ? (uint32_t)bytes[0] | (uint32_t)bytes[1] << 8 | (uint32_t)bytes[2] << 16 | (uint32_t)bytes[3] << 24
+            : (uint32_t)bytes[3] | (uint32_t)bytes[2] << 8 | (uint32_t)bytes[1] << 16 | (uint32_t)bytes[0] << 24;
     float value;
     memcpy(&value, &bits, sizeof(value));
     return value;
@@ -221,14 +280,13 @@ static long bytes_remaining(FILE *file) {
 }
 
 /* Reads the pixel rows (bottom to top in the file) into a new top-row-first image. */
-static bool pfm_read_pixels(FILE *file, const char *path, const pfm_header *header,
-                            cacao_img *out, char *err, size_t err_size) {
+static bool pfm_read_pixels(FILE *file, const char *path, const pfm_header *header, cacao_img *out, char *err,
+                            size_t err_size) {
     size_t row_floats = (size_t)header->width * header->channels;
     size_t row_bytes = row_floats * 4;
     unsigned long long data_bytes = (unsigned long long)row_bytes * header->height;
     if (data_bytes > SIZE_MAX) {
-        set_err(err, err_size, "%s: image of %llu bytes is too large for this machine", path,
-                data_bytes);
+        set_err(err, err_size, "%s: image of %llu bytes is too large for this machine", path, data_bytes);
         return false;
     }
     long remaining = bytes_remaining(file);
@@ -255,8 +313,7 @@ static bool pfm_read_pixels(FILE *file, const char *path, const pfm_header *head
             break;
         }
         float *image_row = data + (size_t)(header->height - 1 - file_row) * row_floats;
-        for (size_t i = 0; i < row_floats; i++)
-            image_row[i] = pfm_decode_float(row + 4 * i, header->little_endian);
+        for (size_t i = 0; i < row_floats; i++) image_row[i] = pfm_decode_float(row + 4 * i, header->little_endian);
     }
     free(row);
     if (!ok) {
@@ -269,22 +326,17 @@ static bool pfm_read_pixels(FILE *file, const char *path, const pfm_header *head
 
 bool cacao_pfm_read(const char *path, cacao_img *out, char *err, size_t err_size) {
     memset(out, 0, sizeof(*out));
-    FILE *file = fopen(path, "rb");
-    if (!file) {
-        set_err(err, err_size, "%s: cannot open: %s", path, strerror(errno));
-        return false;
-    }
+    FILE *file = cacao_open_input(path, err, err_size);
+    if (!file) return false;
     pfm_header header;
-    bool ok = pfm_read_header(file, path, &header, err, err_size) &&
-              pfm_read_pixels(file, path, &header, out, err, err_size);
+    bool ok =
+        pfm_read_header(file, path, &header, err, err_size) && pfm_read_pixels(file, path, &header, out, err, err_size);
     fclose(file);
     return ok;
 }
 
-static bool pfm_write_rows(FILE *file, const char *path, const cacao_img *img, char *err,
-                           size_t err_size) {
-    if (fprintf(file, "%s\n%u %u\n-1.0\n", img->channels == 3 ? "PF" : "Pf", img->width,
-                img->height) < 0) {
+static bool pfm_write_rows(FILE *file, const char *path, const cacao_img *img, char *err, size_t err_size) {
+    if (fprintf(file, "%s\n%u %u\n-1.0\n", img->channels == 3 ? "PF" : "Pf", img->width, img->height) < 0) {
         set_err(err, err_size, "%s: write failed: %s", path, strerror(errno));
         return false;
     }
@@ -308,8 +360,7 @@ static bool pfm_write_rows(FILE *file, const char *path, const cacao_img *img, c
 }
 
 bool cacao_pfm_write(const char *path, const cacao_img *img, char *err, size_t err_size) {
-    if (!check_image(path, img, img && (img->channels == 1 || img->channels == 3), err, err_size))
-        return false;
+    if (!check_image(path, img, img && (img->channels == 1 || img->channels == 3), err, err_size)) return false;
     char *temp;
     FILE *file = open_temp(path, &temp, err, err_size);
     if (!file) return false;
@@ -346,8 +397,7 @@ static void png_job_warning(png_structp png, png_const_charp message) {
 }
 
 /* Formats a failed job's error as "<prefix>: <error> (<last warning>)". */
-static void png_job_report(const png_job *job, const char *path, const char *prefix, char *err,
-                           size_t err_size) {
+static void png_job_report(const png_job *job, const char *path, const char *prefix, char *err, size_t err_size) {
     if (!job->info)
         set_err(err, err_size, "%s: %s: cannot initialise libpng", path, prefix);
     else if (job->warning[0])
@@ -372,6 +422,18 @@ static void png_job_write(png_structp png, png_bytep bytes, size_t count) {
 
 static void png_job_flush(png_structp png) { (void)png; }
 
+/* Deflate expands at most about 1032 to 1: a header claiming more pixel bytes than the file could
+ * hold that way is refused before anything is allocated for it. */
+static bool png_fits_file(png_job *job, size_t row_bytes, png_uint_32 height) {
+    struct stat st;
+    const unsigned long long needed = ((unsigned long long)row_bytes + 1) * height;
+    if (fstat(fileno(job->file), &st) != 0 || needed / 1032 <= (unsigned long long)st.st_size) return true;
+    snprintf(job->message, sizeof(job->message),
+             "header says %u rows of %zu bytes (%llu bytes of pixels), more than the %lld-byte file can hold",
+             (unsigned)height, row_bytes, needed, (long long)st.st_size);
+    return false;
+}
+
 static bool png_decode(png_job *job, cacao_img *out, bool *is16bit) {
     if (setjmp(png_jmpbuf(job->png))) return false;
     png_structp png = job->png;
@@ -383,13 +445,13 @@ static bool png_decode(png_job *job, cacao_img *out, bool *is16bit) {
 
     png_uint_32 width = png_get_image_width(png, info);
     png_uint_32 height = png_get_image_height(png, info);
+    if (!png_fits_file(job, png_get_rowbytes(png, info), height)) return false;
     int color_type = png_get_color_type(png, info);
     if (color_type == PNG_COLOR_TYPE_PALETTE) {
         png_set_palette_to_rgb(png);
         if (png_get_valid(png, info, PNG_INFO_tRNS)) png_set_tRNS_to_alpha(png);
     }
-    if (color_type == PNG_COLOR_TYPE_GRAY && png_get_bit_depth(png, info) < 8)
-        png_set_expand_gray_1_2_4_to_8(png);
+    if (color_type == PNG_COLOR_TYPE_GRAY && png_get_bit_depth(png, info) < 8) png_set_expand_gray_1_2_4_to_8(png);
     png_set_interlace_handling(png);
     png_read_update_info(png, info);
 
@@ -398,8 +460,7 @@ static bool png_decode(png_job *job, cacao_img *out, bool *is16bit) {
     size_t bytes_per_sample = bit_depth / 8;
     if ((bit_depth != 8 && bit_depth != 16) || channels < 1 || channels > 4 ||
         png_get_rowbytes(png, info) != (size_t)width * channels * bytes_per_sample) {
-        snprintf(job->message, sizeof(job->message), "unsupported layout (%u channels, %u bits)",
-                 channels, bit_depth);
+        snprintf(job->message, sizeof(job->message), "unsupported layout (%u channels, %u bits)", channels, bit_depth);
         return false;
     }
     size_t row_bytes = (size_t)width * channels * bytes_per_sample;
@@ -417,8 +478,7 @@ static bool png_decode(png_job *job, cacao_img *out, bool *is16bit) {
 
     for (size_t i = 0; i < sample_count; i++) {
         const unsigned char *sample = job->pixels + i * bytes_per_sample;
-        job->data[i] = bit_depth == 16 ? (float)((sample[0] << 8) | sample[1]) / 65535.0f
-                                       : (float)sample[0] / 255.0f;
+        job->data[i] = bit_depth == 16 ? (float)((sample[0] << 8) | sample[1]) / 65535.0f : (float)sample[0] / 255.0f;
     }
     *out = (cacao_img){width, height, channels, job->data};
     job->data = NULL;
@@ -429,17 +489,13 @@ static bool png_decode(png_job *job, cacao_img *out, bool *is16bit) {
 bool cacao_png_read(const char *path, cacao_img *out, bool *is16bit, char *err, size_t err_size) {
     memset(out, 0, sizeof(*out));
     if (is16bit) *is16bit = false;
-    png_job job = {.file = fopen(path, "rb")};
-    if (!job.file) {
-        set_err(err, err_size, "%s: cannot open: %s", path, strerror(errno));
-        return false;
-    }
+    png_job job = {.file = cacao_open_input(path, err, err_size)};
+    if (!job.file) return false;
     unsigned char signature[8];
     size_t signature_bytes = fread(signature, 1, sizeof(signature), job.file);
     if (signature_bytes != sizeof(signature) || png_sig_cmp(signature, 0, sizeof(signature)) != 0) {
         set_err(err, err_size, "%s: bad header: not a PNG file (%s)", path,
-                signature_bytes != sizeof(signature) ? "shorter than the PNG signature"
-                                                     : "wrong signature");
+                signature_bytes != sizeof(signature) ? "shorter than the PNG signature" : "wrong signature");
         fclose(job.file);
         return false;
     }
@@ -463,12 +519,12 @@ static uint32_t quantise(float value, uint32_t max_value) {
 
 static bool png_encode(png_job *job, const cacao_img *img, int bits) {
     if (setjmp(png_jmpbuf(job->png))) return false;
-    static const int color_types[5] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
-                                       PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGB_ALPHA};
+    static const int color_types[5] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
+                                       PNG_COLOR_TYPE_RGB_ALPHA};
     png_structp png = job->png;
     png_set_write_fn(png, job, png_job_write, png_job_flush);
-    png_set_IHDR(png, job->info, img->width, img->height, bits, color_types[img->channels],
-                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_IHDR(png, job->info, img->width, img->height, bits, color_types[img->channels], PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, job->info);
 
     size_t row_samples = (size_t)img->width * img->channels;
@@ -495,10 +551,8 @@ static bool png_encode(png_job *job, const cacao_img *img, int bits) {
     return true;
 }
 
-bool cacao_png_write(const char *path, const cacao_img *img, int bits, char *err,
-                     size_t err_size) {
-    if (!check_image(path, img, img && img->channels >= 1 && img->channels <= 4, err, err_size))
-        return false;
+bool cacao_png_write(const char *path, const cacao_img *img, int bits, char *err, size_t err_size) {
+    if (!check_image(path, img, img && img->channels >= 1 && img->channels <= 4, err, err_size)) return false;
     if (bits != 8 && bits != 16) {
         set_err(err, err_size, "%s: PNG bits per sample must be 8 or 16, not %d", path, bits);
         return false;

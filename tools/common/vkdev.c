@@ -459,7 +459,9 @@ cacao_result vkdev_run_context(vkdev *dev, cacao_context *ctx, const vkdev_frame
     cacao_result r;
     const VkDeviceSize pixels = (VkDeviceSize)w * h;
     const VkDeviceSize normals_offset = (pixels * 4 + 15) / 16 * 16; /* RGBA32F copies need 16-byte offsets */
-    const VkDeviceSize bytes = normals_offset + pixels * 16; /* depth R32 + normals RGBA32; AO read back into the front */
+    /* depth R32 (+ normals RGBA32 when given); AO read back into the front. Only what is used is
+     * staged: depth alone at 16384x16384 is 1 GiB, within the 4 GiB buffers lavapipe allows. */
+    const VkDeviceSize bytes = frame->normals ? normals_offset + pixels * 16 : pixels * 4;
     r = CACAO_ERROR_VULKAN;
     if (!make_buffer(dev, bytes, &staging) ||
         !make_image(dev, VK_FORMAT_R32_SFLOAT, w, h, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
@@ -496,6 +498,7 @@ cacao_result vkdev_run_context(vkdev *dev, cacao_context *ctx, const vkdev_frame
         .normals_unpack_mul = frame->normals_unpack_mul,
         .normals_unpack_add = frame->normals_unpack_add,
         .timestamp_query_pool = dev->timestamps,
+        .timestamp_query_count = MAX_TIMESTAMPS,
     };
     memcpy(in.projection, frame->projection, sizeof in.projection);
     memcpy(in.normals_to_view, frame->normals_to_view, sizeof in.normals_to_view);
