@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include "cacao.h"
+#include "timing.h"
 
 typedef struct vkdev {
     VkInstance instance;
@@ -71,17 +72,16 @@ typedef struct vkdev_buffer {
 bool vkdev_buffer_create(vkdev *dev, VkDeviceSize size, vkdev_buffer *out);
 void vkdev_buffer_destroy(vkdev *dev, vkdev_buffer *b);
 
-/* Per-step GPU times of the last run, in milliseconds (timestamp queries). */
-typedef struct vkdev_timings {
-    uint32_t step_count;
-    double step_ms[CACAO_PLAN_MAX_STEPS];
-    double total_ms;
-} vkdev_timings;
+/* Creates a context with these settings, uploads the frame, records cacao warmup + repeat times
+ * (each in its own submission, timestamped), reads the last frame's AO back into ao
+ * (width*height floats) and summarises the timed frames (timing.h) with the context's memory,
+ * pipeline count and set-up time. timings may be NULL. On a cacao error returns it with the
+ * message in err; Vulkan failures return CACAO_ERROR_VULKAN. */
+cacao_result vkdev_run_timed(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t warmup,
+                             uint32_t repeat, float *ao, cacao_timings *timings, char *err, size_t err_size);
 
-/* Creates a context with these settings, uploads the frame, records cacao `repeat` times (each in
- * its own submission, timed), reads the AO back into ao (width*height floats). timings may be NULL.
- * On a cacao error returns it with the message in err; Vulkan failures return CACAO_ERROR_VULKAN. */
+/* vkdev_run_timed without warm-up frames. */
 cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t repeat,
-                       float *ao, vkdev_timings *timings, char *err, size_t err_size);
+                       float *ao, cacao_timings *timings, char *err, size_t err_size);
 
 #endif
