@@ -4,7 +4,8 @@ set -euo pipefail
 packages=(cmake ninja-build gcc pkg-config
           glslang-dev glslang-tools spirv-tools libspirv-cross-c-shared-dev
           libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
-          libpng-dev libcjson-dev libopenexr-dev)
+          libpng-dev libcjson-dev libopenexr-dev
+          gnuplot-nox)
 sudo_cmd=()
 if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
 export DEBIAN_FRONTEND=noninteractive
