@@ -19,6 +19,7 @@
 
 #include "bench.h"
 #include "options.h"
+#include "text_file.h"
 #include "vkdev.h"
 
 const char *const bench_truth_names[BENCH_TRUTHS] = {"ao_gt_falloff", "ao_gt"};
@@ -257,28 +258,10 @@ static bool load_scene(const bench_options *o, const char *dir, bench_scene *s) 
 
 /* ---- Reference points ------------------------------------------------------------------------ */
 
-static char *read_text(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    char *text = NULL;
-    if (fseek(f, 0, SEEK_END) == 0) {
-        const long size = ftell(f);
-        if (size >= 0 && size < (64l << 20) && fseek(f, 0, SEEK_SET) == 0 && (text = malloc((size_t)size + 1))) {
-            if (fread(text, 1, (size_t)size, f) != (size_t)size) {
-                free(text);
-                text = NULL;
-            } else {
-                text[size] = 0;
-            }
-        }
-    }
-    fclose(f);
-    return text;
-}
-
 static bool load_reference(const char *path, char *name, size_t name_size, bench_point **points, uint32_t *count) {
-    char *text = read_text(path);
-    if (!text) return fail("--reference %s: cannot read it", path);
+    char err[BENCH_ERR];
+    char *text = cacao_read_text_file(path, 64u << 20, err, sizeof err);
+    if (!text) return fail("--reference %s", err);
     cJSON *root = cJSON_Parse(text);
     free(text);
     const cJSON *jname = cJSON_GetObjectItemCaseSensitive(root, "name");
