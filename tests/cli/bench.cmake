@@ -53,6 +53,10 @@ if(NOT ref_name STREQUAL "AMD CACAO v1.2")
   message(FATAL_ERROR "--reference points are not in the JSON: ${svg_json}")
 endif()
 
+# --plot-from re-plots a bench JSON (as tools/accuracy-report.py does with its merged runs).
+bench_ok(--plot-from ${WORK}/room.json --reference ${WORK}/amd.json --plot ${WORK}/again.png)
+check(${WORK}/room.json ${WORK}/room.csv ${WORK}/again.png 1 2)
+
 # 3. Bad flags: one line naming the flag, non-zero exit, no files.
 set(BAD ${WORK}/bad)
 function(expect_refused needle)
@@ -87,3 +91,4 @@ expect_refused(--strength --strength 9)
 expect_refused(${WORK}/missing --scene ${WORK}/missing)
 expect_refused(${WORK}/missing.json --reference ${WORK}/missing.json)
 expect_refused(--save-ao --save-ao ${WORK}/missing)
+expect_refused(--plot-from --plot-from ${WORK}/room.json --plot ${BAD}/p.png) # with --json/--csv: it runs nothing

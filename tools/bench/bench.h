@@ -33,6 +33,7 @@ typedef struct bench_scene {
     const char *path; /* NULL: the embedded scene */
     cli_inputs inputs;
     cacao_img truth[BENCH_TRUTHS]; /* data NULL where the folder has none */
+    bool has_truth[BENCH_TRUTHS];  /* the folder has it (set also by --plot-from, which loads no image) */
 } bench_scene;
 
 typedef struct bench_result {

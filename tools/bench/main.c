@@ -44,7 +44,7 @@ typedef struct bench_options {
     const char *configs; /* comma list of names or globs; NULL = the sweep */
     bool full_sweep, list_configs, help;
     uint32_t warmup, repeat;
-    const char *json_path, *csv_path, *plot_path, *reference_path, *save_dir;
+    const char *json_path, *csv_path, *plot_path, *reference_path, *save_dir, *plot_from;
     cli_options cli; /* settings flags (and --device, --validate, camera overrides) as `cacao` takes them */
 } bench_options;
 
@@ -67,6 +67,8 @@ static const char *const help_text =
     "  --reference FILE   named points for the plot and JSON: {\"name\": ..., \"points\": [{\"scene\",\n"
     "                     \"config\", \"total_ms\", \"rmse_ao_gt_falloff\", \"rmse_ao_gt\"}]}\n"
     "  --save-ao DIR      write each AO image as DIR/<scene>.<config>.pfm\n"
+    "  --plot-from FILE   run nothing: --plot the results of a cacao-bench JSON (e.g. one merged from\n"
+    "                     interleaved runs by tools/accuracy-report.py)\n"
     "  --device N|NAME    Vulkan device (default lavapipe); --validate: validation layer on\n"
     "Settings flags (--radius, --strength, --power, --fade-out, ... see cacao --help) apply to every\n"
     "configuration; the configuration sets quality, resolution, blur and precision.\n";
@@ -114,6 +116,7 @@ static bool parse_flags(int argc, char **argv, bench_options *o) {
                             : strcmp(a, "--reference") == 0 ? &o->reference_path
                             : strcmp(a, "--save-ao") == 0   ? &o->save_dir
                             : strcmp(a, "--configs") == 0   ? &o->configs
+                            : strcmp(a, "--plot-from") == 0 ? &o->plot_from
                                                             : NULL;
         if (path || strcmp(a, "--scene") == 0 || strcmp(a, "--sweep") == 0 || strcmp(a, "--warmup") == 0 ||
             strcmp(a, "--repeat") == 0) {
@@ -154,6 +157,8 @@ static bool parse_flags(int argc, char **argv, bench_options *o) {
     if (!ok) return false;
     if (o->plot_path && !has_extension(o->plot_path, ".png") && !has_extension(o->plot_path, ".svg"))
         return fail("--plot %s: use a .png or .svg file", o->plot_path);
+    if (o->plot_from && (!o->plot_path || o->json_path || o->csv_path || o->save_dir || o->scene_count || o->configs))
+        return fail("--plot-from %s: takes only --plot (and --reference); it runs nothing", o->plot_from);
     struct stat st;
     if (o->save_dir && (stat(o->save_dir, &st) != 0 || !S_ISDIR(st.st_mode)))
         return fail("--save-ao %s: not a folder", o->save_dir);
@@ -252,18 +257,27 @@ static bool load_scene(const bench_options *o, const char *dir, bench_scene *s) 
         if (s->truth[t].width != s->inputs.depth.width || s->truth[t].height != s->inputs.depth.height)
             return fail("%s: ground truth is %ux%u but the depth is %ux%u", path, s->truth[t].width, s->truth[t].height,
                         s->inputs.depth.width, s->inputs.depth.height);
+        s->has_truth[t] = true;
     }
     return true;
 }
 
 /* ---- Reference points ------------------------------------------------------------------------ */
 
-static bool load_reference(const char *path, char *name, size_t name_size, bench_point **points, uint32_t *count) {
+/* The JSON in path, or NULL after one line naming the flag and the file. */
+static cJSON *read_json(const char *flag, const char *path) {
     char err[BENCH_ERR];
-    char *text = cacao_read_text_file(path, 64u << 20, err, sizeof err);
-    if (!text) return fail("--reference %s", err);
+    char *text = cacao_read_text_file(path, 256u << 20, err, sizeof err);
+    if (!text) return fail("%s %s", flag, err), NULL;
     cJSON *root = cJSON_Parse(text);
     free(text);
+    if (!root) fail("%s %s: not valid JSON", flag, path);
+    return root;
+}
+
+static bool load_reference(const char *path, char *name, size_t name_size, bench_point **points, uint32_t *count) {
+    cJSON *root = read_json("--reference", path);
+    if (!root) return false;
     const cJSON *jname = cJSON_GetObjectItemCaseSensitive(root, "name");
     const cJSON *list = cJSON_GetObjectItemCaseSensitive(root, "points");
     if (!cJSON_IsString(jname) || !cJSON_IsArray(list)) {
@@ -298,6 +312,87 @@ static bool load_reference(const char *path, char *name, size_t name_size, bench
     }
     cJSON_Delete(root);
     return *points ? true : fail("out of memory");
+}
+
+/* ---- --plot-from: a plot of an earlier (or merged) cacao-bench JSON ---------------------------- */
+
+static int index_of_name(const char *name, const char *names, size_t stride, uint32_t count) {
+    for (uint32_t i = 0; name && i < count; ++i)
+        if (strcmp(names + i * stride, name) == 0) return (int)i;
+    return -1;
+}
+
+/* Reads what the plot needs from a cacao-bench JSON: scenes (name, truths), configurations (name)
+ * and results (scene, config, total_ms, errors.<truth>.rmse). */
+static bool load_plot_from(const char *path, bench_scene *scenes, bench_config *configs, bench_result **results,
+                           bench_run *run) {
+    cJSON *root = read_json("--plot-from", path);
+    if (!root) return false;
+    const cJSON *jscenes = cJSON_GetObjectItemCaseSensitive(root, "scenes");
+    const cJSON *jconfigs = cJSON_GetObjectItemCaseSensitive(root, "configurations");
+    const cJSON *jresults = cJSON_GetObjectItemCaseSensitive(root, "results");
+    const int ns = cJSON_GetArraySize(jscenes), nc = cJSON_GetArraySize(jconfigs), nr = cJSON_GetArraySize(jresults);
+    bool ok = cJSON_IsArray(jscenes) && cJSON_IsArray(jconfigs) && cJSON_IsArray(jresults) && ns > 0 &&
+              ns <= BENCH_MAX_SCENES && nc > 0 && nc <= FULL_SWEEP_SIZE && nr > 0;
+    if (!ok)
+        fail("--plot-from %s: needs arrays \"scenes\" (1..%d), \"configurations\" and \"results\"", path,
+             BENCH_MAX_SCENES);
+    for (int i = 0; ok && i < ns; ++i) {
+        const cJSON *js = cJSON_GetArrayItem(jscenes, i), *t;
+        const char *name = cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(js, "name"));
+        if (!(ok = name != NULL))
+            fail("--plot-from %s: scenes[%d] has no name", path, i);
+        else
+            snprintf(scenes[i].name, sizeof scenes[i].name, "%s", name);
+        cJSON_ArrayForEach(t, cJSON_GetObjectItemCaseSensitive(js, "truths")) {
+            for (int g = 0; g < BENCH_TRUTHS; ++g)
+                if (cJSON_IsString(t) && strcmp(t->valuestring, bench_truth_names[g]) == 0)
+                    scenes[i].has_truth[g] = true;
+        }
+    }
+    for (int i = 0; ok && i < nc; ++i) {
+        const char *name =
+            cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(cJSON_GetArrayItem(jconfigs, i), "name"));
+        if (!(ok = name != NULL))
+            fail("--plot-from %s: configurations[%d] has no name", path, i);
+        else
+            snprintf(configs[i].name, sizeof configs[i].name, "%s", name);
+    }
+    *results = ok ? calloc((size_t)nr, sizeof **results) : NULL;
+    if (ok && !*results) ok = fail("out of memory");
+    for (int i = 0; ok && i < nr; ++i) {
+        const cJSON *jr = cJSON_GetArrayItem(jresults, i);
+        bench_result *r = &(*results)[i];
+        const int scene = index_of_name(cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(jr, "scene")),
+                                        scenes[0].name, sizeof scenes[0], (uint32_t)ns);
+        const int config = index_of_name(cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(jr, "config")),
+                                         configs[0].name, sizeof configs[0], (uint32_t)nc);
+        const cJSON *ms = cJSON_GetObjectItemCaseSensitive(jr, "total_ms");
+        if (!(ok = scene >= 0 && config >= 0 && cJSON_IsNumber(ms))) {
+            fail("--plot-from %s: results[%d] needs a listed scene and config and a total_ms", path, i);
+            break;
+        }
+        r->scene = (uint32_t)scene;
+        r->config = (uint32_t)config;
+        r->timings.total.median_ms = ms->valuedouble;
+        for (int t = 0; t < BENCH_TRUTHS; ++t) {
+            const cJSON *e =
+                cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(jr, "errors"), bench_truth_names[t]);
+            const cJSON *rmse = cJSON_GetObjectItemCaseSensitive(e, "rmse");
+            if (cJSON_IsNumber(rmse)) {
+                r->has_error[t] = true;
+                r->error[t].rmse = rmse->valuedouble;
+            }
+        }
+    }
+    cJSON_Delete(root);
+    run->scenes = scenes;
+    run->scene_count = ok ? (uint32_t)ns : 0;
+    run->configs = configs;
+    run->config_count = ok ? (uint32_t)nc : 0;
+    run->results = *results;
+    run->result_count = ok ? (uint32_t)nr : 0;
+    return ok;
 }
 
 /* ---- Runs ------------------------------------------------------------------------------------ */
@@ -468,6 +563,17 @@ int main(int argc, char **argv) {
     }
     run.reference_name = reference_name;
     run.points = points;
+    if (o.plot_from) {
+        static bench_scene plot_scenes[BENCH_MAX_SCENES];
+        bench_result *plot_results = NULL;
+        char err[BENCH_ERR];
+        bool ok = load_plot_from(o.plot_from, plot_scenes, configs, &plot_results, &run) &&
+                  plot_possible(&o, plot_scenes, run.scene_count);
+        if (ok && !bench_write_plot(o.plot_path, &run, err)) ok = fail("%s", err);
+        free(plot_results);
+        free(points);
+        return ok ? 0 : 1;
+    }
     static bench_scene scenes[BENCH_MAX_SCENES];
     const uint32_t scene_count = o.scene_count ? o.scene_count : 1;
     uint32_t loaded = 0;

@@ -26,7 +26,7 @@ static bool set_err(char *err, const char *fmt, ...) {
 
 int bench_plot_truth(const bench_scene *scene) {
     for (int t = 0; t < BENCH_TRUTHS; ++t)
-        if (scene->truth[t].data) return t;
+        if (scene->has_truth[t]) return t;
     return -1;
 }
 
@@ -142,7 +142,7 @@ static cJSON *run_json(const bench_run *run) {
         cJSON_AddNumberToObject(o, "height", s->inputs.depth.height);
         cJSON *truths = cJSON_AddArrayToObject(o, "truths");
         for (int t = 0; truths && t < BENCH_TRUTHS; ++t)
-            if (s->truth[t].data) cJSON_AddItemToArray(truths, cJSON_CreateString(bench_truth_names[t]));
+            if (s->has_truth[t]) cJSON_AddItemToArray(truths, cJSON_CreateString(bench_truth_names[t]));
         cJSON_AddItemToArray(scenes, o);
     }
     cJSON *configs = cJSON_AddArrayToObject(root, "configurations");
