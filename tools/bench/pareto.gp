@@ -9,9 +9,9 @@ n = words(scenes)
 cols = (n < 3) ? n : 3
 rows = int((n + cols - 1) / cols)
 if (format eq "svg") {
-    set terminal svg size 560*cols, 460*rows dynamic font "sans,11"
+    set terminal svg size 620*cols, 440*rows dynamic font "sans,11"
 } else {
-    set terminal pngcairo size 560*cols, 460*rows font "sans,10"
+    set terminal pngcairo size 620*cols, 440*rows font "sans,10"
 }
 set output outfile
 set termoption noenhanced
@@ -19,7 +19,7 @@ set multiplot layout rows, cols title "cacao: error against GPU time (median per
 set xlabel "GPU time per frame, ms (median)"
 set ylabel ylabel
 set grid
-set key top right box opaque font ",8"
+set key outside right top vertical font ",8" samplen 1.5 width -6
 set offsets graph 0.05, graph 0.05, graph 0.08, graph 0.08
 do for [i = 1:n] {
     set title word(scenes, i) noenhanced
