@@ -248,7 +248,10 @@ static bool load_scene(const bench_options *o, const char *dir, bench_scene *s) 
     snprintf(trimmed, sizeof trimmed, "%s", dir);
     for (size_t len = strlen(trimmed); len > 1 && trimmed[len - 1] == '/'; --len) trimmed[len - 1] = 0;
     const char *base = strrchr(trimmed, '/');
-    snprintf(s->name, sizeof s->name, "%s", base ? base + 1 : trimmed);
+    const char *name = base ? base + 1 : trimmed;
+    const size_t length = strnlen(name, sizeof s->name - 1); /* the folder's name, cut to fit */
+    memcpy(s->name, name, length);
+    s->name[length] = 0;
     for (int t = 0; t < BENCH_TRUTHS; ++t) {
         char path[4200];
         snprintf(path, sizeof path, "%s/%s.pfm", dir, bench_truth_names[t]);

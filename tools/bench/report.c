@@ -344,10 +344,19 @@ static void append_gp_string(text_buffer *b, const char *text) {
     append(b, "\"");
 }
 
+/* Runs gnuplot on the script, in this environment less LD_PRELOAD (a sanitizer build preloads its
+ * runtime into cacao-bench; gnuplot is not ours to check). */
 static bool run_gnuplot(const char *script_path, char *err) {
+    size_t count = 0;
+    while (environ[count]) ++count;
+    char **env = calloc(count + 1, sizeof *env);
+    if (!env) return set_err(err, "--plot: out of memory");
+    for (size_t i = 0, j = 0; i < count; ++i)
+        if (strncmp(environ[i], "LD_PRELOAD=", 11) != 0) env[j++] = environ[i];
     pid_t pid;
     char *args[] = {"gnuplot", (char *)script_path, NULL};
-    const int spawned = posix_spawnp(&pid, "gnuplot", NULL, NULL, args, environ);
+    const int spawned = posix_spawnp(&pid, "gnuplot", NULL, NULL, args, env);
+    free(env);
     if (spawned != 0)
         return set_err(err, "--plot: cannot run gnuplot (%s); install the gnuplot-nox package", strerror(spawned));
     int status = 0;
