@@ -175,8 +175,9 @@ static uint32_t full_sweep(bench_config *out) {
         for (int ds = 0; ds < 2; ++ds)
             for (int gen = 0; gen < 2; ++gen)
                 for (int fp16 = 0; fp16 < 2; ++fp16)
-                    for (int blur = 0; blur <= 8; ++blur) {
-                        const int b = blur == 0 ? 2 : blur == 2 ? 0 : blur; /* the default blur first */
+                    for (int k = 0; k <= 8; ++k) {
+                        static const int blurs[] = {2, 0, 1, 3, 4, 5, 6, 7, 8}; /* the default first */
+                        const int b = blurs[k];
                         bench_config *c = &out[n++];
                         *c = (bench_config){.quality = (cacao_quality)(CACAO_QUALITY_LOWEST + q),
                                             .downsample = ds,
