@@ -117,9 +117,9 @@ static bool load_ground_truth(const cli_options *o, const cli_inputs *in, cacao_
 /* ---- The device run ------------------------------------------------------------------------- */
 
 typedef struct render_result {
-    cacao_img ao;    /* 1 channel */
-    cacao_plan plan; /* the steps that ran (their key names label the timings) */
-    vkdev_timings timings;
+    cacao_img ao;                 /* 1 channel */
+    cacao_plan plan;              /* the steps that ran (their key names label the timings) */
+    cacao_timings timings;
     char device_name[256];
 } render_result;
 
@@ -147,8 +147,8 @@ static bool run_on_device(vkdev *dev, const cli_options *o, const cli_inputs *in
     const vkdev_frame frame = make_frame(in, encoded);
     if (!plan_of_run(dev, encoded, frame.width, frame.height, &out->plan, err)) return false;
     char why[ERR_SIZE - 128];
-    const cacao_result r =
-        vkdev_run(dev, encoded, &frame, o->repeat ? o->repeat : 1, out->ao.data, &out->timings, why, sizeof why);
+    const cacao_result r = vkdev_run_timed(dev, encoded, &frame, o->warmup, o->repeat ? o->repeat : 1, out->ao.data,
+                                           &out->timings, why, sizeof why);
     if (r == CACAO_SUCCESS) return true;
     set_err(err, "%s: %s", cacao_result_string(r), why);
     return false;
@@ -212,14 +212,12 @@ static int render_and_write(const cli_options *o, const cli_inputs *in, const ca
         cacao_img_free(&result.ao);
         return fail("--compare: out of memory");
     }
-    const unsigned repeat = o->repeat ? o->repeat : 1;
-    const cli_report report = {
-        resolved,     result.device_name, in->depth.width, in->depth.height, repeat,
-        &result.plan, &result.timings,    o->output_path,  o->compare_path,  gt->data ? &errors : NULL};
+    const cli_report report = {resolved, result.device_name, in->depth.width, in->depth.height, &result.plan,
+                               &result.timings, o->output_path, o->compare_path, gt->data ? &errors : NULL};
     const bool written = write_outputs(o, &report, &result.ao, err);
     cacao_img_free(&result.ao);
     if (!written) return fail(err);
-    if (o->timings) cli_print_timings(stdout, &result.plan, &result.timings, repeat);
+    if (o->timings) cacao_timings_print(stdout, &result.plan, &result.timings);
     if (gt->data) cli_print_errors(stdout, o->compare_path, &errors);
     printf("cacao: wrote %s (%ux%u AO on %s)\n", o->output_path, in->depth.width, in->depth.height, result.device_name);
     return 0;

@@ -19,6 +19,7 @@ typedef enum flag_kind {
     FLAG_SETTINGS_FILE, /* the --settings file (read before the other flags apply) */
     FLAG_SWITCH,        /* bool of cli_options, set to true */
     FLAG_COUNT,         /* uint32_t of cli_options, 1..100000 */
+    FLAG_COUNT0,        /* uint32_t of cli_options, 0..100000 */
     FLAG_POSITIVE,      /* double of cli_options, finite and > 0 */
     FLAG_BITS,          /* uint32_t of cli_options, 8 or 16 */
     SET_FLOAT,          /* float of cacao_settings */
@@ -86,8 +87,11 @@ static const flag_def flags[] = {
     OPT("--png16", NULL, NULL, FLAG_SWITCH, png16, "same as --bits 16"),
     OPT("--compare", NULL, "GT", FLAG_PATH, compare_path,
         "print RMSE, mean-abs and p99 error against a ground-truth AO image over non-background pixels"),
-    OPT("--timings", NULL, NULL, FLAG_SWITCH, timings, "print per-pass GPU times (ms), median of --repeat runs"),
-    OPT("--repeat", NULL, "N", FLAG_COUNT, repeat, "run the frame N times for the timings (default 1)"),
+    OPT("--timings", NULL, NULL, FLAG_SWITCH, timings,
+        "print per-pass GPU times (ms): median, min and max of the --repeat frames timed after --warmup"),
+    OPT("--repeat", NULL, "N", FLAG_COUNT, repeat, "time the frame N times (default 1)"),
+    OPT("--warmup", NULL, "N", FLAG_COUNT0, warmup,
+        "run N untimed frames first (default 2; on lavapipe the first frames compile shader variants)"),
     OPT("--json", NULL, "FILE", FLAG_PATH, json_path,
         "write settings, device, per-pass times, total, output path (and --compare errors) as JSON"),
     OPT("--print-settings", NULL, NULL, FLAG_SWITCH, print_settings,
@@ -319,13 +323,15 @@ static bool apply_option_flag(const flag_def *def, const char *value, cli_option
         *(double *)field = number;
         return true;
     case FLAG_COUNT:
+    case FLAG_COUNT0:
     case FLAG_BITS: {
         const bool bits = def->kind == FLAG_BITS;
+        const double low = def->kind == FLAG_COUNT0 ? 0 : 1;
         const bool ok = parse_number(value, &number) && number == floor(number) &&
-                        (bits ? (number == 8 || number == 16) : (number >= 1 && number <= 100000));
+                        (bits ? (number == 8 || number == 16) : (number >= low && number <= 100000));
         if (!ok) {
             set_err(err, n, "%s %s: must be %s", def->name, value,
-                    bits ? "8 or 16" : "a whole number from 1 to 100000");
+                    bits ? "8 or 16" : low ? "a whole number from 1 to 100000" : "a whole number from 0 to 100000");
             return false;
         }
         *(uint32_t *)field = (uint32_t)number;
@@ -457,6 +463,7 @@ static void flags_given(int argc, char **argv, bool *given) {
 bool cli_parse(int argc, char **argv, cli_options *o, char *err, size_t n) {
     memset(o, 0, sizeof *o);
     o->output_path = "cacao-out.png";
+    o->warmup = 2;
     if (!parse_pass(argc, argv, o, true, err, n)) return false;
     bool overridden[FLAG_COUNT_ALL] = {false};
     flags_given(argc, argv, overridden);

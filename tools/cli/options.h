@@ -35,7 +35,8 @@ typedef struct cli_options {
     const char *compare_path;
     bool print_settings;
     bool timings;
-    uint32_t repeat;                 /* 0 = 1 */
+    uint32_t repeat;                 /* timed frames; 0 = 1 */
+    uint32_t warmup;                 /* untimed frames before them; default 2 */
     /* Device. */
     const char *device;
     bool validate;

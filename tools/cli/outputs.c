@@ -89,27 +89,7 @@ void cli_print_errors(FILE *out, const char *gt_path, const cli_ao_errors *e) {
     fputc('\n', out);
 }
 
-/* ---- Timings ---------------------------------------------------------------------------------- */
-
-void cli_print_timings(FILE *out, const cacao_plan *plan, const vkdev_timings *t, unsigned repeat) {
-    fprintf(out, "%-34s %10s   (median of %u)\n", "pass", "time_ms", repeat);
-    for (uint32_t s = 0; s < t->step_count && s < plan->step_count; ++s)
-        fprintf(out, "%-34s %10.3f\n", plan->steps[s].key_name, t->step_ms[s]);
-    fprintf(out, "%-34s %10.3f\n", "total", t->total_ms);
-}
-
 /* ---- JSON report ------------------------------------------------------------------------------ */
-
-static cJSON *passes_json(const cacao_plan *plan, const vkdev_timings *t) {
-    cJSON *passes = cJSON_CreateArray();
-    for (uint32_t s = 0; passes && s < t->step_count && s < plan->step_count; ++s) {
-        cJSON *pass = cJSON_CreateObject();
-        cJSON_AddStringToObject(pass, "name", plan->steps[s].key_name);
-        cJSON_AddNumberToObject(pass, "time_ms", t->step_ms[s]);
-        cJSON_AddItemToArray(passes, pass);
-    }
-    return passes;
-}
 
 static cJSON *errors_json(const char *gt_path, const cli_ao_errors *e) {
     cJSON *compare = cJSON_CreateObject();
@@ -128,11 +108,7 @@ static cJSON *report_json(const cli_report *r) {
     cJSON_AddStringToObject(root, "device", r->device_name);
     cJSON_AddNumberToObject(root, "width", r->width);
     cJSON_AddNumberToObject(root, "height", r->height);
-    cJSON_AddNumberToObject(root, "repeat", r->repeat);
-    if (r->plan && r->timings) {
-        cJSON_AddItemToObject(root, "passes", passes_json(r->plan, r->timings));
-        cJSON_AddNumberToObject(root, "total_ms", r->timings->total_ms);
-    }
+    if (r->plan && r->timings) cacao_timings_add_json(root, r->plan, r->timings);
     cJSON_AddStringToObject(root, "output", r->output_path);
     if (r->errors) cJSON_AddItemToObject(root, "compare", errors_json(r->ground_truth_path, r->errors));
     return root;

@@ -1,5 +1,5 @@
-/* outputs.h - what the `cacao` command writes: the AO image, the --compare errors, the --timings
- * table and the --json report. */
+/* outputs.h - what the `cacao` command writes: the AO image, the --compare errors and the --json
+ * report (the --timings table and the timing figures are tools/common/timing.h, shared with cacao-bench). */
 #ifndef CACAO_CLI_OUTPUTS_H
 #define CACAO_CLI_OUTPUTS_H
 
@@ -33,17 +33,13 @@ bool cli_compare_ao(const cacao_img *ao, const cacao_img *ground_truth, const ca
 
 void cli_print_errors(FILE *out, const char *ground_truth_path, const cli_ao_errors *errors);
 
-/* One row per plan step (its permutation key and median ms), then the total. */
-void cli_print_timings(FILE *out, const cacao_plan *plan, const vkdev_timings *timings, unsigned repeat);
-
 /* What --json records. errors and plan/timings may be NULL. */
 typedef struct cli_report {
     const cacao_settings *resolved;
     const char *device_name;
     uint32_t width, height;
-    unsigned repeat;
     const cacao_plan *plan;
-    const vkdev_timings *timings;
+    const cacao_timings *timings; /* timing.h: warm-up, timed frames, per-pass statistics */
     const char *output_path;
     const char *ground_truth_path;
     const cli_ao_errors *errors;

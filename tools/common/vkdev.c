@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #define MAX_TIMESTAMPS (CACAO_PLAN_MAX_STEPS + 1)
 
@@ -409,23 +410,24 @@ static void record_upload(vkdev *dev, gpu_buffer *staging, VkDeviceSize offset, 
                VK_ACCESS_TRANSFER_WRITE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
 }
 
-static double median(double *v, uint32_t n) {
-    for (uint32_t i = 1; i < n; ++i)
-        for (uint32_t j = i; j > 0 && v[j - 1] > v[j]; --j) {
-            double t = v[j];
-            v[j] = v[j - 1];
-            v[j - 1] = t;
-        }
-    return n ? (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2])) : 0.0;
-}
-
 static cacao_result vk_error(char *err, size_t n, const char *what) {
     set_err(err, n, "%s failed", what);
     return CACAO_ERROR_VULKAN;
 }
 
+static double now_ms(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
 cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t repeat,
-                       float *ao, vkdev_timings *timings, char *err, size_t n) {
+                       float *ao, cacao_timings *timings, char *err, size_t n) {
+    return vkdev_run_timed(dev, settings, frame, 0, repeat, ao, timings, err, n);
+}
+
+cacao_result vkdev_run_timed(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t warmup,
+                             uint32_t repeat, float *ao, cacao_timings *timings, char *err, size_t n) {
     cacao_context *ctx = NULL;
     cacao_result r = cacao_context_create(
         &(cacao_context_desc){.physical_device = dev->physical_device, .device = dev->device,
@@ -436,15 +438,28 @@ cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_f
         return r;
     }
     r = cacao_context_set_settings(ctx, settings);
-    if (r == CACAO_SUCCESS) r = cacao_context_resize(ctx, frame->width, frame->height, NULL);
+    cacao_memory_info memory = {0};
+    const double setup_start = now_ms();
+    if (r == CACAO_SUCCESS) r = cacao_context_resize(ctx, frame->width, frame->height, &memory);
+    const double setup_ms = now_ms() - setup_start;
     if (r != CACAO_SUCCESS) set_err(err, n, "%s", cacao_context_last_error(ctx));
-    else r = vkdev_run_context(dev, ctx, frame, repeat, ao, timings, err, n);
+    else r = vkdev_run_context_timed(dev, ctx, frame, warmup, repeat, ao, timings, err, n);
+    if (r == CACAO_SUCCESS && timings) {
+        timings->memory_bytes = memory.total_bytes;
+        timings->pipeline_count = memory.pipeline_count;
+        timings->setup_ms = setup_ms;
+    }
     cacao_context_destroy(ctx);
     return r;
 }
 
 cacao_result vkdev_run_context(vkdev *dev, cacao_context *ctx, const vkdev_frame *frame, uint32_t repeat, float *ao,
-                               vkdev_timings *timings, char *err, size_t n) {
+                               cacao_timings *timings, char *err, size_t n) {
+    return vkdev_run_context_timed(dev, ctx, frame, 0, repeat, ao, timings, err, n);
+}
+
+cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev_frame *frame, uint32_t warmup,
+                                     uint32_t repeat, float *ao, cacao_timings *timings, char *err, size_t n) {
     const uint32_t w = frame->width, h = frame->height;
     const VkFormat out_format = frame->output_format ? frame->output_format : VK_FORMAT_R32_SFLOAT;
     if (out_format != VK_FORMAT_R32_SFLOAT) return vk_error(err, n, "vkdev: only R32_SFLOAT readback");
@@ -454,6 +469,7 @@ cacao_result vkdev_run_context(vkdev *dev, cacao_context *ctx, const vkdev_frame
         return CACAO_ERROR_NOT_READY;
     }
     if (repeat == 0) repeat = 1;
+    const uint32_t frames = warmup + repeat;
     gpu_image depth = {0}, normals = {0}, output = {0};
     gpu_buffer staging = {0};
     cacao_result r;
@@ -503,9 +519,9 @@ cacao_result vkdev_run_context(vkdev *dev, cacao_context *ctx, const vkdev_frame
     memcpy(in.projection, frame->projection, sizeof in.projection);
     memcpy(in.normals_to_view, frame->normals_to_view, sizeof in.normals_to_view);
     const uint32_t steps = plan->step_count;
-    double *samples = calloc((size_t)repeat * (steps + 1), sizeof *samples);
+    double *samples = calloc((size_t)frames * (steps ? steps : 1), sizeof *samples);
     if (!samples) goto vk_failed;
-    for (uint32_t rep = 0; rep < repeat; ++rep) {
+    for (uint32_t rep = 0; rep < frames; ++rep) {
         if (!begin(dev)) {
             free(samples);
             goto vk_failed;
@@ -518,7 +534,7 @@ cacao_result vkdev_run_context(vkdev *dev, cacao_context *ctx, const vkdev_frame
             free(samples);
             goto done;
         }
-        if (rep + 1 == repeat) { /* read the AO back after the last run */
+        if (rep + 1 == frames) { /* read the AO back after the last run */
             transition(dev->cmd, output.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                        VK_ACCESS_MEMORY_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
                        VK_PIPELINE_STAGE_TRANSFER_BIT);
@@ -541,16 +557,12 @@ cacao_result vkdev_run_context(vkdev *dev, cacao_context *ctx, const vkdev_frame
         if (vkGetQueryPoolResults(dev->device, dev->timestamps, 0, steps + 1, sizeof stamps, stamps, sizeof(uint64_t),
                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS)
             for (uint32_t s = 0; s < steps; ++s)
-                samples[(size_t)s * repeat + rep] = (double)(stamps[s + 1] - stamps[s]) * dev->timestamp_period_ns * 1e-6;
-        samples[(size_t)steps * repeat + rep] = 0.0;
-        for (uint32_t s = 0; s < steps; ++s) samples[(size_t)steps * repeat + rep] += samples[(size_t)s * repeat + rep];
+                samples[(size_t)s * frames + rep] = (double)(stamps[s + 1] - stamps[s]) * dev->timestamp_period_ns * 1e-6;
     }
     memcpy(ao, staging.mapped, pixels * 4);
     if (frame->after_wait) frame->after_wait(dev, ctx, frame->user);
     if (timings) {
-        timings->step_count = steps;
-        for (uint32_t s = 0; s < steps; ++s) timings->step_ms[s] = median(samples + (size_t)s * repeat, repeat);
-        timings->total_ms = median(samples + (size_t)steps * repeat, repeat);
+        cacao_timings_summarise(samples, steps, warmup, repeat, timings);
     }
     free(samples);
     r = CACAO_SUCCESS;

@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include "cacao.h"
+#include "timing.h"
 
 typedef struct vkdev {
     VkInstance instance;
@@ -71,22 +72,24 @@ typedef struct vkdev_buffer {
 bool vkdev_buffer_create(vkdev *dev, VkDeviceSize size, vkdev_buffer *out);
 void vkdev_buffer_destroy(vkdev *dev, vkdev_buffer *b);
 
-/* Per-step GPU times of the last run, in milliseconds (timestamp queries). */
-typedef struct vkdev_timings {
-    uint32_t step_count;
-    double step_ms[CACAO_PLAN_MAX_STEPS];
-    double total_ms;
-} vkdev_timings;
+/* Creates a context with these settings, uploads the frame, records cacao warmup + repeat times
+ * (each in its own submission, timestamped), reads the last frame's AO back into ao
+ * (width*height floats) and summarises the timed frames (timing.h) with the context's memory,
+ * pipeline count and set-up time. timings may be NULL. On a cacao error returns it with the
+ * message in err; Vulkan failures return CACAO_ERROR_VULKAN. */
+cacao_result vkdev_run_timed(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t warmup,
+                             uint32_t repeat, float *ao, cacao_timings *timings, char *err, size_t err_size);
 
-/* Creates a context with these settings, uploads the frame, records cacao `repeat` times (each in
- * its own submission, timed), reads the AO back into ao (width*height floats). timings may be NULL.
- * On a cacao error returns it with the message in err; Vulkan failures return CACAO_ERROR_VULKAN. */
+/* vkdev_run_timed without warm-up frames. */
 cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t repeat,
-                       float *ao, vkdev_timings *timings, char *err, size_t err_size);
+                       float *ao, cacao_timings *timings, char *err, size_t err_size);
 
 /* The same frame on a context the caller created on this device and resized to the frame's size
  * (settings as it set them); the context stays the caller's, as an engine keeps its own. */
 cacao_result vkdev_run_context(vkdev *dev, cacao_context *ctx, const vkdev_frame *frame, uint32_t repeat, float *ao,
-                               vkdev_timings *timings, char *err, size_t err_size);
+                               cacao_timings *timings, char *err, size_t err_size);
+/* vkdev_run_context with warmup untimed frames first (memory, pipelines and set-up left 0). */
+cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev_frame *frame, uint32_t warmup,
+                                     uint32_t repeat, float *ao, cacao_timings *timings, char *err, size_t err_size);
 
 #endif

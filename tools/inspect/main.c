@@ -1,6 +1,8 @@
 /* cacao-inspect - see and trust every shader permutation this build embeds.
  *
- *   cacao-inspect list [--pass NAME] [--quality Q] [--json]   every permutation, one per line
+ *   cacao-inspect list [--pass NAME] [--quality Q] [--json] [--costs BENCH.json]
+ *                                                             every permutation, one per line (with
+ *                                                             its measured cost from a cacao-bench run)
  *   cacao-inspect show KEY                                    defines, preprocessed GLSL, reflection, SPIR-V
  *   cacao-inspect plan --size WxH [settings flags]            the pass plan cacao_record would walk
  *   cacao-inspect stats                                       counts, dedup, bytes per pass
@@ -18,6 +20,7 @@
 #include "cacao.h"
 #include "options.h"
 #include "shadergen.h"
+#include "text_file.h"
 
 extern const char cacao_inspect_shader_source[];
 extern const char cacao_inspect_shared_header[];
@@ -48,20 +51,96 @@ static void dedup_group(uint32_t i, char *out, size_t n) {
             len += (size_t)snprintf(out + len, n - len, "%s%s", len ? "," : "", table->permutations[j].name);
 }
 
+/* What one permutation cost in a cacao-bench run: the median of its per-run median times, and the
+ * configurations (scene/config) it served. */
+typedef struct perm_cost {
+    double *ms;
+    uint32_t runs;
+    char served[2048];
+} perm_cost;
+
+static int compare_doubles(const void *a, const void *b) {
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median_of(double *v, uint32_t n) {
+    qsort(v, n, sizeof *v, compare_doubles);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static void add_cost(perm_cost *c, double ms, const char *config) {
+    double *grown = realloc(c->ms, (c->runs + 1) * sizeof *grown);
+    if (!grown) return;
+    c->ms = grown;
+    c->ms[c->runs++] = ms;
+    const size_t len = strlen(c->served), config_len = strlen(config);
+    for (const char *at = strstr(c->served, config); at; at = strstr(at + 1, config))
+        if ((at == c->served || at[-1] == ',') && (at[config_len] == ',' || at[config_len] == 0)) return;
+    if (len + config_len + 3 < sizeof c->served)
+        snprintf(c->served + len, sizeof c->served - len, "%s%s", len ? "," : "", config);
+}
+
+/* Reads a cacao-bench --json file into costs[permutation]. */
+static int load_costs(const char *path, perm_cost *costs) {
+    char err[1024];
+    char *text = cacao_read_text_file(path, 256u << 20, err, sizeof err);
+    if (!text) return fail("--costs %s", err);
+    cJSON *root = cJSON_Parse(text);
+    free(text);
+    const cJSON *results = cJSON_GetObjectItemCaseSensitive(root, "results");
+    if (!cJSON_IsArray(results)) {
+        cJSON_Delete(root);
+        return fail("--costs %s: not a cacao-bench JSON (no \"results\" array)", path);
+    }
+    const cJSON *r;
+    cJSON_ArrayForEach(r, results) {
+        const char *config = cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(r, "config"));
+        const cJSON *p;
+        cJSON_ArrayForEach(p, cJSON_GetObjectItemCaseSensitive(r, "passes")) {
+            const char *name = cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(p, "name"));
+            const cJSON *ms = cJSON_GetObjectItemCaseSensitive(p, "time_ms");
+            if (!config || !name || !cJSON_IsNumber(ms)) {
+                cJSON_Delete(root);
+                return fail("--costs %s: a result lacks config, pass name or time_ms", path);
+            }
+            for (uint32_t i = 0; i < table->permutation_count; ++i)
+                if (strcmp(table->permutations[i].name, name) == 0) add_cost(&costs[i], ms->valuedouble, config);
+        }
+    }
+    cJSON_Delete(root);
+    return 0;
+}
+
+static void free_costs(perm_cost *costs) {
+    for (uint32_t i = 0; costs && i < table->permutation_count; ++i) free(costs[i].ms);
+    free(costs);
+}
+
 static int cmd_list(int argc, char **argv) {
-    const char *pass = NULL;
+    const char *pass = NULL, *costs_path = NULL;
     int quality = -1;
     bool json = false;
     for (int i = 0; i < argc; ++i) {
         if (strcmp(argv[i], "--json") == 0) json = true;
+        else if (strcmp(argv[i], "--costs") == 0 && i + 1 < argc) costs_path = argv[++i];
         else if (strcmp(argv[i], "--pass") == 0 && i + 1 < argc) pass = argv[++i];
         else if (strcmp(argv[i], "--quality") == 0 && i + 1 < argc) {
             if ((quality = quality_from_word(argv[++i])) < 0) return fail("--quality: unknown level '%s'", argv[i]);
         } else return fail("list: unknown argument '%s'", argv[i]);
     }
+    perm_cost *costs = costs_path ? calloc(table->permutation_count, sizeof *costs) : NULL;
+    if (costs_path && (!costs || load_costs(costs_path, costs) != 0)) {
+        free_costs(costs);
+        return 1;
+    }
     cJSON *array = json ? cJSON_CreateArray() : NULL;
-    if (!json) printf("%-34s %-8s %-5s %-10s %5s %-8s %9s  %s\n", "key", "entry", "blur", "precision", "wg", "module",
-                      "bytes", "shares module with");
+    if (!json && costs) {
+        printf("%-34s %9s %5s  %s\n", "key", "median_ms", "runs", "configurations served");
+    } else if (!json) {
+        printf("%-34s %-8s %-5s %-10s %5s %-8s %9s  %s\n", "key", "entry", "blur", "precision", "wg", "module", "bytes",
+               "shares module with");
+    }
     for (uint32_t i = 0; i < table->permutation_count; ++i) {
         const cacao_permutation *p = &table->permutations[i];
         if (pass && strcmp(pass, cacao_pass_name(p->key.pass)) != 0) continue;
@@ -87,7 +166,18 @@ static int cmd_list(int argc, char **argv) {
             cJSON_AddStringToObject(o, "shares_module_with", group);
             cJSON *w = cJSON_AddArrayToObject(o, "workgroup_size");
             for (int k = 0; k < 3; ++k) cJSON_AddItemToArray(w, cJSON_CreateNumber(p->workgroup_size[k]));
+            if (costs && costs[i].runs) {
+                cJSON *cost = cJSON_AddObjectToObject(o, "cost");
+                cJSON_AddNumberToObject(cost, "median_ms", median_of(costs[i].ms, costs[i].runs));
+                cJSON_AddNumberToObject(cost, "runs", costs[i].runs);
+                cJSON_AddStringToObject(cost, "configurations", costs[i].served);
+            }
             cJSON_AddItemToArray(array, o);
+        } else if (costs) {
+            if (costs[i].runs)
+                printf("%-34s %9.3f %5u  %s\n", p->name, median_of(costs[i].ms, costs[i].runs), costs[i].runs,
+                       costs[i].served);
+            else printf("%-34s %9s %5u  %s\n", p->name, "-", 0u, "(not run by this bench)");
         } else {
             printf("%-34s %-8s %-5u %-10s %5s %-8u %9u  %s\n", p->name, table->entry_point, p->key.blur_passes,
                    p->key.fp16 ? "fp16" : "fp32", wg, p->module, bytes, group[0] ? group : "-");
@@ -99,6 +189,7 @@ static int cmd_list(int argc, char **argv) {
         free(text);
         cJSON_Delete(array);
     }
+    free_costs(costs);
     return 0;
 }
 
@@ -288,7 +379,7 @@ static int cmd_verify(void) {
 }
 
 static void usage(FILE *out) {
-    fprintf(out, "usage: cacao-inspect list [--pass NAME] [--quality LEVEL] [--json]\n"
+    fprintf(out, "usage: cacao-inspect list [--pass NAME] [--quality LEVEL] [--json] [--costs BENCH.json]\n"
                  "       cacao-inspect show KEY\n"
                  "       cacao-inspect plan --size WxH [settings flags of the cacao command, e.g.\n"
                  "                          --quality LEVEL --downsample --blur N --precision fp16 --no-normals]\n"

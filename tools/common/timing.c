@@ -1,0 +1,74 @@
+/* timing.c - statistics, table and JSON of GPU timings (see timing.h). */
+#include "timing.h"
+
+#include <cjson/cJSON.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int compare_doubles(const void *a, const void *b) {
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Median, min and max of n values (sorted in place). */
+static cacao_time_stats stats_of(double *v, uint32_t n) {
+    if (!n) return (cacao_time_stats){0};
+    qsort(v, n, sizeof *v, compare_doubles);
+    const double median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    return (cacao_time_stats){median, v[0], v[n - 1]};
+}
+
+void cacao_timings_summarise(const double *samples, uint32_t steps, uint32_t warmup, uint32_t repeat,
+                             cacao_timings *out) {
+    const uint32_t frames = warmup + repeat;
+    out->warmup = warmup;
+    out->repeat = repeat;
+    out->step_count = steps < CACAO_PLAN_MAX_STEPS ? steps : CACAO_PLAN_MAX_STEPS;
+    double *timed = malloc((repeat ? repeat : 1) * sizeof *timed);
+    double *totals = calloc(repeat ? repeat : 1, sizeof *totals);
+    if (!timed || !totals) {
+        free(timed);
+        free(totals);
+        memset(out->step, 0, sizeof out->step);
+        out->total = (cacao_time_stats){0};
+        return;
+    }
+    for (uint32_t s = 0; s < out->step_count; ++s) {
+        for (uint32_t f = 0; f < repeat; ++f) {
+            timed[f] = samples[(size_t)s * frames + warmup + f];
+            totals[f] += timed[f];
+        }
+        out->step[s] = stats_of(timed, repeat);
+    }
+    out->total = stats_of(totals, repeat);
+    free(timed);
+    free(totals);
+}
+
+void cacao_timings_print(FILE *out, const cacao_plan *plan, const cacao_timings *t) {
+    fprintf(out, "%-34s %10s %10s %10s   (%u frames timed after %u warm-up)\n", "pass", "median_ms", "min_ms", "max_ms",
+            t->repeat, t->warmup);
+    for (uint32_t s = 0; s < t->step_count && s < plan->step_count; ++s)
+        fprintf(out, "%-34s %10.3f %10.3f %10.3f\n", plan->steps[s].key_name, t->step[s].median_ms, t->step[s].min_ms,
+                t->step[s].max_ms);
+    fprintf(out, "%-34s %10.3f %10.3f %10.3f\n", "total", t->total.median_ms, t->total.min_ms, t->total.max_ms);
+}
+
+void cacao_timings_add_json(cJSON *object, const cacao_plan *plan, const cacao_timings *t) {
+    cJSON_AddNumberToObject(object, "warmup", t->warmup);
+    cJSON_AddNumberToObject(object, "repeat", t->repeat);
+    cJSON *frames = cJSON_AddArrayToObject(object, "timed_frames");
+    for (uint32_t f = 0; frames && f < t->repeat; ++f) cJSON_AddItemToArray(frames, cJSON_CreateNumber(t->warmup + f));
+    cJSON *passes = cJSON_AddArrayToObject(object, "passes");
+    for (uint32_t s = 0; passes && s < t->step_count && s < plan->step_count; ++s) {
+        cJSON *pass = cJSON_CreateObject();
+        cJSON_AddStringToObject(pass, "name", plan->steps[s].key_name);
+        cJSON_AddNumberToObject(pass, "time_ms", t->step[s].median_ms);
+        cJSON_AddNumberToObject(pass, "min_ms", t->step[s].min_ms);
+        cJSON_AddNumberToObject(pass, "max_ms", t->step[s].max_ms);
+        cJSON_AddItemToArray(passes, pass);
+    }
+    cJSON_AddNumberToObject(object, "total_ms", t->total.median_ms);
+    cJSON_AddNumberToObject(object, "total_min_ms", t->total.min_ms);
+    cJSON_AddNumberToObject(object, "total_max_ms", t->total.max_ms);
+}
