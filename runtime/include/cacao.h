@@ -103,7 +103,9 @@ typedef struct cacao_settings {
     bool downsample;                /* true: AO at quarter resolution, bilateral upsample */
 } cacao_settings;
 
-/* Fills every defaulted field of *in into *out and checks every field. On error returns
+/* Fills every defaulted field of *in into *out and checks every field. An explicit zero keeps its
+ * encoding (CACAO_ZERO, CACAO_BLUR_NONE) in *out, so resolving *out again gives *out and
+ * cacao_plan_build(&plan->settings, ...) rebuilds the same plan. On error returns
  * CACAO_ERROR_INVALID_ARGUMENT and, when error is not NULL, writes a message naming the field. */
 cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *out, char *error,
                                     size_t error_size);
@@ -159,7 +161,7 @@ typedef struct cacao_plan_step {
 } cacao_plan_step;
 
 typedef struct cacao_plan {
-    cacao_settings settings;    /* resolved */
+    cacao_settings settings;    /* resolved (cacao_settings_resolve: explicit zeros stay encoded) */
     uint32_t width, height;     /* full resolution */
     uint32_t slice_width, slice_height;           /* deinterleaved (SSAO) size */
     uint32_t importance_width, importance_height; /* 0 unless HIGHEST */

@@ -62,7 +62,9 @@ static void fill_pattern(cacao_constants *c) {
 }
 
 void cacao_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao_constants *c) {
-    const cacao_settings *s = &plan->settings;
+    cacao_settings literal;
+    cacao_settings_literal(&plan->settings, &literal);
+    const cacao_settings *s = &literal;
     const bool rm = in->matrices_row_major;
     memset(c, 0, sizeof *c);
 

@@ -13,6 +13,10 @@
 void cacao_set_error(char *error, size_t error_size, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
+/* The literal values of resolved settings: CACAO_ZERO -> 0.0f, CACAO_BLUR_NONE -> 0 blur passes.
+ * Resolved settings keep those encodings so that resolving them again is the identity. */
+void cacao_settings_literal(const cacao_settings *resolved, cacao_settings *out);
+
 /* The step's key as the key-space struct. */
 cacao_key cacao_plan_step_key(const cacao_plan_step *step);
 

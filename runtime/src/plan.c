@@ -105,7 +105,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     const uint32_t slices = cacao_slice_count_for_quality(quality);
     const unsigned depths_variant = cacao_depths_variant_for_quality(quality);
     const uint32_t mips = depths_variant == CACAO_DEPTHS_MIPS ? CACAO_DEPTH_MIP_COUNT : 1;
-    const unsigned blur = (unsigned)s.blur_pass_count;
+    const unsigned blur = s.blur_pass_count == CACAO_BLUR_NONE ? 0 : (unsigned)s.blur_pass_count;
     plan->slice_width = sw;
     plan->slice_height = sh;
     plan->importance_width = iw;
@@ -211,9 +211,10 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
 
 void cacao_plan_print(const cacao_plan *p, FILE *out) {
     static const char *const quality_names[] = {"default", "lowest", "low", "medium", "high", "highest"};
+    const int blur = p->settings.blur_pass_count == CACAO_BLUR_NONE ? 0 : p->settings.blur_pass_count;
     fprintf(out, "plan: %ux%u, quality %s, %s, blur %d, %s, normals %s\n", p->width, p->height,
             quality_names[p->settings.quality], p->settings.downsample ? "downsampled" : "native",
-            p->settings.blur_pass_count, p->settings.precision == CACAO_PRECISION_FP16 ? "fp16" : "fp32",
+            blur, p->settings.precision == CACAO_PRECISION_FP16 ? "fp16" : "fp32",
             p->settings.generate_normals ? "from depth" : "from input");
     fprintf(out, "slices: %u of %ux%u", p->slice_count, p->slice_width, p->slice_height);
     if (p->uses_load_counter) fprintf(out, "; importance map %ux%u", p->importance_width, p->importance_height);

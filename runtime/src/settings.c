@@ -71,23 +71,26 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
             return CACAO_ERROR_INVALID_ARGUMENT;
         }
         if (*v == 0.0f) *v = r->fallback;
-        else if (r->zero_allowed && *v == CACAO_ZERO) *v = 0.0f;
-        bool low_ok = r->min_exclusive ? *v > r->min : *v >= r->min;
-        if (!low_ok || *v > r->max) {
+        /* An explicit zero stays CACAO_ZERO, so resolving a resolved struct changes nothing. */
+        const float literal = r->zero_allowed && *v == CACAO_ZERO ? 0.0f : *v;
+        bool low_ok = r->min_exclusive ? literal > r->min : literal >= r->min;
+        if (!low_ok || literal > r->max) {
             cacao_set_error(error, error_size, "settings.%s = %g is outside %s%g, %g]%s", r->name, (double)*v,
                             r->min_exclusive ? "(" : "[", (double)r->min, (double)r->max,
                             r->zero_allowed ? " (use CACAO_ZERO for 0)" : "");
             return CACAO_ERROR_INVALID_ARGUMENT;
         }
     }
-    if (!(s.fade_out_to > s.fade_out_from)) {
+    const float fade_from = s.fade_out_from == CACAO_ZERO ? 0.0f : s.fade_out_from;
+    if (!(s.fade_out_to > fade_from)) {
         cacao_set_error(error, error_size, "settings.fade_out_to (%g) must be greater than fade_out_from (%g)",
-                        (double)s.fade_out_to, (double)s.fade_out_from);
+                        (double)s.fade_out_to, (double)fade_from);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     if (s.blur_pass_count == 0) s.blur_pass_count = 2;
-    else if (s.blur_pass_count == CACAO_BLUR_NONE) s.blur_pass_count = 0;
-    else if (s.blur_pass_count < 1 || s.blur_pass_count > 8) {
+    else if (s.blur_pass_count == CACAO_BLUR_NONE) {
+        /* stays CACAO_BLUR_NONE (see cacao_settings_literal) */
+    } else if (s.blur_pass_count < 1 || s.blur_pass_count > 8) {
         cacao_set_error(error, error_size, "settings.blur_pass_count = %d is outside 1..8 (0 = default, %d = none)",
                         s.blur_pass_count, CACAO_BLUR_NONE);
         return CACAO_ERROR_INVALID_ARGUMENT;
@@ -104,4 +107,13 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
     }
     *out = s;
     return CACAO_SUCCESS;
+}
+
+void cacao_settings_literal(const cacao_settings *resolved, cacao_settings *out) {
+    *out = *resolved;
+    for (size_t i = 0; i < sizeof float_rules / sizeof float_rules[0]; ++i) {
+        float *v = (float *)((char *)out + float_rules[i].offset);
+        if (float_rules[i].zero_allowed && *v == CACAO_ZERO) *v = 0.0f;
+    }
+    if (out->blur_pass_count == CACAO_BLUR_NONE) out->blur_pass_count = 0;
 }
