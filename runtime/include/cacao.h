@@ -232,13 +232,21 @@ typedef struct cacao_image {
     VkImageLayout layout;       /* its layout when the commands run; cacao leaves it there */
 } cacao_image;
 
+/* The formats inputs.normals may have: the one list, used by cacao_record's check (any other
+ * format is CACAO_ERROR_UNSUPPORTED_FORMAT). Usable as an array initialiser. */
+#define CACAO_NORMALS_FORMATS                                                                        \
+    VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_B8G8R8A8_UNORM, VK_FORMAT_R8G8B8A8_SNORM,                    \
+        VK_FORMAT_A2B10G10R10_UNORM_PACK32, VK_FORMAT_A2R10G10B10_UNORM_PACK32,                      \
+        VK_FORMAT_R16G16B16A16_UNORM, VK_FORMAT_R16G16B16A16_SNORM, VK_FORMAT_R16G16B16A16_SFLOAT,   \
+        VK_FORMAT_R32G32B32A32_SFLOAT
+
 typedef struct cacao_inputs {
     /* Depth: D32_SFLOAT, D16_UNORM, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT, D32_SFLOAT_S8_UINT, R32_SFLOAT
      * or R16_SFLOAT; width x height of the resize. Layout: SHADER_READ_ONLY_OPTIMAL,
      * DEPTH(_STENCIL)_READ_ONLY_OPTIMAL or GENERAL. */
     cacao_image depth;
-    /* Normals (required unless settings.generate_normals): any sampled float or UNORM colour
-     * format; rgb unpacked as rgb * normals_unpack_mul + normals_unpack_add. */
+    /* Normals (required unless settings.generate_normals): one of CACAO_NORMALS_FORMATS; rgb
+     * unpacked as rgb * normals_unpack_mul + normals_unpack_add. */
     cacao_image normals;
     /* Output: R32_SFLOAT, R16_SFLOAT, R8_UNORM or R16_UNORM with STORAGE usage. AO visibility in
      * [0,1], 1 = unoccluded. Layout: GENERAL, or any layout cacao transitions from and back to. */
