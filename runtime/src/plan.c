@@ -67,8 +67,22 @@ static void finish_step(plan_builder *b, cacao_plan_step *s) {
     b->written_since_barrier |= writes;
 }
 
-static void add_image(cacao_plan *p, cacao_resource res, VkFormat format, uint32_t w, uint32_t h,
-                      uint32_t layers, uint32_t mips, uint32_t texel_bytes) {
+/* One row per intermediate image: its format, the format's name and bytes per texel. */
+#define INTERMEDIATE(res, fmt, bytes) [res] = {VK_FORMAT_##fmt, #fmt, bytes}
+static const struct {
+    VkFormat format;
+    const char *format_name;
+    uint32_t texel_bytes;
+} intermediates[CACAO_RES_COUNT] = {
+    INTERMEDIATE(CACAO_RES_DEPTHS, R16_SFLOAT, 2),    INTERMEDIATE(CACAO_RES_NORMALS, R8G8B8A8_SNORM, 4),
+    INTERMEDIATE(CACAO_RES_SSAO_PING, R8G8_UNORM, 2), INTERMEDIATE(CACAO_RES_SSAO_PONG, R8G8_UNORM, 2),
+    INTERMEDIATE(CACAO_RES_IMPORTANCE, R8_UNORM, 1),  INTERMEDIATE(CACAO_RES_IMPORTANCE_PONG, R8_UNORM, 1),
+};
+#undef INTERMEDIATE
+
+static void add_image(cacao_plan *p, cacao_resource res, uint32_t w, uint32_t h, uint32_t layers, uint32_t mips) {
+    const VkFormat format = intermediates[res].format;
+    const uint32_t texel_bytes = intermediates[res].texel_bytes;
     uint64_t bytes = 0;
     for (uint32_t m = 0; m < mips; ++m) {
         uint64_t mw = w >> m ? w >> m : 1, mh = h >> m ? h >> m : 1;
@@ -114,13 +128,13 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     plan->uses_load_counter = highest;
 
     /* Intermediates: only what the steps below touch. */
-    add_image(plan, CACAO_RES_DEPTHS, VK_FORMAT_R16_SFLOAT, sw, sh, slices, mips, 2);
-    add_image(plan, CACAO_RES_NORMALS, VK_FORMAT_R8G8B8A8_SNORM, sw, sh, slices, 1, 4);
-    add_image(plan, CACAO_RES_SSAO_PING, VK_FORMAT_R8G8_UNORM, sw, sh, slices, 1, 2);
-    if (blur > 0 || highest) add_image(plan, CACAO_RES_SSAO_PONG, VK_FORMAT_R8G8_UNORM, sw, sh, slices, 1, 2);
+    add_image(plan, CACAO_RES_DEPTHS, sw, sh, slices, mips);
+    add_image(plan, CACAO_RES_NORMALS, sw, sh, slices, 1);
+    add_image(plan, CACAO_RES_SSAO_PING, sw, sh, slices, 1);
+    if (blur > 0 || highest) add_image(plan, CACAO_RES_SSAO_PONG, sw, sh, slices, 1);
     if (highest) {
-        add_image(plan, CACAO_RES_IMPORTANCE, VK_FORMAT_R8_UNORM, iw, ih, 1, 1, 1);
-        add_image(plan, CACAO_RES_IMPORTANCE_PONG, VK_FORMAT_R8_UNORM, iw, ih, 1, 1, 1);
+        add_image(plan, CACAO_RES_IMPORTANCE, iw, ih, 1, 1);
+        add_image(plan, CACAO_RES_IMPORTANCE_PONG, iw, ih, 1, 1);
         plan->total_bytes += sizeof(uint32_t); /* load counter */
     }
     plan->total_bytes += sizeof(cacao_constants);
@@ -245,8 +259,9 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
     fprintf(out, "intermediates:\n");
     for (uint32_t i = 0; i < p->image_count; ++i) {
         const cacao_plan_image *im = &p->images[i];
-        fprintf(out, "  %-16s %4ux%-4u x%u layers, %u mips, format %d, %llu bytes\n", resource_names[im->resource],
-                im->width, im->height, im->layers, im->mips, (int)im->format, (unsigned long long)im->bytes);
+        fprintf(out, "  %-16s %4ux%-4u x%u layers, %u mips, %-14s %llu bytes\n", resource_names[im->resource],
+                im->width, im->height, im->layers, im->mips, intermediates[im->resource].format_name,
+                (unsigned long long)im->bytes);
     }
     fprintf(out, "total intermediate memory: %llu bytes\n", (unsigned long long)p->total_bytes);
 }
