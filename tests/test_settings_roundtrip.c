@@ -92,9 +92,9 @@ static void check_one(const cacao_settings *in, uint32_t w, uint32_t h) {
 
     /* Explicit zeros are still zeros in the constant block of the rebuilt plan. */
     cacao_inputs inputs = {.projection = {1.2f, 0, 0, 0, 0, 2.1f, 0, 0, 0, 0, -1.0f, -1.0f, 0, 0, -0.1f, 0}};
-    CHECK(cacao_check_projection(&inputs, err, sizeof err) == CACAO_SUCCESS);
+    CHECK(cacaoi_check_projection(&inputs, err, sizeof err) == CACAO_SUCCESS);
     cacao_constants c;
-    cacao_fill_constants(&p2, &inputs, &c);
+    cacaoi_fill_constants(&p2, &inputs, &c);
     if (in->horizon_angle_threshold == CACAO_ZERO) CHECK(c.effect_horizon_angle_threshold == 0.0f);
     if (in->sharpness == CACAO_ZERO) CHECK(c.inv_sharpness == 1.0f);
     if (in->detail_shadow_strength == CACAO_ZERO) CHECK(c.detail_ao_strength == 0.0f);

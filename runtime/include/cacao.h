@@ -144,7 +144,7 @@ typedef struct cacao_plan_image {
 
 /* One binding of a step: descriptor binding number -> resource (and mip level for depth writes). */
 typedef struct cacao_plan_binding {
-    uint8_t binding;            /* CACAO_BINDING_* of cacao_shared.h */
+    uint8_t binding;            /* descriptor binding number in the pass's shader */
     uint8_t resource;           /* cacao_resource */
     uint8_t mip;                /* mip level for per-mip storage views */
     uint8_t write;              /* 1 if the pass writes it */
@@ -152,7 +152,7 @@ typedef struct cacao_plan_binding {
 
 typedef struct cacao_plan_step {
     char key_name[48];          /* permutation key, e.g. "generate.q2" */
-    uint8_t key[5];             /* pass, variant, downsampled, blur_passes, fp16 (cacao_keys.h) */
+    uint8_t key[5];             /* permutation key: pass, variant, downsampled, blur passes, fp16 */
     uint32_t dispatch[3];       /* workgroups */
     uint32_t binding_count;
     cacao_plan_binding bindings[CACAO_PLAN_MAX_BINDINGS];

@@ -17,7 +17,7 @@ const char *cacao_resource_name(cacao_resource resource) {
 
 static uint32_t div_up(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
 
-cacao_key cacao_plan_step_key(const cacao_plan_step *step) {
+cacao_key cacaoi_plan_step_key(const cacao_plan_step *step) {
     return (cacao_key){step->key[0], step->key[1], step->key[2], step->key[3], step->key[4]};
 }
 
@@ -30,7 +30,7 @@ typedef struct plan_builder {
 static cacao_plan_step *add_step(plan_builder *b, const cacao_key *key, uint32_t gx, uint32_t gy, uint32_t gz) {
     cacao_plan_step *s = &b->plan->steps[b->plan->step_count++];
     memset(s, 0, sizeof *s);
-    cacao_key_name(key, s->key_name, sizeof s->key_name);
+    cacaoi_key_name(key, s->key_name, sizeof s->key_name);
     s->key[0] = key->pass;
     s->key[1] = key->variant;
     s->key[2] = key->downsampled;
@@ -95,14 +95,14 @@ static void add_image(cacao_plan *p, cacao_resource res, uint32_t w, uint32_t h,
 cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, uint32_t height,
                               cacao_plan *plan, char *error, size_t error_size) {
     if (!plan) {
-        cacao_set_error(error, error_size, "plan: NULL pointer");
+        cacaoi_set_error(error, error_size, "plan: NULL pointer");
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     cacao_settings s;
     cacao_result r = cacao_settings_resolve(settings, &s, error, error_size);
     if (r != CACAO_SUCCESS) return r;
     if (width < CACAO_MIN_SIZE || height < CACAO_MIN_SIZE || width > CACAO_MAX_SIZE || height > CACAO_MAX_SIZE) {
-        cacao_set_error(error, error_size, "size %ux%u: width and height must be in %d..%d", width, height,
+        cacaoi_set_error(error, error_size, "size %ux%u: width and height must be in %d..%d", width, height,
                         CACAO_MIN_SIZE, CACAO_MAX_SIZE);
         return CACAO_ERROR_INVALID_SIZE;
     }
@@ -116,8 +116,8 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     const uint32_t sw = ds ? div_up(div_up(width, 2), 2) : div_up(width, 2);
     const uint32_t sh = ds ? div_up(div_up(height, 2), 2) : div_up(height, 2);
     const uint32_t iw = div_up(sw, 2), ih = div_up(sh, 2);
-    const uint32_t slices = cacao_slice_count_for_quality(quality);
-    const unsigned depths_variant = cacao_depths_variant_for_quality(quality);
+    const uint32_t slices = cacaoi_slice_count_for_quality(quality);
+    const unsigned depths_variant = cacaoi_depths_variant_for_quality(quality);
     const uint32_t mips = depths_variant == CACAO_DEPTHS_MIPS ? CACAO_DEPTH_MIP_COUNT : 1;
     const unsigned blur = s.blur_pass_count == CACAO_BLUR_NONE ? 0 : (unsigned)s.blur_pass_count;
     plan->slice_width = sw;
@@ -184,7 +184,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
         finish_step(&b, st);
     }
 
-    key = (cacao_key){CACAO_PASS_GENERATE, (uint8_t)cacao_generate_variant_for_quality(quality), 0, 0, 0};
+    key = (cacao_key){CACAO_PASS_GENERATE, (uint8_t)cacaoi_generate_variant_for_quality(quality), 0, 0, 0};
     st = add_step(&b, &key, ggx, ggy, slices);
     bind(st, CACAO_BINDING_DEPTHS, CACAO_RES_DEPTHS, 0, false);
     bind(st, CACAO_BINDING_NORMALS, CACAO_RES_NORMALS, 0, false);
@@ -206,7 +206,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
         ao = CACAO_RES_SSAO_PONG;
     }
 
-    const uint8_t out_variant = (uint8_t)cacao_output_variant_for_quality(quality, ds);
+    const uint8_t out_variant = (uint8_t)cacaoi_output_variant_for_quality(quality, ds);
     if (ds) {
         key = (cacao_key){CACAO_PASS_UPSAMPLE, out_variant, 0, 0, fp16};
         st = add_step(&b, &key, div_up(width, 2 * CACAO_WG_UPSAMPLE_X), div_up(height, 2 * CACAO_WG_UPSAMPLE_Y), 1);
