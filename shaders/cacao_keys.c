@@ -212,12 +212,13 @@ static bool parse_mask(const char *list, const char *const *words, unsigned coun
     return true;
 }
 
+const char *const cacaoi_quality_names[CACAO_KEY_QUALITY_COUNT] = {"lowest", "low", "medium", "high", "highest"};
+
 bool cacaoi_key_subset_parse(const char *qualities, const char *downsample, const char *precision,
                             cacao_key_subset *subset) {
-    static const char *const quality_words[] = {"lowest", "low", "medium", "high", "highest"};
     cacao_key_subset s = CACAO_KEY_SUBSET_ALL;
     if (qualities && *qualities && strcmp(qualities, "all") != 0 &&
-        !parse_mask(qualities, quality_words, 5, &s.quality_mask))
+        !parse_mask(qualities, cacaoi_quality_names, CACAO_KEY_QUALITY_COUNT, &s.quality_mask))
         return false;
     if (downsample && *downsample) {
         if (strcmp(downsample, "OFF") == 0 || strcmp(downsample, "native") == 0) s.resolution_mask = 1;

@@ -15,13 +15,19 @@
 
 #include "cacao_shared.h"
 
-/* Host quality levels (same values as cacao_quality in the public header). */
+/* Key-space quality levels, 0-based. The public cacao_quality is 1-based (0 there means "default"):
+ * key quality = cacao_quality - 1 (cacaoi_key_quality). */
 #define CACAO_KEY_QUALITY_LOWEST 0
 #define CACAO_KEY_QUALITY_LOW 1
 #define CACAO_KEY_QUALITY_MEDIUM 2
 #define CACAO_KEY_QUALITY_HIGH 3
 #define CACAO_KEY_QUALITY_HIGHEST 4
 #define CACAO_KEY_QUALITY_COUNT 5
+
+/* The one list of quality names, indexed by key quality: "lowest" .. "highest". */
+extern const char *const cacaoi_quality_names[CACAO_KEY_QUALITY_COUNT];
+/* Key quality of a public (1-based) cacao_quality value. */
+#define cacaoi_key_quality(api_quality) ((unsigned)(api_quality) - 1u)
 #define CACAO_KEY_MAX_BLUR_PASSES 8
 
 typedef struct cacao_key {

@@ -82,7 +82,7 @@ void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao
     c->depth_uv_to_view_mul = c->ndc_to_view_mul; /* depth size == output size */
     c->depth_uv_to_view_add = c->ndc_to_view_add;
 
-    const unsigned quality = (unsigned)s->quality - 1;
+    const unsigned quality = cacaoi_key_quality(s->quality);
     float radius = fminf(fmaxf(s->radius, 0.0f), 100000.0f);
     if (quality == CACAO_KEY_QUALITY_LOWEST) radius *= (float)CACAO_LOWEST_RADIUS_FACTOR;
     c->effect_radius = radius;

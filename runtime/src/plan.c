@@ -110,7 +110,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     plan->settings = s;
     plan->width = width;
     plan->height = height;
-    const unsigned quality = (unsigned)s.quality - 1; /* key-space quality 0..4 */
+    const unsigned quality = cacaoi_key_quality(s.quality);
     const bool ds = s.downsample, highest = quality == CACAO_KEY_QUALITY_HIGHEST;
     const uint8_t fp16 = s.precision == CACAO_PRECISION_FP16;
     const uint32_t sw = ds ? div_up(div_up(width, 2), 2) : div_up(width, 2);
@@ -224,10 +224,9 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
 }
 
 void cacao_plan_print(const cacao_plan *p, FILE *out) {
-    static const char *const quality_names[] = {"default", "lowest", "low", "medium", "high", "highest"};
     const int blur = p->settings.blur_pass_count == CACAO_BLUR_NONE ? 0 : p->settings.blur_pass_count;
     fprintf(out, "plan: %ux%u, quality %s, %s, blur %d, %s, normals %s\n", p->width, p->height,
-            quality_names[p->settings.quality], p->settings.downsample ? "downsampled" : "native",
+            cacaoi_quality_names[cacaoi_key_quality(p->settings.quality)], p->settings.downsample ? "downsampled" : "native",
             blur, p->settings.precision == CACAO_PRECISION_FP16 ? "fp16" : "fp32",
             p->settings.generate_normals ? "from depth" : "from input");
     fprintf(out, "slices: %u of %ux%u", p->slice_count, p->slice_width, p->slice_height);

@@ -24,7 +24,6 @@ extern const char cacao_inspect_shared_header[];
 
 static const cacao_table *table = &cacaoi_embedded_table;
 static const char *const resource_kinds[] = {"-", "uniform buffer", "storage buffer", "sampled image", "storage image"};
-static const char *const quality_words[] = {"lowest", "low", "medium", "high", "highest"};
 
 static int fail(const char *fmt, const char *arg) {
     fprintf(stderr, "cacao-inspect: ");
@@ -34,8 +33,8 @@ static int fail(const char *fmt, const char *arg) {
 }
 
 static int quality_from_word(const char *w) {
-    for (int q = 0; q < 5; ++q)
-        if (strcmp(w, quality_words[q]) == 0) return q;
+    for (int q = 0; q < CACAO_KEY_QUALITY_COUNT; ++q)
+        if (strcmp(w, cacaoi_quality_names[q]) == 0) return q;
     return -1;
 }
 
@@ -277,7 +276,7 @@ static int cmd_verify(void) {
                             const cacao_key key = {plan.steps[i].key[0], plan.steps[i].key[1], plan.steps[i].key[2],
                                                    plan.steps[i].key[3], plan.steps[i].key[4]};
                             if (!cacaoi_table_find(table, &key)) {
-                                fprintf(stderr, "missing: %s (quality %s)\n", plan.steps[i].key_name, quality_words[q]);
+                                fprintf(stderr, "missing: %s (quality %s)\n", plan.steps[i].key_name, cacaoi_quality_names[q]);
                                 ++missing;
                             }
                         }
