@@ -1,6 +1,6 @@
 # The closed library: every global symbol libcacao defines is a function cacao.h declares, or an
 # internal name with the internal prefix cacaoi_. Any other (a cacao_ name missing from the
-# header, an unprefixed helper) fails, named. Also fails if a function cacao.h declares is missing.
+# header, an unprefixed helper) fails, named; compiler-generated __ names are ignored. Also fails if a function cacao.h declares is missing.
 # Run with -DNM=<nm> -DLIB=<libcacao.a> -DHEADER=<cacao.h>.
 execute_process(COMMAND ${NM} -g --defined-only ${LIB} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
@@ -24,6 +24,9 @@ set(bad "")
 foreach(line IN LISTS lines)
   if(line MATCHES "^[0-9a-fA-F]+ [A-Z] ([A-Za-z_0-9.]+)$")
     set(sym ${CMAKE_MATCH_1})
+    if(sym MATCHES "^__")
+      continue() # compiler-generated (e.g. ASan's __odr_asan.<name> markers), not ours
+    endif()
     list(APPEND exported ${sym})
     list(FIND declared ${sym} found)
     if(found EQUAL -1 AND NOT sym MATCHES "^cacaoi_")
