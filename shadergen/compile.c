@@ -156,7 +156,7 @@ bool sg_compile(const char *text, const char *key_name, const sg_options *option
     }
     glslang_spv_options_t spv = {
         .disable_optimizer = !options->optimize,
-        .optimize_size = options->optimize && options->optimize_size,
+        .optimize_size = options->optimize,
     };
     glslang_program_SPIRV_generate_with_options(program, GLSLANG_STAGE_COMPUTE, &spv);
     const char *messages = glslang_program_SPIRV_get_messages(program);

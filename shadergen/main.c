@@ -33,7 +33,7 @@ static int usage(const char *problem) {
 }
 
 static bool parse_args(int argc, char **argv, sg_args *a) {
-    *a = (sg_args){.qualities = "all", .downsample = "ON", .precision = "all", .options = {true, true}};
+    *a = (sg_args){.qualities = "all", .downsample = "ON", .precision = "all", .options = {.optimize = true}};
     for (int i = 1; i < argc; ++i) {
         const char *arg = argv[i];
         const char **slot = NULL;

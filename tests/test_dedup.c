@@ -13,7 +13,7 @@ static bool compile_key(const char *source, const char *shared, const char *name
     if (!cacaoi_key_parse(name, &m->key)) return false;
     snprintf(m->name, sizeof m->name, "%s", name);
     char *text = sg_specialise(source, shared, &m->key);
-    sg_options options = {true, false};
+    sg_options options = {.optimize = true};
     bool ok = text && sg_compile(text, name, &options, &m->words, &m->word_count) &&
               sg_validate(m->words, m->word_count, name);
     free(text);
