@@ -12202,7 +12202,7 @@ static const uint32_t module_45[] = {
     0x000001f6, 0x000100fd, 0x00010038,
 };
 
-const cacao_module cacao_generated_modules[] = {
+const cacao_module cacaoi_generated_modules[] = {
     {module_0, 1328},
     {module_1, 1352},
     {module_2, 1213},

@@ -3,7 +3,7 @@
 
 #include "cacao_table.h"
 
-extern const cacao_module cacao_generated_modules[46];
+extern const cacao_module cacaoi_generated_modules[46];
 
 static const cacao_permutation permutations[] = {
     {{0, 0, 0, 0, 0}, "prepare_depths.half.native", 0, {8, 8, 1}, 1152, 0, {1, 0, 3, 0, 0, 0, 0, 0, 0, 4, 0, 0, 0, 0, 0, 0, 0}},
@@ -54,7 +54,7 @@ static const cacao_permutation permutations[] = {
     {{8, 2, 0, 0, 1}, "upsample.half.fp16", 45, {8, 8, 1}, 1152, 0, {1, 0, 3, 0, 3, 0, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4}},
 };
 
-const cacao_table cacao_embedded_table = {
-    permutations, 46, cacao_generated_modules, 46, "main",
+const cacao_table cacaoi_embedded_table = {
+    permutations, 46, cacaoi_generated_modules, 46, "main",
     "glslang 12.0.0", "SPIRV-Tools v2023.1", "all",
 };

@@ -78,7 +78,7 @@ static void buf_printf(sg_buf *b, const char *fmt, unsigned value, const char *s
 char *sg_specialise(const char *source, const char *shared_header, const cacao_key *key) {
     static const char include_line[] = "#include \"cacao_shared.h\"";
     char defines[512];
-    if (!cacao_key_defines(key, defines, sizeof defines)) return NULL;
+    if (!cacaoi_key_defines(key, defines, sizeof defines)) return NULL;
     sg_buf b = {0};
     unsigned line = 1;
     const char *p = source;
@@ -156,7 +156,7 @@ bool sg_compile(const char *text, const char *key_name, const sg_options *option
     }
     glslang_spv_options_t spv = {
         .disable_optimizer = !options->optimize,
-        .optimize_size = options->optimize && options->optimize_size,
+        .optimize_size = options->optimize,
     };
     glslang_program_SPIRV_generate_with_options(program, GLSLANG_STAGE_COMPUTE, &spv);
     const char *messages = glslang_program_SPIRV_get_messages(program);

@@ -43,7 +43,7 @@ static bool emit_spirv(const char *dir, const sg_module *m, size_t count) {
             fprintf(f, "%s0x%08x,", (w % 8 == 0) ? "\n    " : " ", m[i].words[w]);
         fprintf(f, "\n};\n\n");
     }
-    fprintf(f, "const cacao_module cacao_generated_modules[] = {\n");
+    fprintf(f, "const cacao_module cacaoi_generated_modules[] = {\n");
     for (size_t i = 0; i < count; ++i)
         if (m[i].dedup_of == i)
             fprintf(f, "    {module_%u, %zu},\n", m[i].module_index, m[i].word_count);
@@ -57,7 +57,7 @@ static bool emit_table(const char *dir, const sg_module *m, size_t count, uint32
     FILE *f = open_tmp(dir, "cacao_table.c", tmp, final, sizeof tmp);
     if (!f) return false;
     fprintf(f, "%s\n#include \"cacao_table.h\"\n\n", header);
-    fprintf(f, "extern const cacao_module cacao_generated_modules[%u];\n\n", modules);
+    fprintf(f, "extern const cacao_module cacaoi_generated_modules[%u];\n\n", modules);
     fprintf(f, "static const cacao_permutation permutations[] = {\n");
     for (size_t i = 0; i < count; ++i) {
         const sg_module *p = &m[i];
@@ -70,8 +70,8 @@ static bool emit_table(const char *dir, const sg_module *m, size_t count, uint32
     }
     fprintf(f, "};\n\n");
     fprintf(f,
-            "const cacao_table cacao_embedded_table = {\n"
-            "    permutations, %zu, cacao_generated_modules, %u, \"main\",\n"
+            "const cacao_table cacaoi_embedded_table = {\n"
+            "    permutations, %zu, cacaoi_generated_modules, %u, \"main\",\n"
             "    \"%s\", \"%s\", \"%s\",\n};\n",
             count, modules, sg_glslang_version(), sg_spirv_tools_version(), subset);
     return close_rename(f, tmp, final);

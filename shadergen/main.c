@@ -33,7 +33,7 @@ static int usage(const char *problem) {
 }
 
 static bool parse_args(int argc, char **argv, sg_args *a) {
-    *a = (sg_args){.qualities = "all", .downsample = "ON", .precision = "all", .options = {true, true}};
+    *a = (sg_args){.qualities = "all", .downsample = "ON", .precision = "all", .options = {.optimize = true}};
     for (int i = 1; i < argc; ++i) {
         const char *arg = argv[i];
         const char **slot = NULL;
@@ -63,7 +63,7 @@ int main(int argc, char **argv) {
     sg_args args;
     if (!parse_args(argc, argv, &args)) return usage("missing or bad arguments");
     cacao_key_subset subset;
-    if (!cacao_key_subset_parse(args.qualities, args.downsample, args.precision, &subset)) {
+    if (!cacaoi_key_subset_parse(args.qualities, args.downsample, args.precision, &subset)) {
         fprintf(stderr, "shadergen: bad subset: qualities '%s', downsample '%s', precision '%s'\n",
                 args.qualities, args.downsample, args.precision);
         return 2;
@@ -77,20 +77,20 @@ int main(int argc, char **argv) {
     char *shared = sg_read_file(args.shared);
     if (!source || !shared) return 1;
 
-    size_t total = cacao_key_list(NULL, 0);
+    size_t total = cacaoi_key_list(NULL, 0);
     cacao_key *keys = calloc(total, sizeof *keys);
     sg_module *modules = calloc(total, sizeof *modules);
     if (!keys || !modules) return 1;
-    cacao_key_list(keys, total);
+    cacaoi_key_list(keys, total);
 
     glslang_initialize_process();
     size_t count = 0, words_before = 0;
     int failures = 0;
     for (size_t i = 0; i < total; ++i) {
-        if (!cacao_key_in_subset(&keys[i], &subset)) continue;
+        if (!cacaoi_key_in_subset(&keys[i], &subset)) continue;
         sg_module *m = &modules[count];
         m->key = keys[i];
-        cacao_key_name(&keys[i], m->name, sizeof m->name);
+        cacaoi_key_name(&keys[i], m->name, sizeof m->name);
         char *text = sg_specialise(source, shared, &keys[i]);
         bool ok = text && sg_compile(text, m->name, &args.options, &m->words, &m->word_count) &&
                   sg_validate(m->words, m->word_count, m->name) && sg_reflect(m);

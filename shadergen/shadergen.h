@@ -23,8 +23,7 @@ typedef struct sg_module {
 } sg_module;
 
 typedef struct sg_options {
-    bool optimize;             /* run the SPIRV-Tools optimizer through glslang */
-    bool optimize_size;        /* size passes instead of performance passes */
+    bool optimize; /* run glslang's SPIRV-Tools optimizer; its C API offers the size passes only */
 } sg_options;
 
 /* Builds the full shader text for a key: #version line, key defines, the shared header spliced in

@@ -35,11 +35,11 @@ static const pass_axes axes[CACAO_PASS_COUNT] = {
     [CACAO_PASS_UPSAMPLE] = {3, false, false, true},
 };
 
-const char *cacao_pass_name(unsigned pass) {
+const char *cacaoi_pass_name(unsigned pass) {
     return pass < CACAO_PASS_COUNT ? pass_names[pass] : NULL;
 }
 
-bool cacao_key_is_valid(const cacao_key *key) {
+bool cacaoi_key_is_valid(const cacao_key *key) {
     if (!key || key->pass >= CACAO_PASS_COUNT) return false;
     const pass_axes *a = &axes[key->pass];
     if (key->variant >= a->variants) return false;
@@ -50,7 +50,7 @@ bool cacao_key_is_valid(const cacao_key *key) {
     return key->fp16 <= (a->has_precision ? 1 : 0);
 }
 
-size_t cacao_key_list(cacao_key *out, size_t cap) {
+size_t cacaoi_key_list(cacao_key *out, size_t cap) {
     size_t n = 0;
     for (unsigned pass = 0; pass < CACAO_PASS_COUNT; ++pass) {
         const pass_axes *a = &axes[pass];
@@ -68,7 +68,7 @@ size_t cacao_key_list(cacao_key *out, size_t cap) {
     return n;
 }
 
-int cacao_key_compare(const cacao_key *a, const cacao_key *b) {
+int cacaoi_key_compare(const cacao_key *a, const cacao_key *b) {
     const uint8_t av[5] = {a->pass, a->variant, a->downsampled, a->blur_passes, a->fp16};
     const uint8_t bv[5] = {b->pass, b->variant, b->downsampled, b->blur_passes, b->fp16};
     for (int i = 0; i < 5; ++i)
@@ -87,8 +87,8 @@ static const char *variant_name(const cacao_key *key) {
     }
 }
 
-size_t cacao_key_name(const cacao_key *key, char *buf, size_t buf_size) {
-    if (!cacao_key_is_valid(key) || !buf || buf_size == 0) return 0;
+size_t cacaoi_key_name(const cacao_key *key, char *buf, size_t buf_size) {
+    if (!cacaoi_key_is_valid(key) || !buf || buf_size == 0) return 0;
     const pass_axes *a = &axes[key->pass];
     char tmp[CACAO_KEY_NAME_MAX];
     int len = snprintf(tmp, sizeof tmp, "%s", pass_names[key->pass]);
@@ -104,13 +104,13 @@ size_t cacao_key_name(const cacao_key *key, char *buf, size_t buf_size) {
     return (size_t)len;
 }
 
-bool cacao_key_parse(const char *name, cacao_key *out) {
+bool cacaoi_key_parse(const char *name, cacao_key *out) {
     if (!name || !out) return false;
     cacao_key keys[64];
-    size_t n = cacao_key_list(keys, sizeof keys / sizeof keys[0]);
+    size_t n = cacaoi_key_list(keys, sizeof keys / sizeof keys[0]);
     for (size_t i = 0; i < n && i < sizeof keys / sizeof keys[0]; ++i) {
         char buf[CACAO_KEY_NAME_MAX];
-        if (cacao_key_name(&keys[i], buf, sizeof buf) && strcmp(buf, name) == 0) {
+        if (cacaoi_key_name(&keys[i], buf, sizeof buf) && strcmp(buf, name) == 0) {
             *out = keys[i];
             return true;
         }
@@ -118,8 +118,8 @@ bool cacao_key_parse(const char *name, cacao_key *out) {
     return false;
 }
 
-size_t cacao_key_defines(const cacao_key *key, char *buf, size_t buf_size) {
-    if (!cacao_key_is_valid(key) || !buf) return 0;
+size_t cacaoi_key_defines(const cacao_key *key, char *buf, size_t buf_size) {
+    if (!cacaoi_key_is_valid(key) || !buf) return 0;
     int len = snprintf(buf, buf_size,
                        "#define CACAO_GLSL 1\n#define CACAO_PASS %u\n#define CACAO_VARIANT %u\n"
                        "#define CACAO_DOWNSAMPLED %u\n#define CACAO_BLUR_PASSES %u\n"
@@ -130,17 +130,17 @@ size_t cacao_key_defines(const cacao_key *key, char *buf, size_t buf_size) {
 
 /* ---- Variant selection (spec: README "Quality levels") ---- */
 
-unsigned cacao_depths_variant_for_quality(unsigned quality) {
+unsigned cacaoi_depths_variant_for_quality(unsigned quality) {
     /* MEDIUM builds no mips: its generate pass (Q1) never reads them ([quirk] MIPS-AT-MEDIUM). */
     if (quality == CACAO_KEY_QUALITY_LOWEST) return CACAO_DEPTHS_HALF;
     return quality >= CACAO_KEY_QUALITY_HIGH ? CACAO_DEPTHS_MIPS : CACAO_DEPTHS_FULL;
 }
 
-unsigned cacao_generate_variant_for_quality(unsigned quality) {
+unsigned cacaoi_generate_variant_for_quality(unsigned quality) {
     return quality == 0 ? CACAO_GENERATE_Q0 : quality - 1; /* q = max(0, quality - 1) */
 }
 
-unsigned cacao_output_variant_for_quality(unsigned quality, bool downsampled) {
+unsigned cacaoi_output_variant_for_quality(unsigned quality, bool downsampled) {
     if (quality == CACAO_KEY_QUALITY_LOWEST) return CACAO_OUTPUT_HALF;
     if (quality == CACAO_KEY_QUALITY_LOW) return CACAO_OUTPUT_NON_SMART;
     if (quality == CACAO_KEY_QUALITY_MEDIUM)
@@ -148,14 +148,14 @@ unsigned cacao_output_variant_for_quality(unsigned quality, bool downsampled) {
     return CACAO_OUTPUT_SMART;
 }
 
-unsigned cacao_slice_count_for_quality(unsigned quality) {
+unsigned cacaoi_slice_count_for_quality(unsigned quality) {
     return quality == CACAO_KEY_QUALITY_LOWEST ? 2 : 4;
 }
 
-size_t cacao_keys_for_config(const cacao_key_config *c, cacao_key out[CACAO_KEY_CONFIG_MAX]) {
+size_t cacaoi_keys_for_config(const cacao_key_config *c, cacao_key out[CACAO_KEY_CONFIG_MAX]) {
     size_t n = 0;
     const uint8_t ds = c->downsampled ? 1 : 0, fp = c->fp16 ? 1 : 0;
-    out[n++] = (cacao_key){CACAO_PASS_PREPARE_DEPTHS, (uint8_t)cacao_depths_variant_for_quality(c->quality), ds, 0, 0};
+    out[n++] = (cacao_key){CACAO_PASS_PREPARE_DEPTHS, (uint8_t)cacaoi_depths_variant_for_quality(c->quality), ds, 0, 0};
     out[n++] = (cacao_key){CACAO_PASS_PREPARE_NORMALS, c->normals_from_input ? 1 : 0, ds, 0, 0};
     if (c->quality == CACAO_KEY_QUALITY_HIGHEST) {
         out[n++] = (cacao_key){CACAO_PASS_GENERATE, CACAO_GENERATE_Q3_BASE, 0, 0, 0};
@@ -163,15 +163,15 @@ size_t cacao_keys_for_config(const cacao_key_config *c, cacao_key out[CACAO_KEY_
         out[n++] = (cacao_key){CACAO_PASS_IMPORTANCE_A, 0, 0, 0, 0};
         out[n++] = (cacao_key){CACAO_PASS_IMPORTANCE_B, 0, 0, 0, 0};
     }
-    out[n++] = (cacao_key){CACAO_PASS_GENERATE, (uint8_t)cacao_generate_variant_for_quality(c->quality), 0, 0, 0};
+    out[n++] = (cacao_key){CACAO_PASS_GENERATE, (uint8_t)cacaoi_generate_variant_for_quality(c->quality), 0, 0, 0};
     if (c->blur_passes > 0)
         out[n++] = (cacao_key){CACAO_PASS_BLUR, 0, 0, (uint8_t)c->blur_passes, fp};
     out[n++] = (cacao_key){c->downsampled ? CACAO_PASS_UPSAMPLE : CACAO_PASS_APPLY,
-                           (uint8_t)cacao_output_variant_for_quality(c->quality, c->downsampled), 0, 0, fp};
+                           (uint8_t)cacaoi_output_variant_for_quality(c->quality, c->downsampled), 0, 0, fp};
     return n;
 }
 
-bool cacao_key_in_subset(const cacao_key *key, const cacao_key_subset *subset) {
+bool cacaoi_key_in_subset(const cacao_key *key, const cacao_key_subset *subset) {
     for (unsigned q = 0; q < CACAO_KEY_QUALITY_COUNT; ++q) {
         if (!(subset->quality_mask & (1u << q))) continue;
         for (unsigned ds = 0; ds < 2; ++ds) {
@@ -182,9 +182,9 @@ bool cacao_key_in_subset(const cacao_key *key, const cacao_key_subset *subset) {
                     for (unsigned blur = 0; blur <= CACAO_KEY_MAX_BLUR_PASSES; ++blur) {
                         cacao_key_config c = {q, ds != 0, fp != 0, ni != 0, blur};
                         cacao_key keys[CACAO_KEY_CONFIG_MAX];
-                        size_t n = cacao_keys_for_config(&c, keys);
+                        size_t n = cacaoi_keys_for_config(&c, keys);
                         for (size_t i = 0; i < n; ++i)
-                            if (cacao_key_compare(&keys[i], key) == 0) return true;
+                            if (cacaoi_key_compare(&keys[i], key) == 0) return true;
                     }
             }
         }
@@ -212,12 +212,13 @@ static bool parse_mask(const char *list, const char *const *words, unsigned coun
     return true;
 }
 
-bool cacao_key_subset_parse(const char *qualities, const char *downsample, const char *precision,
+const char *const cacaoi_quality_names[CACAO_KEY_QUALITY_COUNT] = {"lowest", "low", "medium", "high", "highest"};
+
+bool cacaoi_key_subset_parse(const char *qualities, const char *downsample, const char *precision,
                             cacao_key_subset *subset) {
-    static const char *const quality_words[] = {"lowest", "low", "medium", "high", "highest"};
     cacao_key_subset s = CACAO_KEY_SUBSET_ALL;
     if (qualities && *qualities && strcmp(qualities, "all") != 0 &&
-        !parse_mask(qualities, quality_words, 5, &s.quality_mask))
+        !parse_mask(qualities, cacaoi_quality_names, CACAO_KEY_QUALITY_COUNT, &s.quality_mask))
         return false;
     if (downsample && *downsample) {
         if (strcmp(downsample, "OFF") == 0 || strcmp(downsample, "native") == 0) s.resolution_mask = 1;

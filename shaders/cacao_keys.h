@@ -15,13 +15,19 @@
 
 #include "cacao_shared.h"
 
-/* Host quality levels (same values as cacao_quality in the public header). */
+/* Key-space quality levels, 0-based. The public cacao_quality is 1-based (0 there means "default"):
+ * key quality = cacao_quality - 1 (cacaoi_key_quality). */
 #define CACAO_KEY_QUALITY_LOWEST 0
 #define CACAO_KEY_QUALITY_LOW 1
 #define CACAO_KEY_QUALITY_MEDIUM 2
 #define CACAO_KEY_QUALITY_HIGH 3
 #define CACAO_KEY_QUALITY_HIGHEST 4
 #define CACAO_KEY_QUALITY_COUNT 5
+
+/* The one list of quality names, indexed by key quality: "lowest" .. "highest". */
+extern const char *const cacaoi_quality_names[CACAO_KEY_QUALITY_COUNT];
+/* Key quality of a public (1-based) cacao_quality value. */
+#define cacaoi_key_quality(api_quality) ((unsigned)(api_quality) - 1u)
 #define CACAO_KEY_MAX_BLUR_PASSES 8
 
 typedef struct cacao_key {
@@ -38,34 +44,34 @@ typedef struct cacao_key {
 
 /* Writes every valid key, in canonical (sorted) order, into out[0..cap) and returns the total
  * number of valid keys (which may exceed cap; pass out = NULL, cap = 0 to count). */
-size_t cacao_key_list(cacao_key *out, size_t cap);
+size_t cacaoi_key_list(cacao_key *out, size_t cap);
 
-/* True when the key is one of the keys cacao_key_list produces. */
-bool cacao_key_is_valid(const cacao_key *key);
+/* True when the key is one of the keys cacaoi_key_list produces. */
+bool cacaoi_key_is_valid(const cacao_key *key);
 
 /* Total order used for sorting and binary search of tables. */
-int cacao_key_compare(const cacao_key *a, const cacao_key *b);
+int cacaoi_key_compare(const cacao_key *a, const cacao_key *b);
 
 /* Stable short name, e.g. "generate.q2", "blur.4.fp16", "prepare_depths.mips.downsampled".
  * Returns the name length, or 0 if the key is invalid or buf too small. */
-size_t cacao_key_name(const cacao_key *key, char *buf, size_t buf_size);
+size_t cacaoi_key_name(const cacao_key *key, char *buf, size_t buf_size);
 
-/* Parses a name written by cacao_key_name. Returns false for anything else. */
-bool cacao_key_parse(const char *name, cacao_key *out);
+/* Parses a name written by cacaoi_key_name. Returns false for anything else. */
+bool cacaoi_key_parse(const char *name, cacao_key *out);
 
 /* The preprocessor defines that specialise the shader source for this key, one "#define X v\n"
  * per line. Returns the length written, or 0 if buf is too small. */
-size_t cacao_key_defines(const cacao_key *key, char *buf, size_t buf_size);
+size_t cacaoi_key_defines(const cacao_key *key, char *buf, size_t buf_size);
 
 /* Pass name as used in key names ("generate", "blur", ...), or NULL for an unknown pass. */
-const char *cacao_pass_name(unsigned pass);
+const char *cacaoi_pass_name(unsigned pass);
 
 /* ---- Which variant each setting selects (spec: README "Quality levels"); the plan and the
  * subset filter both use these, so the choice is made in one place. ---- */
-unsigned cacao_depths_variant_for_quality(unsigned quality);
-unsigned cacao_generate_variant_for_quality(unsigned quality); /* Q3 for HIGHEST (+ Q3 base) */
-unsigned cacao_output_variant_for_quality(unsigned quality, bool downsampled);
-unsigned cacao_slice_count_for_quality(unsigned quality);
+unsigned cacaoi_depths_variant_for_quality(unsigned quality);
+unsigned cacaoi_generate_variant_for_quality(unsigned quality); /* Q3 for HIGHEST (+ Q3 base) */
+unsigned cacaoi_output_variant_for_quality(unsigned quality, bool downsampled);
+unsigned cacaoi_slice_count_for_quality(unsigned quality);
 
 /* One configuration's axes, as far as they select shader keys. */
 typedef struct cacao_key_config {
@@ -78,7 +84,7 @@ typedef struct cacao_key_config {
 
 /* Keys one configuration dispatches, in dispatch order (at most CACAO_KEY_CONFIG_MAX). */
 #define CACAO_KEY_CONFIG_MAX 10
-size_t cacao_keys_for_config(const cacao_key_config *config, cacao_key out[CACAO_KEY_CONFIG_MAX]);
+size_t cacaoi_keys_for_config(const cacao_key_config *config, cacao_key out[CACAO_KEY_CONFIG_MAX]);
 
 /* A build-time subset of the configuration space (bit masks; bit i = quality i, bit 0/1 =
  * native/downsampled, bit 0/1 = fp32/fp16). */
@@ -91,12 +97,12 @@ typedef struct cacao_key_subset {
 #define CACAO_KEY_SUBSET_ALL ((cacao_key_subset){0x1f, 0x3, 0x3})
 
 /* True when some configuration inside the subset dispatches this key. */
-bool cacao_key_in_subset(const cacao_key *key, const cacao_key_subset *subset);
+bool cacaoi_key_in_subset(const cacao_key *key, const cacao_key_subset *subset);
 
 /* Parses the CMake-style lists used by the build: qualities "medium;high" (or "all"), downsample
  * "ON" (native and downsampled), "OFF" (native only) or "ONLY" (downsampled only), precision
  * "fp32;fp16". Return false and leave *subset unchanged on an unknown word. */
-bool cacao_key_subset_parse(const char *qualities, const char *downsample, const char *precision,
+bool cacaoi_key_subset_parse(const char *qualities, const char *downsample, const char *precision,
                             cacao_key_subset *subset);
 
 #endif /* CACAO_KEYS_H */

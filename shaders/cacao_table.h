@@ -24,7 +24,7 @@ typedef struct cacao_module {
 
 typedef struct cacao_permutation {
     cacao_key key;
-    const char *name;          /* cacao_key_name(key) */
+    const char *name;          /* cacaoi_key_name(key) */
     uint32_t module;           /* index into cacao_table.modules (shared by identical modules) */
     uint32_t workgroup_size[3];
     uint32_t uniform_size;     /* bytes of the constant block, 0 if unused */
@@ -33,7 +33,7 @@ typedef struct cacao_permutation {
 } cacao_permutation;
 
 typedef struct cacao_table {
-    const cacao_permutation *permutations; /* sorted by cacao_key_compare */
+    const cacao_permutation *permutations; /* sorted by cacaoi_key_compare */
     uint32_t permutation_count;
     const cacao_module *modules;
     uint32_t module_count;
@@ -44,9 +44,9 @@ typedef struct cacao_table {
 } cacao_table;
 
 /* The table linked into this build (the committed full set, or a build-tree subset). */
-extern const cacao_table cacao_embedded_table;
+extern const cacao_table cacaoi_embedded_table;
 
 /* Binary search by key; NULL when the key is not embedded in this build. */
-const cacao_permutation *cacao_table_find(const cacao_table *table, const cacao_key *key);
+const cacao_permutation *cacaoi_table_find(const cacao_table *table, const cacao_key *key);
 
 #endif /* CACAO_TABLE_H */

@@ -8,14 +8,14 @@
 #include "cacao_table.h"
 
 int main(int argc, char **argv) {
-    const cacao_table *t = &cacao_embedded_table;
+    const cacao_table *t = &cacaoi_embedded_table;
     if (argc == 3 && strcmp(argv[1], "--find") == 0) {
         cacao_key key;
-        if (!cacao_key_parse(argv[2], &key)) {
+        if (!cacaoi_key_parse(argv[2], &key)) {
             fprintf(stderr, "table_dump: '%s' is not a permutation key\n", argv[2]);
             return 2;
         }
-        if (!cacao_table_find(t, &key)) {
+        if (!cacaoi_table_find(t, &key)) {
             fprintf(stderr, "table_dump: permutation '%s' is not embedded in this build (subset %s)\n", argv[2],
                     t->subset);
             return 1;

@@ -1,4 +1,4 @@
-/* test_constants - the constant-buffer math (cacao_fill_constants) against values derived by hand
+/* test_constants - the constant-buffer math (cacaoi_fill_constants) against values derived by hand
  * from the spec's formulas (constants.md section 8, worked example: 960x540, fovY 65 deg, 16:9,
  * near 0.05, far 100) and, where the shared data is present, against the complete constant
  * buffers AMD's own UpdateConstants produced for the reference images (settings.json).
@@ -30,9 +30,9 @@ static cacao_constants fill(const cacao_settings *s, uint32_t w, uint32_t h, con
     CHECK(cacao_plan_build(s, w, h, &plan, err, sizeof err) == CACAO_SUCCESS);
     cacao_inputs in = {.matrices_row_major = row_major};
     memcpy(in.projection, proj, sizeof in.projection);
-    CHECK(cacao_check_projection(&in, err, sizeof err) == CACAO_SUCCESS);
+    CHECK(cacaoi_check_projection(&in, err, sizeof err) == CACAO_SUCCESS);
     cacao_constants c;
-    cacao_fill_constants(&plan, &in, &c);
+    cacaoi_fill_constants(&plan, &in, &c);
     return c;
 }
 
@@ -131,7 +131,7 @@ static void test_simple_projection(void) {
     memcpy(in.projection, p, sizeof p);
     in.normals_to_view[0 * 4 + 1] = 7.0f; /* N(0,1) = 7 */
     in.normals_to_view[10] = -1.0f;
-    cacao_fill_constants(&plan, &in, &c);
+    cacaoi_fill_constants(&plan, &in, &c);
     CHECK(c.normals_to_view.m[4 * 1 + 0] == 7.0f);
     CHECK(c.normals_to_view.m[4 * 2 + 2] == -1.0f);
     CHECK(c.normals_unpack_mul == 2.0f && c.normals_unpack_add == -1.0f);

@@ -10,10 +10,10 @@
 
 static bool compile_key(const char *source, const char *shared, const char *name, sg_module *m) {
     memset(m, 0, sizeof *m);
-    if (!cacao_key_parse(name, &m->key)) return false;
+    if (!cacaoi_key_parse(name, &m->key)) return false;
     snprintf(m->name, sizeof m->name, "%s", name);
     char *text = sg_specialise(source, shared, &m->key);
-    sg_options options = {true, false};
+    sg_options options = {.optimize = true};
     bool ok = text && sg_compile(text, name, &options, &m->words, &m->word_count) &&
               sg_validate(m->words, m->word_count, name);
     free(text);
@@ -42,7 +42,7 @@ int main(int argc, char **argv) {
     for (int i = 0; i < 3; ++i) free(m[i].words);
 
     /* The committed table: shared modules are identical by construction; distinct ones differ. */
-    const cacao_table *t = &cacao_embedded_table;
+    const cacao_table *t = &cacaoi_embedded_table;
     for (uint32_t a = 0; a < t->module_count; ++a)
         for (uint32_t b = a + 1; b < t->module_count; ++b)
             CHECK(t->modules[a].word_count != t->modules[b].word_count ||

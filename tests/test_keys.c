@@ -1,6 +1,6 @@
 /* test_keys - the permutation key space: every valid key has a unique name that parses back to
  * it, invalid keys are rejected, and the subset filter keeps exactly the keys a hand-derived list
- * of configurations needs (independent of cacao_key_in_subset's enumeration). */
+ * of configurations needs (independent of cacaoi_key_in_subset's enumeration). */
 #include <stdio.h>
 #include <string.h>
 
@@ -9,24 +9,24 @@
 
 static void test_names_round_trip(void) {
     cacao_key keys[64];
-    size_t n = cacao_key_list(keys, 64);
+    size_t n = cacaoi_key_list(keys, 64);
     /* 6 prepare_depths + 4 prepare_normals + 5 generate + 3 importance + 16 blur + 6 apply + 6 upsample */
     CHECK(n == 46);
     for (size_t i = 0; i < n; ++i) {
         char name[CACAO_KEY_NAME_MAX];
-        CHECK(cacao_key_is_valid(&keys[i]));
-        CHECK(cacao_key_name(&keys[i], name, sizeof name) > 0);
+        CHECK(cacaoi_key_is_valid(&keys[i]));
+        CHECK(cacaoi_key_name(&keys[i], name, sizeof name) > 0);
         cacao_key back;
-        CHECK(cacao_key_parse(name, &back));
-        CHECK(cacao_key_compare(&back, &keys[i]) == 0);
-        if (i > 0) CHECK(cacao_key_compare(&keys[i - 1], &keys[i]) < 0); /* sorted, no repeats */
+        CHECK(cacaoi_key_parse(name, &back));
+        CHECK(cacaoi_key_compare(&back, &keys[i]) == 0);
+        if (i > 0) CHECK(cacaoi_key_compare(&keys[i - 1], &keys[i]) < 0); /* sorted, no repeats */
     }
     cacao_key k;
-    CHECK(cacao_key_parse("generate.q2", &k) && k.pass == CACAO_PASS_GENERATE && k.variant == 2);
-    CHECK(cacao_key_parse("blur.8.fp16", &k) && k.blur_passes == 8 && k.fp16 == 1);
-    CHECK(!cacao_key_parse("blur.9.fp16", &k));
-    CHECK(!cacao_key_parse("generate.q2.native", &k)); /* generate has no resolution axis */
-    CHECK(!cacao_key_parse("", &k));
+    CHECK(cacaoi_key_parse("generate.q2", &k) && k.pass == CACAO_PASS_GENERATE && k.variant == 2);
+    CHECK(cacaoi_key_parse("blur.8.fp16", &k) && k.blur_passes == 8 && k.fp16 == 1);
+    CHECK(!cacaoi_key_parse("blur.9.fp16", &k));
+    CHECK(!cacaoi_key_parse("generate.q2.native", &k)); /* generate has no resolution axis */
+    CHECK(!cacaoi_key_parse("", &k));
 }
 
 static void test_invalid_keys(void) {
@@ -40,14 +40,14 @@ static void test_invalid_keys(void) {
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         char name[CACAO_KEY_NAME_MAX];
-        CHECK(!cacao_key_is_valid(&bad[i]));
-        CHECK(cacao_key_name(&bad[i], name, sizeof name) == 0);
+        CHECK(!cacaoi_key_is_valid(&bad[i]));
+        CHECK(cacaoi_key_name(&bad[i], name, sizeof name) == 0);
     }
 }
 
 static void test_subset(void) {
     cacao_key_subset s;
-    CHECK(cacao_key_subset_parse("medium;high", "OFF", "fp32", &s));
+    CHECK(cacaoi_key_subset_parse("medium;high", "OFF", "fp32", &s));
     /* By hand: MEDIUM native = prepare_depths.full (no mips), Q1, apply.smart; HIGH native =
      * prepare_depths.mips, Q2, apply.smart; both: either normals source, blur 1..8 fp32. */
     const char *expected[] = {"prepare_depths.full.native", "prepare_depths.mips.native",
@@ -56,23 +56,23 @@ static void test_subset(void) {
                               "blur.3.fp32", "blur.4.fp32", "blur.5.fp32", "blur.6.fp32",
                               "blur.7.fp32", "blur.8.fp32", "apply.smart.fp32"};
     cacao_key keys[64];
-    size_t n = cacao_key_list(keys, 64), kept = 0;
+    size_t n = cacaoi_key_list(keys, 64), kept = 0;
     for (size_t i = 0; i < n; ++i) {
         char name[CACAO_KEY_NAME_MAX];
-        cacao_key_name(&keys[i], name, sizeof name);
+        cacaoi_key_name(&keys[i], name, sizeof name);
         bool want = false;
         for (size_t j = 0; j < sizeof expected / sizeof expected[0]; ++j)
             want |= strcmp(expected[j], name) == 0;
-        if (cacao_key_in_subset(&keys[i], &s) != want) fprintf(stderr, "subset mismatch: %s\n", name);
-        CHECK(cacao_key_in_subset(&keys[i], &s) == want);
+        if (cacaoi_key_in_subset(&keys[i], &s) != want) fprintf(stderr, "subset mismatch: %s\n", name);
+        CHECK(cacaoi_key_in_subset(&keys[i], &s) == want);
         kept += want;
     }
     CHECK(kept == sizeof expected / sizeof expected[0]);
     cacao_key_subset all = CACAO_KEY_SUBSET_ALL;
-    for (size_t i = 0; i < n; ++i) CHECK(cacao_key_in_subset(&keys[i], &all)); /* no dead keys */
-    CHECK(!cacao_key_subset_parse("ultra", "OFF", "fp32", &s));
-    CHECK(!cacao_key_subset_parse("high", "MAYBE", "fp32", &s));
-    CHECK(!cacao_key_subset_parse("high", "OFF", "fp64", &s));
+    for (size_t i = 0; i < n; ++i) CHECK(cacaoi_key_in_subset(&keys[i], &all)); /* no dead keys */
+    CHECK(!cacaoi_key_subset_parse("ultra", "OFF", "fp32", &s));
+    CHECK(!cacaoi_key_subset_parse("high", "MAYBE", "fp32", &s));
+    CHECK(!cacaoi_key_subset_parse("high", "OFF", "fp64", &s));
 }
 
 int main(void) {

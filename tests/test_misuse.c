@@ -45,14 +45,15 @@ static void test_settings_errors(void) {
         if (!strstr(err, cases[i].field)) fprintf(stderr, "message '%s' lacks '%s'\n", err, cases[i].field);
         CHECK(strstr(err, cases[i].field) != NULL);
     }
-    /* Zero means default; CACAO_ZERO and CACAO_BLUR_NONE ask for a literal zero. */
+    /* Zero means default; CACAO_ZERO and CACAO_BLUR_NONE ask for a literal zero and stay encoded
+     * in the resolved settings (test_settings_roundtrip checks they still mean zero). */
     CHECK(cacao_settings_resolve(&(cacao_settings){0}, &out, err, sizeof err) == CACAO_SUCCESS);
     CHECK(out.radius == 1.2f && out.blur_pass_count == 2 && out.quality == CACAO_QUALITY_HIGHEST &&
           out.precision == CACAO_PRECISION_FP32 && out.horizon_angle_threshold == 0.06f);
-    CHECK(cacao_settings_resolve(
-              &(cacao_settings){.horizon_angle_threshold = CACAO_ZERO, .blur_pass_count = CACAO_BLUR_NONE}, &out, err,
-              sizeof err) == CACAO_SUCCESS);
-    CHECK(out.horizon_angle_threshold == 0.0f && out.blur_pass_count == 0);
+    CHECK(cacao_settings_resolve(&(cacao_settings){.horizon_angle_threshold = CACAO_ZERO,
+                                                   .blur_pass_count = CACAO_BLUR_NONE},
+                                 &out, err, sizeof err) == CACAO_SUCCESS);
+    CHECK(out.horizon_angle_threshold == CACAO_ZERO && out.blur_pass_count == CACAO_BLUR_NONE);
     CHECK(cacao_settings_resolve(NULL, &out, err, sizeof err) == CACAO_ERROR_INVALID_ARGUMENT);
 }
 

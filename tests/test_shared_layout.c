@@ -20,7 +20,7 @@ static const c_member c_members[] = {CACAO_CONSTANTS_MEMBERS(MEMBER, MEMBER_ARRA
 #define C_MEMBER_COUNT (sizeof c_members / sizeof c_members[0])
 
 static void check_module(const cacao_permutation *p) {
-    const cacao_module *m = &cacao_embedded_table.modules[p->module];
+    const cacao_module *m = &cacaoi_embedded_table.modules[p->module];
     spvc_context ctx = NULL;
     spvc_parsed_ir ir = NULL;
     spvc_compiler comp = NULL;
@@ -61,8 +61,8 @@ static void check_module(const cacao_permutation *p) {
 
 int main(void) {
     unsigned checked = 0;
-    for (uint32_t i = 0; i < cacao_embedded_table.permutation_count; ++i) {
-        const cacao_permutation *p = &cacao_embedded_table.permutations[i];
+    for (uint32_t i = 0; i < cacaoi_embedded_table.permutation_count; ++i) {
+        const cacao_permutation *p = &cacaoi_embedded_table.permutations[i];
         if (p->bindings[CACAO_BINDING_CONSTANTS] != CACAO_RESOURCE_UNIFORM_BUFFER) continue;
         check_module(p);
         ++checked;

@@ -103,7 +103,9 @@ typedef struct cacao_settings {
     bool downsample;                /* true: AO at quarter resolution, bilateral upsample */
 } cacao_settings;
 
-/* Fills every defaulted field of *in into *out and checks every field. On error returns
+/* Fills every defaulted field of *in into *out and checks every field. An explicit zero keeps its
+ * encoding (CACAO_ZERO, CACAO_BLUR_NONE) in *out, so resolving *out again gives *out and
+ * cacao_plan_build(&plan->settings, ...) rebuilds the same plan. On error returns
  * CACAO_ERROR_INVALID_ARGUMENT and, when error is not NULL, writes a message naming the field. */
 cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *out, char *error,
                                     size_t error_size);
@@ -142,7 +144,7 @@ typedef struct cacao_plan_image {
 
 /* One binding of a step: descriptor binding number -> resource (and mip level for depth writes). */
 typedef struct cacao_plan_binding {
-    uint8_t binding;            /* CACAO_BINDING_* of cacao_shared.h */
+    uint8_t binding;            /* descriptor binding number in the pass's shader */
     uint8_t resource;           /* cacao_resource */
     uint8_t mip;                /* mip level for per-mip storage views */
     uint8_t write;              /* 1 if the pass writes it */
@@ -150,7 +152,7 @@ typedef struct cacao_plan_binding {
 
 typedef struct cacao_plan_step {
     char key_name[48];          /* permutation key, e.g. "generate.q2" */
-    uint8_t key[5];             /* pass, variant, downsampled, blur_passes, fp16 (cacao_keys.h) */
+    uint8_t key[5];             /* permutation key: pass, variant, downsampled, blur passes, fp16 */
     uint32_t dispatch[3];       /* workgroups */
     uint32_t binding_count;
     cacao_plan_binding bindings[CACAO_PLAN_MAX_BINDINGS];
@@ -159,7 +161,7 @@ typedef struct cacao_plan_step {
 } cacao_plan_step;
 
 typedef struct cacao_plan {
-    cacao_settings settings;    /* resolved */
+    cacao_settings settings;    /* resolved (cacao_settings_resolve: explicit zeros stay encoded) */
     uint32_t width, height;     /* full resolution */
     uint32_t slice_width, slice_height;           /* deinterleaved (SSAO) size */
     uint32_t importance_width, importance_height; /* 0 unless HIGHEST */
@@ -233,14 +235,22 @@ typedef struct cacao_image {
     VkImageLayout layout;       /* its layout when the commands run; cacao leaves it there */
 } cacao_image;
 
+/* The formats inputs.normals may have: the one list, used by cacao_record's check (any other
+ * format is CACAO_ERROR_UNSUPPORTED_FORMAT). Usable as an array initialiser. */
+#define CACAO_NORMALS_FORMATS                                                                        \
+    VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_B8G8R8A8_UNORM, VK_FORMAT_R8G8B8A8_SNORM,                    \
+        VK_FORMAT_A2B10G10R10_UNORM_PACK32, VK_FORMAT_A2R10G10B10_UNORM_PACK32,                      \
+        VK_FORMAT_R16G16B16A16_UNORM, VK_FORMAT_R16G16B16A16_SNORM, VK_FORMAT_R16G16B16A16_SFLOAT,   \
+        VK_FORMAT_R32G32B32A32_SFLOAT
+
 typedef struct cacao_inputs {
     /* Depth: D32_SFLOAT, D16_UNORM, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT, D32_SFLOAT_S8_UINT, R32_SFLOAT
      * or R16_SFLOAT; width x height of the resize. Layout: SHADER_READ_ONLY_OPTIMAL,
      * DEPTH_STENCIL_READ_ONLY_OPTIMAL or GENERAL; DEPTH_READ_ONLY_OPTIMAL only where the device was
      * created with separateDepthStencilLayouts and cacao_context_desc says so (refused otherwise). */
     cacao_image depth;
-    /* Normals (required unless settings.generate_normals): any sampled float or UNORM colour
-     * format; rgb unpacked as rgb * normals_unpack_mul + normals_unpack_add. */
+    /* Normals (required unless settings.generate_normals): one of CACAO_NORMALS_FORMATS; rgb
+     * unpacked as rgb * normals_unpack_mul + normals_unpack_add. */
     cacao_image normals;
     /* Output: R32_SFLOAT, R16_SFLOAT, R8_UNORM or R16_UNORM with STORAGE usage. AO visibility in
      * [0,1], 1 = unoccluded. Layout: GENERAL, or any layout cacao transitions from and back to. */

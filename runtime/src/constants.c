@@ -16,30 +16,30 @@ static bool all_zero(const float m[16]) {
     return true;
 }
 
-cacao_result cacao_check_projection(const cacao_inputs *in, char *error, size_t error_size) {
+cacao_result cacaoi_check_projection(const cacao_inputs *in, char *error, size_t error_size) {
     for (int i = 0; i < 16; ++i) {
         if (!isfinite(in->projection[i])) {
-            cacao_set_error(error, error_size, "inputs.projection[%d] is not a finite number", i);
+            cacaoi_set_error(error, error_size, "inputs.projection[%d] is not a finite number", i);
             return CACAO_ERROR_INVALID_ARGUMENT;
         }
         if (!isfinite(in->normals_to_view[i])) {
-            cacao_set_error(error, error_size, "inputs.normals_to_view[%d] is not a finite number", i);
+            cacaoi_set_error(error, error_size, "inputs.normals_to_view[%d] is not a finite number", i);
             return CACAO_ERROR_INVALID_ARGUMENT;
         }
     }
     const bool rm = in->matrices_row_major;
     if (!(mat_at(in->projection, rm, 0, 0) > 0.0f) || !(mat_at(in->projection, rm, 1, 1) > 0.0f)) {
-        cacao_set_error(error, error_size,
+        cacaoi_set_error(error, error_size,
                         "inputs.projection: P(0,0) and P(1,1) must be positive (clip y up; check matrices_row_major)");
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     if (mat_at(in->projection, rm, 2, 3) == 0.0f) {
-        cacao_set_error(error, error_size,
+        cacaoi_set_error(error, error_size,
                         "inputs.projection: P(2,3) is 0, so depth cannot be linearised (not a perspective projection)");
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     if (!isfinite(in->normals_unpack_mul) || !isfinite(in->normals_unpack_add)) {
-        cacao_set_error(error, error_size, "inputs.normals_unpack_mul/add must be finite numbers");
+        cacaoi_set_error(error, error_size, "inputs.normals_unpack_mul/add must be finite numbers");
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     return CACAO_SUCCESS;
@@ -61,8 +61,10 @@ static void fill_pattern(cacao_constants *c) {
         }
 }
 
-void cacao_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao_constants *c) {
-    const cacao_settings *s = &plan->settings;
+void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao_constants *c) {
+    cacao_settings literal;
+    cacaoi_settings_literal(&plan->settings, &literal);
+    const cacao_settings *s = &literal;
     const bool rm = in->matrices_row_major;
     memset(c, 0, sizeof *c);
 
@@ -80,7 +82,7 @@ void cacao_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao_
     c->depth_uv_to_view_mul = c->ndc_to_view_mul; /* depth size == output size */
     c->depth_uv_to_view_add = c->ndc_to_view_add;
 
-    const unsigned quality = (unsigned)s->quality - 1;
+    const unsigned quality = cacaoi_key_quality(s->quality);
     float radius = fminf(fmaxf(s->radius, 0.0f), 100000.0f);
     if (quality == CACAO_KEY_QUALITY_LOWEST) radius *= (float)CACAO_LOWEST_RADIUS_FACTOR;
     c->effect_radius = radius;

@@ -5,7 +5,7 @@
 
 #include "vulkan_internal.h"
 
-uint32_t cacao_embedded_permutation_count(void) { return cacao_embedded_table.permutation_count; }
+uint32_t cacao_embedded_permutation_count(void) { return cacaoi_embedded_table.permutation_count; }
 
 const char *cacao_context_last_error(const cacao_context *ctx) { return ctx ? ctx->last_error : ""; }
 
@@ -17,7 +17,7 @@ cacao_precision cacao_context_precision(const cacao_context *ctx) {
     return ctx && ctx->ready ? ctx->plan.settings.precision : CACAO_PRECISION_DEFAULT;
 }
 
-cacao_result cacao_fail(cacao_context *ctx, cacao_result result, const char *fmt, ...) {
+cacao_result cacaoi_fail(cacao_context *ctx, cacao_result result, const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(ctx->last_error, sizeof ctx->last_error, fmt, ap);
@@ -29,11 +29,11 @@ static cacao_result vk_fail(cacao_context *ctx, VkResult vr, const char *what) {
     cacao_result r = (vr == VK_ERROR_OUT_OF_HOST_MEMORY || vr == VK_ERROR_OUT_OF_DEVICE_MEMORY)
                          ? CACAO_ERROR_OUT_OF_MEMORY
                          : CACAO_ERROR_VULKAN;
-    return cacao_fail(ctx, r, "%s failed (VkResult %d)", what, (int)vr);
+    return cacaoi_fail(ctx, r, "%s failed (VkResult %d)", what, (int)vr);
 }
 
 /* Descriptor type of each binding of the one set layout. */
-VkDescriptorType cacao_binding_type(unsigned binding) {
+VkDescriptorType cacaoi_binding_type(unsigned binding) {
     if (binding == CACAO_BINDING_CONSTANTS) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     if (binding == CACAO_BINDING_LOAD_COUNTER) return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     if (binding < CACAO_BINDING_DEPTHS_OUT0) return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
@@ -63,7 +63,7 @@ static cacao_result create_layouts(cacao_context *ctx) {
 
     VkDescriptorSetLayoutBinding bindings[CACAO_BINDING_COUNT];
     for (unsigned b = 0; b < CACAO_BINDING_COUNT; ++b) {
-        VkDescriptorType type = cacao_binding_type(b);
+        VkDescriptorType type = cacaoi_binding_type(b);
         bindings[b] = (VkDescriptorSetLayoutBinding){
             .binding = b,
             .descriptorType = type,
@@ -106,7 +106,7 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
         (PFN_vkCmdPushDescriptorSetKHR)vkGetDeviceProcAddr(ctx->device, "vkCmdPushDescriptorSetKHR");
     cacao_result r = CACAO_SUCCESS;
     if (!ctx->push_descriptor)
-        r = cacao_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
+        r = cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
                        "context_desc.device: VK_KHR_push_descriptor is not enabled on this device");
     VkPhysicalDeviceShaderFloat16Int8Features f16 = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES};
@@ -115,7 +115,7 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
     ctx->fp16_available = desc->shader_float16_enabled && f16.shaderFloat16;
     ctx->separate_depth_layouts = desc->separate_depth_stencil_layouts_enabled;
     if (r == CACAO_SUCCESS && !features.features.shaderStorageImageWriteWithoutFormat)
-        r = cacao_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
+        r = cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
                        "context_desc.physical_device lacks shaderStorageImageWriteWithoutFormat");
     if (r == CACAO_SUCCESS) r = create_layouts(ctx);
     if (r != CACAO_SUCCESS) {
@@ -186,7 +186,7 @@ static cacao_result allocate_memory(cacao_context *ctx, VkMemoryRequirements req
         ctx->memory.total_bytes += req.size;
         return CACAO_SUCCESS;
     }
-    return cacao_fail(ctx, CACAO_ERROR_OUT_OF_MEMORY, "no device-local memory type fits an intermediate");
+    return cacaoi_fail(ctx, CACAO_ERROR_OUT_OF_MEMORY, "no device-local memory type fits an intermediate");
 }
 
 static cacao_result check_format(cacao_context *ctx, VkFormat format, bool linear, const char *what) {
@@ -195,7 +195,7 @@ static cacao_result check_format(cacao_context *ctx, VkFormat format, bool linea
     VkFormatFeatureFlags need = VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
     if (linear) need |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
     if ((props.optimalTilingFeatures & need) != need)
-        return cacao_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
+        return cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
                           "the device cannot use format %d for %s as a storage and sampled image", (int)format, what);
     return CACAO_SUCCESS;
 }
@@ -276,20 +276,20 @@ static bool step_matches_module(const cacao_plan_step *step, const cacao_permuta
 
 static cacao_result create_pipeline(cacao_context *ctx, uint32_t index) {
     const cacao_plan_step *step = &ctx->plan.steps[index];
-    const cacao_key key = cacao_plan_step_key(step);
-    const cacao_permutation *perm = cacao_table_find(&cacao_embedded_table, &key);
+    const cacao_key key = cacaoi_plan_step_key(step);
+    const cacao_permutation *perm = cacaoi_table_find(&cacaoi_embedded_table, &key);
     if (!perm)
-        return cacao_fail(ctx, CACAO_ERROR_PERMUTATION_MISSING,
+        return cacaoi_fail(ctx, CACAO_ERROR_PERMUTATION_MISSING,
                           "permutation '%s' is not embedded in this build (subset %s); rebuild with it in "
                           "CACAO_QUALITIES / CACAO_DOWNSAMPLE / CACAO_PRECISION",
-                          step->key_name, cacao_embedded_table.subset);
+                          step->key_name, cacaoi_embedded_table.subset);
     /* The plan and the generated table must agree (our invariant, not a user error). */
     assert(step_matches_module(step, perm));
     assert(step->dispatch[2] >= 1 && perm->workgroup_size[2] == 1);
     if (!step_matches_module(step, perm))
-        return cacao_fail(ctx, CACAO_ERROR_VULKAN, "internal: plan step '%s' does not match its module's bindings",
+        return cacaoi_fail(ctx, CACAO_ERROR_VULKAN, "internal: plan step '%s' does not match its module's bindings",
                           step->key_name);
-    const cacao_module *module = &cacao_embedded_table.modules[perm->module];
+    const cacao_module *module = &cacaoi_embedded_table.modules[perm->module];
     const VkShaderModuleCreateInfo module_info = {
         .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
         .codeSize = module->word_count * sizeof(uint32_t),
@@ -303,7 +303,7 @@ static cacao_result create_pipeline(cacao_context *ctx, uint32_t index) {
         .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
                   .stage = VK_SHADER_STAGE_COMPUTE_BIT,
                   .module = shader,
-                  .pName = cacao_embedded_table.entry_point},
+                  .pName = cacaoi_embedded_table.entry_point},
         .layout = ctx->pipeline_layout,
     };
     vr = vkCreateComputePipelines(ctx->device, ctx->pipeline_cache, 1, &info, ctx->alloc, &ctx->pipelines[index]);
@@ -326,11 +326,11 @@ cacao_result cacao_context_resize(cacao_context *ctx, uint32_t width, uint32_t h
     if (r != CACAO_SUCCESS) return r;
     /* Check every permutation before creating anything, so a missing one leaves nothing behind. */
     for (uint32_t i = 0; i < plan.step_count; ++i) {
-        const cacao_key key = cacao_plan_step_key(&plan.steps[i]);
-        if (!cacao_table_find(&cacao_embedded_table, &key))
-            return cacao_fail(ctx, CACAO_ERROR_PERMUTATION_MISSING,
+        const cacao_key key = cacaoi_plan_step_key(&plan.steps[i]);
+        if (!cacaoi_table_find(&cacaoi_embedded_table, &key))
+            return cacaoi_fail(ctx, CACAO_ERROR_PERMUTATION_MISSING,
                               "permutation '%s' is not embedded in this build (subset %s)", plan.steps[i].key_name,
-                              cacao_embedded_table.subset);
+                              cacaoi_embedded_table.subset);
     }
     release_frame_resources(ctx);
     ctx->plan = plan;

@@ -10,17 +10,21 @@
 #define CACAO_MIN_SIZE 32
 
 /* printf-style error message into a caller buffer (NULL-safe). */
-void cacao_set_error(char *error, size_t error_size, const char *fmt, ...)
+void cacaoi_set_error(char *error, size_t error_size, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
+/* The literal values of resolved settings: CACAO_ZERO -> 0.0f, CACAO_BLUR_NONE -> 0 blur passes.
+ * Resolved settings keep those encodings so that resolving them again is the identity. */
+void cacaoi_settings_literal(const cacao_settings *resolved, cacao_settings *out);
+
 /* The step's key as the key-space struct. */
-cacao_key cacao_plan_step_key(const cacao_plan_step *step);
+cacao_key cacaoi_plan_step_key(const cacao_plan_step *step);
 
 /* Checks the projection (finite, P(1,1) > 0, P(0,0) > 0, usable depth mapping). */
-cacao_result cacao_check_projection(const cacao_inputs *inputs, char *error, size_t error_size);
+cacao_result cacaoi_check_projection(const cacao_inputs *inputs, char *error, size_t error_size);
 
 /* spec: constants.md section 8 - fills the constant block from the plan and the frame's matrices.
- * Pure; the inputs are assumed checked by cacao_check_projection. */
-void cacao_fill_constants(const cacao_plan *plan, const cacao_inputs *inputs, cacao_constants *out);
+ * Pure; the inputs are assumed checked by cacaoi_check_projection. */
+void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *inputs, cacao_constants *out);
 
 #endif

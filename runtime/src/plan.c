@@ -17,7 +17,7 @@ const char *cacao_resource_name(cacao_resource resource) {
 
 static uint32_t div_up(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
 
-cacao_key cacao_plan_step_key(const cacao_plan_step *step) {
+cacao_key cacaoi_plan_step_key(const cacao_plan_step *step) {
     return (cacao_key){step->key[0], step->key[1], step->key[2], step->key[3], step->key[4]};
 }
 
@@ -30,7 +30,7 @@ typedef struct plan_builder {
 static cacao_plan_step *add_step(plan_builder *b, const cacao_key *key, uint32_t gx, uint32_t gy, uint32_t gz) {
     cacao_plan_step *s = &b->plan->steps[b->plan->step_count++];
     memset(s, 0, sizeof *s);
-    cacao_key_name(key, s->key_name, sizeof s->key_name);
+    cacaoi_key_name(key, s->key_name, sizeof s->key_name);
     s->key[0] = key->pass;
     s->key[1] = key->variant;
     s->key[2] = key->downsampled;
@@ -67,8 +67,22 @@ static void finish_step(plan_builder *b, cacao_plan_step *s) {
     b->written_since_barrier |= writes;
 }
 
-static void add_image(cacao_plan *p, cacao_resource res, VkFormat format, uint32_t w, uint32_t h,
-                      uint32_t layers, uint32_t mips, uint32_t texel_bytes) {
+/* One row per intermediate image: its format, the format's name and bytes per texel. */
+#define INTERMEDIATE(res, fmt, bytes) [res] = {VK_FORMAT_##fmt, #fmt, bytes}
+static const struct {
+    VkFormat format;
+    const char *format_name;
+    uint32_t texel_bytes;
+} intermediates[CACAO_RES_COUNT] = {
+    INTERMEDIATE(CACAO_RES_DEPTHS, R16_SFLOAT, 2),    INTERMEDIATE(CACAO_RES_NORMALS, R8G8B8A8_SNORM, 4),
+    INTERMEDIATE(CACAO_RES_SSAO_PING, R8G8_UNORM, 2), INTERMEDIATE(CACAO_RES_SSAO_PONG, R8G8_UNORM, 2),
+    INTERMEDIATE(CACAO_RES_IMPORTANCE, R8_UNORM, 1),  INTERMEDIATE(CACAO_RES_IMPORTANCE_PONG, R8_UNORM, 1),
+};
+#undef INTERMEDIATE
+
+static void add_image(cacao_plan *p, cacao_resource res, uint32_t w, uint32_t h, uint32_t layers, uint32_t mips) {
+    const VkFormat format = intermediates[res].format;
+    const uint32_t texel_bytes = intermediates[res].texel_bytes;
     uint64_t bytes = 0;
     for (uint32_t m = 0; m < mips; ++m) {
         uint64_t mw = w >> m ? w >> m : 1, mh = h >> m ? h >> m : 1;
@@ -81,14 +95,14 @@ static void add_image(cacao_plan *p, cacao_resource res, VkFormat format, uint32
 cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, uint32_t height,
                               cacao_plan *plan, char *error, size_t error_size) {
     if (!plan) {
-        cacao_set_error(error, error_size, "plan: NULL pointer");
+        cacaoi_set_error(error, error_size, "plan: NULL pointer");
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     cacao_settings s;
     cacao_result r = cacao_settings_resolve(settings, &s, error, error_size);
     if (r != CACAO_SUCCESS) return r;
     if (width < CACAO_MIN_SIZE || height < CACAO_MIN_SIZE || width > CACAO_MAX_SIZE || height > CACAO_MAX_SIZE) {
-        cacao_set_error(error, error_size, "size %ux%u: width and height must be in %d..%d", width, height,
+        cacaoi_set_error(error, error_size, "size %ux%u: width and height must be in %d..%d", width, height,
                         CACAO_MIN_SIZE, CACAO_MAX_SIZE);
         return CACAO_ERROR_INVALID_SIZE;
     }
@@ -96,16 +110,16 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     plan->settings = s;
     plan->width = width;
     plan->height = height;
-    const unsigned quality = (unsigned)s.quality - 1; /* key-space quality 0..4 */
+    const unsigned quality = cacaoi_key_quality(s.quality);
     const bool ds = s.downsample, highest = quality == CACAO_KEY_QUALITY_HIGHEST;
     const uint8_t fp16 = s.precision == CACAO_PRECISION_FP16;
     const uint32_t sw = ds ? div_up(div_up(width, 2), 2) : div_up(width, 2);
     const uint32_t sh = ds ? div_up(div_up(height, 2), 2) : div_up(height, 2);
     const uint32_t iw = div_up(sw, 2), ih = div_up(sh, 2);
-    const uint32_t slices = cacao_slice_count_for_quality(quality);
-    const unsigned depths_variant = cacao_depths_variant_for_quality(quality);
+    const uint32_t slices = cacaoi_slice_count_for_quality(quality);
+    const unsigned depths_variant = cacaoi_depths_variant_for_quality(quality);
     const uint32_t mips = depths_variant == CACAO_DEPTHS_MIPS ? CACAO_DEPTH_MIP_COUNT : 1;
-    const unsigned blur = (unsigned)s.blur_pass_count;
+    const unsigned blur = s.blur_pass_count == CACAO_BLUR_NONE ? 0 : (unsigned)s.blur_pass_count;
     plan->slice_width = sw;
     plan->slice_height = sh;
     plan->importance_width = iw;
@@ -114,13 +128,13 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     plan->uses_load_counter = highest;
 
     /* Intermediates: only what the steps below touch. */
-    add_image(plan, CACAO_RES_DEPTHS, VK_FORMAT_R16_SFLOAT, sw, sh, slices, mips, 2);
-    add_image(plan, CACAO_RES_NORMALS, VK_FORMAT_R8G8B8A8_SNORM, sw, sh, slices, 1, 4);
-    add_image(plan, CACAO_RES_SSAO_PING, VK_FORMAT_R8G8_UNORM, sw, sh, slices, 1, 2);
-    if (blur > 0 || highest) add_image(plan, CACAO_RES_SSAO_PONG, VK_FORMAT_R8G8_UNORM, sw, sh, slices, 1, 2);
+    add_image(plan, CACAO_RES_DEPTHS, sw, sh, slices, mips);
+    add_image(plan, CACAO_RES_NORMALS, sw, sh, slices, 1);
+    add_image(plan, CACAO_RES_SSAO_PING, sw, sh, slices, 1);
+    if (blur > 0 || highest) add_image(plan, CACAO_RES_SSAO_PONG, sw, sh, slices, 1);
     if (highest) {
-        add_image(plan, CACAO_RES_IMPORTANCE, VK_FORMAT_R8_UNORM, iw, ih, 1, 1, 1);
-        add_image(plan, CACAO_RES_IMPORTANCE_PONG, VK_FORMAT_R8_UNORM, iw, ih, 1, 1, 1);
+        add_image(plan, CACAO_RES_IMPORTANCE, iw, ih, 1, 1);
+        add_image(plan, CACAO_RES_IMPORTANCE_PONG, iw, ih, 1, 1);
         plan->total_bytes += sizeof(uint32_t); /* load counter */
     }
     plan->total_bytes += sizeof(cacao_constants);
@@ -170,7 +184,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
         finish_step(&b, st);
     }
 
-    key = (cacao_key){CACAO_PASS_GENERATE, (uint8_t)cacao_generate_variant_for_quality(quality), 0, 0, 0};
+    key = (cacao_key){CACAO_PASS_GENERATE, (uint8_t)cacaoi_generate_variant_for_quality(quality), 0, 0, 0};
     st = add_step(&b, &key, ggx, ggy, slices);
     bind(st, CACAO_BINDING_DEPTHS, CACAO_RES_DEPTHS, 0, false);
     bind(st, CACAO_BINDING_NORMALS, CACAO_RES_NORMALS, 0, false);
@@ -192,7 +206,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
         ao = CACAO_RES_SSAO_PONG;
     }
 
-    const uint8_t out_variant = (uint8_t)cacao_output_variant_for_quality(quality, ds);
+    const uint8_t out_variant = (uint8_t)cacaoi_output_variant_for_quality(quality, ds);
     if (ds) {
         key = (cacao_key){CACAO_PASS_UPSAMPLE, out_variant, 0, 0, fp16};
         st = add_step(&b, &key, div_up(width, 2 * CACAO_WG_UPSAMPLE_X), div_up(height, 2 * CACAO_WG_UPSAMPLE_Y), 1);
@@ -210,10 +224,10 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
 }
 
 void cacao_plan_print(const cacao_plan *p, FILE *out) {
-    static const char *const quality_names[] = {"default", "lowest", "low", "medium", "high", "highest"};
+    const int blur = p->settings.blur_pass_count == CACAO_BLUR_NONE ? 0 : p->settings.blur_pass_count;
     fprintf(out, "plan: %ux%u, quality %s, %s, blur %d, %s, normals %s\n", p->width, p->height,
-            quality_names[p->settings.quality], p->settings.downsample ? "downsampled" : "native",
-            p->settings.blur_pass_count, p->settings.precision == CACAO_PRECISION_FP16 ? "fp16" : "fp32",
+            cacaoi_quality_names[cacaoi_key_quality(p->settings.quality)], p->settings.downsample ? "downsampled" : "native",
+            blur, p->settings.precision == CACAO_PRECISION_FP16 ? "fp16" : "fp32",
             p->settings.generate_normals ? "from depth" : "from input");
     fprintf(out, "slices: %u of %ux%u", p->slice_count, p->slice_width, p->slice_height);
     if (p->uses_load_counter) fprintf(out, "; importance map %ux%u", p->importance_width, p->importance_height);
@@ -244,8 +258,9 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
     fprintf(out, "intermediates:\n");
     for (uint32_t i = 0; i < p->image_count; ++i) {
         const cacao_plan_image *im = &p->images[i];
-        fprintf(out, "  %-16s %4ux%-4u x%u layers, %u mips, format %d, %llu bytes\n", resource_names[im->resource],
-                im->width, im->height, im->layers, im->mips, (int)im->format, (unsigned long long)im->bytes);
+        fprintf(out, "  %-16s %4ux%-4u x%u layers, %u mips, %-14s %llu bytes\n", resource_names[im->resource],
+                im->width, im->height, im->layers, im->mips, intermediates[im->resource].format_name,
+                (unsigned long long)im->bytes);
     }
     fprintf(out, "total intermediate memory: %llu bytes\n", (unsigned long long)p->total_bytes);
 }

@@ -12,11 +12,7 @@ static const VkFormat depth_formats[] = {
     VK_FORMAT_D32_SFLOAT,         VK_FORMAT_D16_UNORM,  VK_FORMAT_X8_D24_UNORM_PACK32, VK_FORMAT_D24_UNORM_S8_UINT,
     VK_FORMAT_D32_SFLOAT_S8_UINT, VK_FORMAT_R32_SFLOAT, VK_FORMAT_R16_SFLOAT,
 };
-static const VkFormat normal_formats[] = {
-    VK_FORMAT_R8G8B8A8_UNORM,           VK_FORMAT_B8G8R8A8_UNORM,      VK_FORMAT_R8G8B8A8_SNORM,
-    VK_FORMAT_A2B10G10R10_UNORM_PACK32, VK_FORMAT_A2R10G10B10_UNORM_PACK32, VK_FORMAT_R16G16B16A16_UNORM,
-    VK_FORMAT_R16G16B16A16_SNORM,       VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT,
-};
+static const VkFormat normal_formats[] = {CACAO_NORMALS_FORMATS};
 static const VkFormat output_formats[] = {VK_FORMAT_R32_SFLOAT, VK_FORMAT_R16_SFLOAT, VK_FORMAT_R8_UNORM,
                                           VK_FORMAT_R16_UNORM};
 static const VkImageLayout read_layouts[] = {
@@ -43,15 +39,15 @@ static VkImageAspectFlags aspect_of(VkFormat f) {
 static cacao_result check_image(cacao_context *ctx, const cacao_image *im, const char *field, const VkFormat *formats,
                                 size_t format_count, bool read) {
     if (!im->image || !im->view)
-        return cacao_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "inputs.%s: image and view are required", field);
+        return cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "inputs.%s: image and view are required", field);
     if (!format_in(im->format, formats, format_count))
-        return cacao_fail(ctx, CACAO_ERROR_UNSUPPORTED_FORMAT, "inputs.%s.format %d is not supported", field,
+        return cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_FORMAT, "inputs.%s.format %d is not supported", field,
                           (int)im->format);
     if (read && !layout_readable(im->layout))
-        return cacao_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT,
+        return cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT,
                           "inputs.%s.layout %d is not a shader-readable layout", field, (int)im->layout);
     if (!read && (im->layout == VK_IMAGE_LAYOUT_UNDEFINED || im->layout == VK_IMAGE_LAYOUT_PREINITIALIZED))
-        return cacao_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "inputs.%s.layout must be a defined layout", field);
+        return cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "inputs.%s.layout must be a defined layout", field);
     return CACAO_SUCCESS;
 }
 
@@ -66,18 +62,18 @@ static cacao_result check_inputs(cacao_context *ctx, const cacao_inputs *in) {
                         sizeof output_formats / sizeof output_formats[0], false);
     if (r == CACAO_SUCCESS && in->depth.layout == VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL &&
         !ctx->separate_depth_layouts)
-        r = cacao_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT,
+        r = cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT,
                        "inputs.depth.layout DEPTH_READ_ONLY_OPTIMAL needs separateDepthStencilLayouts enabled on the "
                        "device and cacao_context_desc.separate_depth_stencil_layouts_enabled; use "
                        "DEPTH_STENCIL_READ_ONLY_OPTIMAL");
     const uint64_t queries_needed = (uint64_t)in->timestamp_first_query + ctx->plan.step_count + 1;
     if (r == CACAO_SUCCESS && in->timestamp_query_pool && in->timestamp_query_count < queries_needed)
-        r = cacao_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT,
+        r = cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT,
                        "inputs.timestamp_query_count %u is too small: from timestamp_first_query %u, %u timestamps "
                        "need %llu queries",
                        in->timestamp_query_count, in->timestamp_first_query, ctx->plan.step_count + 1,
                        (unsigned long long)queries_needed);
-    if (r == CACAO_SUCCESS) r = cacao_check_projection(in, ctx->last_error, sizeof ctx->last_error);
+    if (r == CACAO_SUCCESS) r = cacaoi_check_projection(in, ctx->last_error, sizeof ctx->last_error);
     return r;
 }
 
@@ -125,7 +121,7 @@ static void record_frame_start(cacao_context *ctx, VkCommandBuffer cmd, const ca
 
 static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in) {
     cacao_constants constants;
-    cacao_fill_constants(&ctx->plan, in, &constants);
+    cacaoi_fill_constants(&ctx->plan, in, &constants);
     vkCmdUpdateBuffer(cmd, ctx->buffers[CACAO_BUFFER_CONSTANTS], 0, sizeof constants, &constants);
     if (ctx->plan.uses_load_counter)
         vkCmdFillBuffer(cmd, ctx->buffers[CACAO_BUFFER_LOAD_COUNTER], 0, sizeof(uint32_t), 0);
@@ -159,7 +155,7 @@ static void describe(const cacao_context *ctx, const cacao_inputs *in, const cac
     case CACAO_RES_OUTPUT: info->image = (VkDescriptorImageInfo){0, in->output.view, VK_IMAGE_LAYOUT_GENERAL}; return;
     default: {
         const cacao_intermediate *im = &ctx->images[b->resource];
-        const bool storage = cacao_binding_type(b->binding) == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+        const bool storage = cacaoi_binding_type(b->binding) == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
         info->image = (VkDescriptorImageInfo){0, storage ? im->mip_views[b->mip] : im->view, VK_IMAGE_LAYOUT_GENERAL};
         return;
     }
@@ -179,7 +175,7 @@ static void record_step(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inp
     VkWriteDescriptorSet writes[CACAO_PLAN_MAX_BINDINGS];
     for (uint32_t i = 0; i < step->binding_count; ++i) {
         const cacao_plan_binding *b = &step->bindings[i];
-        const VkDescriptorType type = cacao_binding_type(b->binding);
+        const VkDescriptorType type = cacaoi_binding_type(b->binding);
         describe(ctx, in, b, &infos[i]);
         const bool buffer = type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER || type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
         writes[i] = (VkWriteDescriptorSet){
@@ -199,9 +195,9 @@ static void record_step(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inp
 cacao_result cacao_record(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in) {
     if (!ctx) return CACAO_ERROR_INVALID_ARGUMENT;
     if (!cmd || !in)
-        return cacao_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "%s is NULL", !cmd ? "command_buffer" : "inputs");
+        return cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "%s is NULL", !cmd ? "command_buffer" : "inputs");
     if (!ctx->ready)
-        return cacao_fail(ctx, CACAO_ERROR_NOT_READY, "cacao_context_resize must succeed before cacao_record");
+        return cacaoi_fail(ctx, CACAO_ERROR_NOT_READY, "cacao_context_resize must succeed before cacao_record");
     cacao_result r = check_inputs(ctx, in);
     if (r != CACAO_SUCCESS) return r;
 

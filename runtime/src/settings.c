@@ -5,7 +5,7 @@
 
 #include "internal.h"
 
-void cacao_set_error(char *error, size_t error_size, const char *fmt, ...) {
+void cacaoi_set_error(char *error, size_t error_size, const char *fmt, ...) {
     if (!error || error_size == 0) return;
     va_list ap;
     va_start(ap, fmt);
@@ -59,7 +59,7 @@ static const float_rule float_rules[] = {
 cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *out, char *error,
                                     size_t error_size) {
     if (!in || !out) {
-        cacao_set_error(error, error_size, "settings: NULL pointer");
+        cacaoi_set_error(error, error_size, "settings: NULL pointer");
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     cacao_settings s = *in;
@@ -67,41 +67,53 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
         const float_rule *r = &float_rules[i];
         float *v = (float *)((char *)&s + r->offset);
         if (!isfinite(*v)) {
-            cacao_set_error(error, error_size, "settings.%s is not a finite number", r->name);
+            cacaoi_set_error(error, error_size, "settings.%s is not a finite number", r->name);
             return CACAO_ERROR_INVALID_ARGUMENT;
         }
         if (*v == 0.0f) *v = r->fallback;
-        else if (r->zero_allowed && *v == CACAO_ZERO) *v = 0.0f;
-        bool low_ok = r->min_exclusive ? *v > r->min : *v >= r->min;
-        if (!low_ok || *v > r->max) {
-            cacao_set_error(error, error_size, "settings.%s = %g is outside %s%g, %g]%s", r->name, (double)*v,
+        /* An explicit zero stays CACAO_ZERO, so resolving a resolved struct changes nothing. */
+        const float literal = r->zero_allowed && *v == CACAO_ZERO ? 0.0f : *v;
+        bool low_ok = r->min_exclusive ? literal > r->min : literal >= r->min;
+        if (!low_ok || literal > r->max) {
+            cacaoi_set_error(error, error_size, "settings.%s = %g is outside %s%g, %g]%s", r->name, (double)*v,
                             r->min_exclusive ? "(" : "[", (double)r->min, (double)r->max,
                             r->zero_allowed ? " (use CACAO_ZERO for 0)" : "");
             return CACAO_ERROR_INVALID_ARGUMENT;
         }
     }
-    if (!(s.fade_out_to > s.fade_out_from)) {
-        cacao_set_error(error, error_size, "settings.fade_out_to (%g) must be greater than fade_out_from (%g)",
-                        (double)s.fade_out_to, (double)s.fade_out_from);
+    const float fade_from = s.fade_out_from == CACAO_ZERO ? 0.0f : s.fade_out_from;
+    if (!(s.fade_out_to > fade_from)) {
+        cacaoi_set_error(error, error_size, "settings.fade_out_to (%g) must be greater than fade_out_from (%g)",
+                        (double)s.fade_out_to, (double)fade_from);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     if (s.blur_pass_count == 0) s.blur_pass_count = 2;
-    else if (s.blur_pass_count == CACAO_BLUR_NONE) s.blur_pass_count = 0;
-    else if (s.blur_pass_count < 1 || s.blur_pass_count > 8) {
-        cacao_set_error(error, error_size, "settings.blur_pass_count = %d is outside 1..8 (0 = default, %d = none)",
+    else if (s.blur_pass_count == CACAO_BLUR_NONE) {
+        /* stays CACAO_BLUR_NONE (see cacaoi_settings_literal) */
+    } else if (s.blur_pass_count < 1 || s.blur_pass_count > 8) {
+        cacaoi_set_error(error, error_size, "settings.blur_pass_count = %d is outside 1..8 (0 = default, %d = none)",
                         s.blur_pass_count, CACAO_BLUR_NONE);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     if (s.quality == CACAO_QUALITY_DEFAULT) s.quality = CACAO_QUALITY_HIGHEST;
     if ((int)s.quality < CACAO_QUALITY_LOWEST || (int)s.quality > CACAO_QUALITY_HIGHEST) {
-        cacao_set_error(error, error_size, "settings.quality = %d is not a cacao_quality", (int)in->quality);
+        cacaoi_set_error(error, error_size, "settings.quality = %d is not a cacao_quality", (int)in->quality);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     if (s.precision == CACAO_PRECISION_DEFAULT) s.precision = CACAO_PRECISION_FP32;
     if ((int)s.precision != CACAO_PRECISION_FP32 && (int)s.precision != CACAO_PRECISION_FP16) {
-        cacao_set_error(error, error_size, "settings.precision = %d is not a cacao_precision", (int)in->precision);
+        cacaoi_set_error(error, error_size, "settings.precision = %d is not a cacao_precision", (int)in->precision);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     *out = s;
     return CACAO_SUCCESS;
+}
+
+void cacaoi_settings_literal(const cacao_settings *resolved, cacao_settings *out) {
+    *out = *resolved;
+    for (size_t i = 0; i < sizeof float_rules / sizeof float_rules[0]; ++i) {
+        float *v = (float *)((char *)out + float_rules[i].offset);
+        if (float_rules[i].zero_allowed && *v == CACAO_ZERO) *v = 0.0f;
+    }
+    if (out->blur_pass_count == CACAO_BLUR_NONE) out->blur_pass_count = 0;
 }

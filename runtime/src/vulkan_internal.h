@@ -42,9 +42,9 @@ struct cacao_context {
 };
 
 /* Sets the context's last error and returns result. */
-cacao_result cacao_fail(cacao_context *ctx, cacao_result result, const char *fmt, ...)
+cacao_result cacaoi_fail(cacao_context *ctx, cacao_result result, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
-VkDescriptorType cacao_binding_type(unsigned binding);
+VkDescriptorType cacaoi_binding_type(unsigned binding);
 
 #endif

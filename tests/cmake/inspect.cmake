@@ -47,6 +47,10 @@ if(NOT order STREQUAL "generate.q3base;importance_a;importance_b;generate.q3 ;ap
   message(FATAL_ERROR "plan order wrong: ${order}\n${out}")
 endif()
 expect("${out}" "total intermediate memory:")
+# formats by name (the Vulkan spelling without VK_FORMAT_), not enum numbers
+expect("${out}" "R16_SFLOAT")
+expect("${out}" "R8G8B8A8_SNORM")
+expect("${out}" "R8_UNORM")
 inspect(1 show generate.q9)
 expect("${err}" "'generate.q9' is not a permutation key")
 inspect(1 frobnicate)

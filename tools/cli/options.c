@@ -482,6 +482,10 @@ static double shortest_decimal(float value) {
     return strtod(text, NULL);
 }
 
+/* A resolved value as the literal it stands for: resolved settings keep the explicit-zero
+ * encodings (CACAO_ZERO, CACAO_BLUR_NONE; see cacao_settings_resolve). */
+static double literal_float(float v) { return v == CACAO_ZERO ? 0.0 : shortest_decimal(v); }
+
 cJSON *cli_settings_to_json(const cacao_settings *resolved) {
     cJSON *root = cJSON_CreateObject();
     cacao_settings s = *resolved;
@@ -489,14 +493,12 @@ cJSON *cli_settings_to_json(const cacao_settings *resolved) {
         const flag_def *def = &flags[i];
         switch (def->kind) {
         case SET_FLOAT_PAIR:
-            cJSON_AddNumberToObject(root, def->json, shortest_decimal(*float_field(&s, def->offset)));
-            cJSON_AddNumberToObject(root, def->json2, shortest_decimal(*float_field(&s, def->offset2)));
+            cJSON_AddNumberToObject(root, def->json, literal_float(*float_field(&s, def->offset)));
+            cJSON_AddNumberToObject(root, def->json2, literal_float(*float_field(&s, def->offset2)));
             break;
-        case SET_FLOAT:
-            cJSON_AddNumberToObject(root, def->json, shortest_decimal(*float_field(&s, def->offset)));
-            break;
+        case SET_FLOAT: cJSON_AddNumberToObject(root, def->json, literal_float(*float_field(&s, def->offset))); break;
         case SET_BLUR:
-            cJSON_AddNumberToObject(root, def->json, s.blur_pass_count);
+            cJSON_AddNumberToObject(root, def->json, s.blur_pass_count == CACAO_BLUR_NONE ? 0 : s.blur_pass_count);
             break;
         case SET_ENUM: {
             const int v = *int_field(&s, def->offset);

@@ -25,9 +25,8 @@
 extern const char cacao_inspect_shader_source[];
 extern const char cacao_inspect_shared_header[];
 
-static const cacao_table *table = &cacao_embedded_table;
+static const cacao_table *table = &cacaoi_embedded_table;
 static const char *const resource_kinds[] = {"-", "uniform buffer", "storage buffer", "sampled image", "storage image"};
-static const char *const quality_words[] = {"lowest", "low", "medium", "high", "highest"};
 
 static int fail(const char *fmt, const char *arg) {
     fprintf(stderr, "cacao-inspect: ");
@@ -37,8 +36,8 @@ static int fail(const char *fmt, const char *arg) {
 }
 
 static int quality_from_word(const char *w) {
-    for (int q = 0; q < 5; ++q)
-        if (strcmp(w, quality_words[q]) == 0) return q;
+    for (int q = 0; q < CACAO_KEY_QUALITY_COUNT; ++q)
+        if (strcmp(w, cacaoi_quality_names[q]) == 0) return q;
     return -1;
 }
 
@@ -143,10 +142,10 @@ static int cmd_list(int argc, char **argv) {
     }
     for (uint32_t i = 0; i < table->permutation_count; ++i) {
         const cacao_permutation *p = &table->permutations[i];
-        if (pass && strcmp(pass, cacao_pass_name(p->key.pass)) != 0) continue;
+        if (pass && strcmp(pass, cacaoi_pass_name(p->key.pass)) != 0) continue;
         if (quality >= 0) {
             const cacao_key_subset s = {1u << quality, 3, 3};
-            if (!cacao_key_in_subset(&p->key, &s)) continue;
+            if (!cacaoi_key_in_subset(&p->key, &s)) continue;
         }
         char group[1024], wg[32];
         dedup_group(i, group, sizeof group);
@@ -155,7 +154,7 @@ static int cmd_list(int argc, char **argv) {
         if (json) {
             cJSON *o = cJSON_CreateObject();
             cJSON_AddStringToObject(o, "key", p->name);
-            cJSON_AddStringToObject(o, "pass", cacao_pass_name(p->key.pass));
+            cJSON_AddStringToObject(o, "pass", cacaoi_pass_name(p->key.pass));
             cJSON_AddNumberToObject(o, "variant", p->key.variant);
             cJSON_AddBoolToObject(o, "downsampled", p->key.downsampled);
             cJSON_AddNumberToObject(o, "blur_passes", p->key.blur_passes);
@@ -230,12 +229,12 @@ static void print_reflection(const cacao_module *m) {
 static int cmd_show(int argc, char **argv) {
     if (argc != 1) return fail("show needs exactly one KEY (see 'cacao-inspect list')%s", "");
     cacao_key key;
-    if (!cacao_key_parse(argv[0], &key)) return fail("show: '%s' is not a permutation key", argv[0]);
-    const cacao_permutation *p = cacao_table_find(table, &key);
+    if (!cacaoi_key_parse(argv[0], &key)) return fail("show: '%s' is not a permutation key", argv[0]);
+    const cacao_permutation *p = cacaoi_table_find(table, &key);
     if (!p) return fail("show: '%s' is not embedded in this build", argv[0]);
     const cacao_module *m = &table->modules[p->module];
     char defines[512];
-    cacao_key_defines(&key, defines, sizeof defines);
+    cacaoi_key_defines(&key, defines, sizeof defines);
     printf("== %s\nSPIR-V: %u bytes (module %u), entry point '%s', workgroup %ux%ux%u\n\n== defines\n%s\n", p->name,
            m->word_count * 4, p->module, table->entry_point, p->workgroup_size[0], p->workgroup_size[1],
            p->workgroup_size[2], defines);
@@ -293,7 +292,7 @@ static int cmd_plan(int argc, char **argv) {
     for (uint32_t i = 0; i < plan.step_count; ++i) {
         const cacao_key key = {plan.steps[i].key[0], plan.steps[i].key[1], plan.steps[i].key[2], plan.steps[i].key[3],
                                plan.steps[i].key[4]};
-        if (!cacao_table_find(table, &key)) missing += fprintf(stderr, "note: %s is not embedded in this build\n",
+        if (!cacaoi_table_find(table, &key)) missing += fprintf(stderr, "note: %s is not embedded in this build\n",
                                                                plan.steps[i].key_name) > 0;
     }
     return missing ? 1 : 0;
@@ -317,7 +316,7 @@ static int cmd_stats(void) {
            table->module_count, table->permutation_count - table->module_count);
     printf("embedded SPIR-V: %llu bytes\n%-16s %6s %10s\n", (unsigned long long)total, "pass", "keys", "bytes");
     for (unsigned p = 0; p < CACAO_PASS_COUNT; ++p)
-        if (count[p]) printf("%-16s %6u %10llu\n", cacao_pass_name(p), count[p], (unsigned long long)per_pass[p]);
+        if (count[p]) printf("%-16s %6u %10llu\n", cacaoi_pass_name(p), count[p], (unsigned long long)per_pass[p]);
     return 0;
 }
 
@@ -329,7 +328,7 @@ static bool table_subset(cacao_key_subset *s) {
     }
     char q[128], d[32], p[64];
     if (sscanf(table->subset, "%127[^|]|%31[^|]|%63s", q, d, p) != 3) return false;
-    return cacao_key_subset_parse(q, d, p, s);
+    return cacaoi_key_subset_parse(q, d, p, s);
 }
 
 static int cmd_verify(void) {
@@ -367,8 +366,8 @@ static int cmd_verify(void) {
                         for (uint32_t i = 0; i < plan.step_count; ++i) {
                             const cacao_key key = {plan.steps[i].key[0], plan.steps[i].key[1], plan.steps[i].key[2],
                                                    plan.steps[i].key[3], plan.steps[i].key[4]};
-                            if (!cacao_table_find(table, &key)) {
-                                fprintf(stderr, "missing: %s (quality %s)\n", plan.steps[i].key_name, quality_words[q]);
+                            if (!cacaoi_table_find(table, &key)) {
+                                fprintf(stderr, "missing: %s (quality %s)\n", plan.steps[i].key_name, cacaoi_quality_names[q]);
                                 ++missing;
                             }
                         }
