@@ -50,7 +50,10 @@ static inline void scene_buffers_free(scene_buffers *b) {
 /* The scenes' normals are right-handed view space (camera-facing +z); cacao's view space has
  * camera-facing normals at -z: N = diag(1, 1, -1). Float normals: unpack 1, 0. */
 static inline vkdev_frame scene_frame(const scene_buffers *b, bool reversed, bool with_normals) {
-    vkdev_frame f = {.width = b->width, .height = b->height, .depth = reversed ? b->depth_reversed : b->depth};
+    vkdev_frame f = {.width = b->width,
+                     .height = b->height,
+                     .depth = reversed ? b->depth_reversed : b->depth,
+                     .depth_reversed = reversed};
     memcpy(f.projection, reversed ? b->projection_reversed : b->projection, sizeof f.projection);
     if (with_normals) vkdev_frame_set_view_normals(&f, b->normals);
     return f;

@@ -198,6 +198,7 @@ bool cli_inputs_load(const cli_options *o, cli_inputs *in, char *err, size_t n) 
     if (ok && o->scene_dir) ok = load_scene_dir(o, in, err, n);
     else if (ok && o->depth_path) ok = load_files(o, o->depth_path, o->normals_path, o->camera_path, in, err, n);
     else if (ok) ok = load_default_scene(o, in, err, n);
+    in->depth_reversed = o->reverse_z;
     if (!ok) cli_inputs_free(in);
     return ok;
 }

