@@ -191,12 +191,112 @@ static void test_off_centre_shift(vkdev *dev) {
             }
 }
 
-int main(void) {
+/* The conformance matrix on one scene: `distance` holds each pixel's view distance (<= 0 for
+ * background), `normals` its RH view normals (NULL: generated). For every kind x {RH, LH} x
+ * {centred, sub-pixel jittered} the depth is written as that convention writes it and the
+ * projection built by projections.h; each output must equal the standard right-handed output of
+ * the same family (perspective / orthographic) and jitter. */
+static void conformance_matrix(vkdev *dev, const char *name, const double *distance, const float *normals, uint32_t w,
+                               uint32_t h, double sx_persp, double sy_persp, double sx_ortho, double sy_ortho,
+                               double n, double f, float radius, bool with_ortho) {
+    const size_t count = (size_t)w * h;
+    float *depth = malloc(sizeof(float) * count), *ref = malloc(sizeof(float) * count);
+    float *ao = malloc(sizeof(float) * count);
+    const cacao_settings s = {.quality = CACAO_QUALITY_HIGH, .radius = radius, .generate_normals = normals == NULL};
+    const double jitter[2] = {0.37 * 2.0 / w, -0.21 * 2.0 / h};
+    double worst_mean = 0.0, worst_p99 = 0.0;
+    int runs = 0;
+    for (int ortho = 0; ortho < (with_ortho ? 2 : 1); ++ortho)
+        for (int j = 0; j < 2; ++j)
+            for (int k = ortho ? PROJ_ORTHO : PROJ_STANDARD; k < (ortho ? PROJ_KIND_COUNT : PROJ_ORTHO); ++k)
+                for (int lh = 0; lh < 2; ++lh) {
+                    const proj_kind kind = (proj_kind)k;
+                    const bool reversed = proj_is_reversed(kind);
+                    for (size_t i = 0; i < count; ++i)
+                        depth[i] = distance[i + (ortho ? count : 0)] > 0.0
+                                       ? (float)proj_depth(kind, n, f, distance[i + (ortho ? count : 0)])
+                                       : (reversed ? 0.0f : 1.0f);
+                    vkdev_frame fr = {.width = w, .height = h, .depth = depth, .depth_reversed = reversed};
+                    proj_build(kind, lh, ortho ? sx_ortho : sx_persp, ortho ? sy_ortho : sy_persp, n, f,
+                               j ? jitter[0] : 0.0, j ? jitter[1] : 0.0, fr.projection);
+                    if (normals) vkdev_frame_set_view_normals(&fr, normals + (ortho ? 3 * count : 0));
+                    /* (An LH caller's normals are these with z negated and N = identity: the same
+                     * normals in cacao's space, so N = diag(1, 1, -1) on the RH data stands for both.) */
+                    const bool is_ref = k == (ortho ? PROJ_ORTHO : PROJ_STANDARD) && !lh;
+                    if (!run(dev, &s, &fr, is_ref ? ref : ao)) continue;
+                    ++runs;
+                    if (is_ref) continue;
+                    double mean, p99;
+                    diff_shifted(ao, ref, w, h, 0, 0, 0, &mean, &p99);
+                    worst_mean = fmax(worst_mean, mean);
+                    worst_p99 = fmax(worst_p99, p99);
+                    if (!(mean <= 0.5 / 255.0 && p99 <= 2.0 / 255.0)) {
+                        fprintf(stderr, "%s: %s %s %s: mean %.5f p99 %.5f against the reference\n", name,
+                                proj_kind_names[k], lh ? "LH" : "RH", j ? "jittered" : "centred", mean, p99);
+                        ++test_failures;
+                    }
+                }
+    printf("conformance matrix, %s: %d runs, worst mean |diff| %.5f, worst p99 %.5f\n", name, runs, worst_mean,
+           worst_p99);
+    free(depth);
+    free(ref);
+    free(ao);
+}
+
+static void test_conformance_embedded(vkdev *dev) {
+    const uint32_t w = 128, h = 72;
+    const cacao_scene scene = cacao_default_scene(w, h);
+    const double n = scene.camera.near_z, f = scene.camera.far_z, aspect = (double)w / h;
+    const double ty = tan(scene.camera.fov_y_deg * 3.14159265358979323846 / 360.0), oh = 5.0;
+    double *distance = malloc(sizeof(double) * 2 * w * h);
+    float *normals = malloc(sizeof(float) * 6 * w * h);
+    for (int ortho = 0; ortho < 2; ++ortho) {
+        const cacao_lens lens = {.ortho_half_height = ortho ? oh : 0.0};
+        lens_buffers b;
+        lens_render(&scene, &lens, &b);
+        for (size_t i = 0; i < (size_t)w * h; ++i) {
+            const double d = b.depth_reversed[i]; /* reversed keeps precision far away */
+            distance[i + (ortho ? (size_t)w * h : 0)] =
+                d <= 0.0 ? -1.0 : ortho ? f - d * (f - n) : n * f / (d * (f - n) + n);
+        }
+        memcpy(normals + (ortho ? 3 * (size_t)w * h : 0), b.normals, sizeof(float) * 3 * w * h);
+        lens_free(&b);
+    }
+    conformance_matrix(dev, "embedded scene", distance, normals, w, h, aspect * ty, ty, aspect * oh, oh, n, f,
+                       (float)scene.ao_radius_world, true);
+    free(distance);
+    free(normals);
+}
+
+/* One real scene (street_track): its standard depth turned back into distances with its own
+ * projection; perspective conventions only (the scene has no orthographic rendering). */
+static void test_conformance_shared(vkdev *dev, const char *shared) {
+    cacao_img depth = {0}, gt = {0};
+    cacao_camera_file cam;
+    if (!load_shared_scene(shared, "street_track", &depth, &gt, &cam)) return;
+    const size_t count = (size_t)depth.width * depth.height;
+    double *distance = malloc(sizeof(double) * count);
+    const double p22 = cam.projection[10], p23 = cam.projection[11]; /* RH: d = -p22 + p23 / z */
+    for (size_t i = 0; i < count; ++i)
+        distance[i] = depth.data[i] >= 1.0f ? -1.0 : p23 / ((double)depth.data[i] + p22);
+    conformance_matrix(dev, "street_track", distance, NULL, depth.width, depth.height, 1.0 / cam.projection[0],
+                       1.0 / cam.projection[5], 0.0, 0.0, cam.near_z, cam.far_z, (float)cam.ao_radius_world, false);
+    free(distance);
+    cacao_img_free(&depth);
+    cacao_img_free(&gt);
+}
+
+int main(int argc, char **argv) {
     vkdev dev;
     open_device(&dev);
     test_ortho_crease(&dev);
     test_ortho_vs_long_focal(&dev);
     test_off_centre_shift(&dev);
+    test_conformance_embedded(&dev);
+    struct stat st;
+    if (argc > 1 && stat(argv[1], &st) == 0) test_conformance_shared(&dev, argv[1]);
+    else printf("conformance matrix on a real scene: skipped (shared data directory not found)\n");
     vkdev_destroy(&dev);
+    CHECK(dev.validation_messages == 0);
     return test_report("test_projections");
 }
