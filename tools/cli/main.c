@@ -121,7 +121,10 @@ static bool run_on_device(vkdev *dev, const cli_options *o, const cli_inputs *in
     const cacao_result r = vkdev_run(dev, encoded, &frame, o->repeat ? o->repeat : 1, out->ao.data, &out->timings,
                                      why, sizeof why);
     if (r == CACAO_SUCCESS) return true;
-    set_err(err, "%s: %s", cacao_result_string(r), why);
+    if (strncmp(why, "inputs.projection", 17) == 0) /* name what the user gave, then why */
+        set_err(err, "%s: the projection is refused (%s)", in->projection_source, why);
+    else
+        set_err(err, "%s: %s", cacao_result_string(r), why);
     return false;
 }
 
