@@ -196,7 +196,7 @@ int main(int argc, char **argv) {
     if ((strcmp(cmd, "scene") == 0 || strcmp(cmd, "plane") == 0) && argc == 5)
         return make_scene(argv[2], (uint32_t)atoi(argv[3]), (uint32_t)atoi(argv[4]), cmd[0] == 'p');
     if ((strcmp(cmd, "ortho") == 0 || strcmp(cmd, "offcentre") == 0) && argc == 5)
-        return make_lens_scene(argv[2], (uint32_t)atoi(argv[3]), (uint32_t)atoi(argv[4]), cmd[0] == 'o');
+        return make_lens_scene(argv[2], (uint32_t)atoi(argv[3]), (uint32_t)atoi(argv[4]), strcmp(cmd, "ortho") == 0);
     if (strcmp(cmd, "const") == 0 && argc == 6)
         return make_const(argv[2], (uint32_t)atoi(argv[3]), (uint32_t)atoi(argv[4]), strtof(argv[5], NULL));
     if (strcmp(cmd, "convert") == 0 && (argc == 4 || argc == 5)) return convert(argv[2], argv[3], argc == 5 ? 8 : 16);

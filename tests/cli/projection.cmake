@@ -15,7 +15,7 @@ foreach(kind ortho offcentre)
   mean_abs_diff(d ${WORK}/${kind}_std.pfm ${WORK}/${kind}_rev.pfm)
   expect_between("${kind}: standard vs reverse-Z, mean |diff|" ${d} 0 ${HALF_STEP})
   mean_abs_diff(occ ${WORK}/${kind}_std.pfm ${WORK}/white.pfm)
-  expect_between("${kind}: mean occlusion (1 - AO)" ${occ} 0.02 0.5)
+  expect_between("${kind}: mean occlusion (1 - AO)" ${occ} 0.01 0.5)
 endforeach()
 
 function(expect_error needle)
