@@ -11,29 +11,22 @@
 #include "gpu_scene.h"
 #include "projections.h"
 
+/* A scene rendered through a lens (gpu_scene.h) and room for cacao's output. */
 typedef struct lens_buffers {
     uint32_t w, h;
     float *depth, *depth_reversed, *normals, *ao;
-    double near_z, far_z;
 } lens_buffers;
 
 static void lens_render(const cacao_scene *scene, const cacao_lens *lens, lens_buffers *b) {
-    b->w = scene->camera.width;
-    b->h = scene->camera.height;
-    b->near_z = scene->camera.near_z;
-    b->far_z = scene->camera.far_z;
-    const size_t n = (size_t)b->w * b->h;
-    b->depth = malloc(n * sizeof(float));
-    b->depth_reversed = malloc(n * sizeof(float));
-    b->normals = malloc(3 * n * sizeof(float));
-    b->ao = malloc(n * sizeof(float));
-    cacao_scene_render_lens(scene, lens, b->depth, b->depth_reversed, b->normals);
+    scene_buffers sb;
+    scene_buffers_render_lens(scene, lens, &sb);
+    *b = (lens_buffers){sb.width, sb.height, sb.depth, sb.depth_reversed, sb.normals,
+                        malloc(sizeof(float) * sb.width * sb.height)};
 }
 
 static void lens_free(lens_buffers *b) {
-    free(b->depth);
-    free(b->depth_reversed);
-    free(b->normals);
+    scene_buffers sb = {.depth = b->depth, .depth_reversed = b->depth_reversed, .normals = b->normals};
+    scene_buffers_free(&sb);
     free(b->ao);
 }
 
