@@ -20,8 +20,8 @@ typedef struct lens_buffers {
 static void lens_render(const cacao_scene *scene, const cacao_lens *lens, lens_buffers *b) {
     scene_buffers sb;
     scene_buffers_render_lens(scene, lens, &sb);
-    *b = (lens_buffers){sb.width, sb.height, sb.depth, sb.depth_reversed, sb.normals,
-                        malloc(sizeof(float) * sb.width * sb.height)};
+    *b = (lens_buffers){sb.width,          sb.height,  sb.depth,
+                        sb.depth_reversed, sb.normals, malloc(sizeof(float) * sb.width * sb.height)};
 }
 
 static void lens_free(lens_buffers *b) {
