@@ -65,6 +65,21 @@ static projection_view projection_view_of(const cacao_inputs *in) {
     return v;
 }
 
+/* View-space scale that keeps the far plane inside half's range (see cacao_fill_constants), but
+ * never pushes the near plane into half's subnormals. */
+static float view_scale(const projection_view *v) {
+    double z_far = 0.0, z_near = INFINITY;
+    for (int d = 0; d <= 1; ++d) {
+        const double z = ((double)v->z_num[0] + v->z_num[1] * d) / ((double)v->z_den[0] + v->z_den[1] * d);
+        if (isfinite(z) && z > 0.0) z_far = fmax(z_far, z), z_near = fmin(z_near, z);
+    }
+    const double limit = 60000.0, smallest_normal = 6.2e-5;
+    if (!(z_far > limit)) return 1.0f;
+    double k = limit / z_far;
+    if (isfinite(z_near) && z_near * k < smallest_normal) k = fmin(1.0, smallest_normal / z_near);
+    return (float)k;
+}
+
 cacao_result cacao_check_projection(const cacao_inputs *in, char *error, size_t error_size) {
     for (int i = 0; i < 16; ++i) {
         if (!isfinite(in->projection[i])) {
@@ -156,31 +171,38 @@ void cacao_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao_
     memset(c, 0, sizeof *c);
 
     const projection_view v = projection_view_of(in);
-    c->depth_unpack = v2(v.z_num[0], v.z_den[0]);
-    c->depth_unpack_d = v2(v.z_num[1], v.z_den[1]);
+    /* The deinterleaved view z is R16F (largest value 65504): when the far plane lies beyond that,
+     * the whole view space is scaled by k < 1 (positions, radius, fade-out, near limit, bilateral
+     * distance), which AO does not see; half's relative precision is the same at every scale.
+     * k stays 1 for a far plane within range and for an infinite one. */
+    const float k = view_scale(&v);
+    c->depth_unpack = v2(k * v.z_num[0], v.z_den[0]);
+    c->depth_unpack_d = v2(k * v.z_num[1], v.z_den[1]);
     c->view_xy_z = v.ortho ? v2(0.0f, 1.0f) : v2(1.0f, 0.0f);
-    c->ndc_to_view_mul = v2(v.xy_mul[0], v.xy_mul[1]);
-    c->ndc_to_view_add = v2(v.xy_add[0], v.xy_add[1]);
+    const float xy_k = v.ortho ? k : 1.0f; /* perspective xy scale with z already */
+    c->ndc_to_view_mul = v2(xy_k * v.xy_mul[0], xy_k * v.xy_mul[1]);
+    c->ndc_to_view_add = v2(xy_k * v.xy_add[0], xy_k * v.xy_add[1]);
     c->camera_tan_half_fov = v2(0.5f * v.xy_mul[0], -0.5f * v.xy_mul[1]); /* ortho: half extents */
     c->depth_uv_to_view_mul = c->ndc_to_view_mul;                         /* depth size == output size */
     c->depth_uv_to_view_add = c->ndc_to_view_add;
     const float tan_y = c->camera_tan_half_fov.y;
     /* Depth edges compare depth differences with a fraction of a depth; orthographic pixels all
      * have one footprint, that of a perspective pixel at the depth where a 60-degree fov has it. */
-    c->edge_depth = v.ortho ? v2(0.0f, tan_y / 0.57735027f) : v2(1.0f, 0.0f);
+    c->edge_depth = v.ortho ? v2(0.0f, xy_k * tan_y / 0.57735027f) : v2(1.0f, 0.0f);
 
     const unsigned quality = (unsigned)s->quality - 1;
     float radius = fminf(fmaxf(s->radius, 0.0f), 100000.0f);
     if (quality == CACAO_KEY_QUALITY_LOWEST) radius *= (float)CACAO_LOWEST_RADIUS_FACTOR;
+    radius *= k;
     c->effect_radius = radius;
     c->effect_shadow_strength = fminf(fmaxf(s->shadow_multiplier * (float)CACAO_STRENGTH_MULTIPLIER, 0.0f), 10.0f);
     c->effect_shadow_pow = fminf(fmaxf(s->shadow_power, 0.0f), 10.0f);
     c->effect_shadow_clamp = fminf(fmaxf(s->shadow_clamp, 0.0f), 1.0f);
-    c->effect_fade_out_mul = -1.0f / (s->fade_out_to - s->fade_out_from);
+    c->effect_fade_out_mul = -1.0f / (k * (s->fade_out_to - s->fade_out_from));
     c->effect_fade_out_add = s->fade_out_from / (s->fade_out_to - s->fade_out_from) + 1.0f;
     c->effect_horizon_angle_threshold = fminf(fmaxf(s->horizon_angle_threshold, 0.0f), 1.0f);
     /* Near limit from the raw radius, not the LOWEST-reduced one ([quirk] NEARLIMIT-RAW-RADIUS). */
-    float near_limit = s->radius * (float)CACAO_NEAR_LIMIT_RADIUS_FACTOR;
+    float near_limit = k * s->radius * (float)CACAO_NEAR_LIMIT_RADIUS_FACTOR;
     if (quality <= CACAO_KEY_QUALITY_LOW) near_limit *= (float)CACAO_LOW_NEAR_LIMIT_FACTOR;
     near_limit /= tan_y;
     /* Orthographic: the footprint does not grow near the camera, so no near limit (factor 1). */
@@ -192,7 +214,7 @@ void cacao_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao_
     c->inv_sharpness = fminf(fmaxf(1.0f - s->sharpness, 0.0f), 1.0f);
     c->slice_count = (int)plan->slice_count;
     c->bilateral_sigma_squared = s->bilateral_sigma_squared;
-    c->bilateral_similarity_distance_sigma = s->bilateral_similarity_distance_sigma;
+    c->bilateral_similarity_distance_sigma = s->bilateral_similarity_distance_sigma * k * k;
     const bool default_unpack = in->normals_unpack_mul == 0.0f && in->normals_unpack_add == 0.0f;
     c->normals_unpack_mul = default_unpack ? 2.0f : in->normals_unpack_mul;
     c->normals_unpack_add = default_unpack ? -1.0f : in->normals_unpack_add;
