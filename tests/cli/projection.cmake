@@ -19,7 +19,7 @@ foreach(kind ortho offcentre)
 endforeach()
 
 function(expect_error needle)
-  cacao_run(r -o ${WORK}/refused.png ${ARGN})
+  cacao_run(r --validate -o ${WORK}/refused.png ${ARGN})
   string(FIND "${r_err}" "${needle}" at)
   if(r_rc EQUAL 0 OR at EQUAL -1 OR EXISTS ${WORK}/refused.png)
     message(FATAL_ERROR "cacao ${ARGN}: exit ${r_rc}, stderr '${r_err}', expected an error naming '${needle}'")
