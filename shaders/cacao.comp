@@ -74,12 +74,16 @@ float round_to_half(float x) { return unpackHalf2x16(packHalf2x16(vec2(x, 0.0)))
  * removes. AMD divides blindly there ([quirk] INF-DEPTH); finite depths are unchanged. */
 float view_z(float d)
 {
-    float z = cb.depth_unpack.x / (cb.depth_unpack.y - d);
-    return (z > 0.0 && z < CACAO_MAX_VIEW_Z) ? z : CACAO_MAX_VIEW_Z;
+    float z = (cb.depth_unpack.x + cb.depth_unpack_d.x * d) / (cb.depth_unpack.y + cb.depth_unpack_d.y * d);
+    return (z >= 0.0 && z < CACAO_MAX_VIEW_Z) ? z : CACAO_MAX_VIEW_Z;
 }
 
+/* View xy per unit of (ndc_to_view_mul * uv + add): z for a perspective projection, 1 for an
+ * orthographic one. */
+float view_xy_scale(float z) { return cb.view_xy_z.x * z + cb.view_xy_z.y; }
+
 /* Screen UV + view z -> view-space position (spec: README "P(uv, z)"). */
-vec3 view_pos(vec2 uv, float z) { return vec3((cb.ndc_to_view_mul * uv + cb.ndc_to_view_add) * z, z); }
+vec3 view_pos(vec2 uv, float z) { return vec3((cb.ndc_to_view_mul * uv + cb.ndc_to_view_add) * view_xy_scale(z), z); }
 
 /* Edge weights toward L, R, T, B (spec: prepare.md "Edges"); 1 = no edge. */
 vec4 depth_edges(float c, float l, float r, float t, float b)
@@ -87,7 +91,7 @@ vec4 depth_edges(float c, float l, float r, float t, float b)
     vec4 d = vec4(l, r, t, b) - c;
     vec4 ds = d + d.yxwz; /* each difference plus its opposite: slope compensation */
     vec4 e = min(abs(d), abs(ds));
-    return sat(CACAO_EDGE_SLOPE - e / (CACAO_EDGE_DEPTH_FRACTION * c));
+    return sat(CACAO_EDGE_SLOPE - e / (CACAO_EDGE_DEPTH_FRACTION * (cb.edge_depth.x * c + cb.edge_depth.y)));
 }
 
 /* Per-sample obscurance (spec: generate.md "Obs"). max0 keeps D3D's NaN rule for a zero delta. */
@@ -431,7 +435,7 @@ void accumulate_tap(vec4 s, bool use_pattern_weight, ivec2 xy, vec2 uvd, vec2 in
         ivec2 os = side == 0 ? o : -o;
         vec2 uv = uvd + vec2(os) * inv_s;
         float z = depth_tap(xy + os, level, size, layer);
-        vec3 delta = vec3((cb.depth_uv_to_view_mul * uv + cb.depth_uv_to_view_add) * z, z) - pc;
+        vec3 delta = vec3((cb.depth_uv_to_view_mul * uv + cb.depth_uv_to_view_add) * view_xy_scale(z), z) - pc;
         float ob = obscurance(n, delta, falloff, cb.effect_horizon_angle_threshold);
         float w = 1.0;
 #if GEN_Q >= 1
@@ -464,7 +468,7 @@ void main()
     vec2 uvs = uvd; /* slice UV used as screen UV ([quirk] SLICE-SUBPIXEL) */
     vec3 pc = view_pos(uvs, zc);
     vec3 n = texelFetch(normals, ivec3(xy, layer), 0).xyz;
-    vec2 px_size = zc * cb.ndc_to_view_mul * inv_s; /* .y negative */
+    vec2 px_size = view_xy_scale(zc) * cb.ndc_to_view_mul * inv_s; /* .y negative */
 
     /* 2. radius parameters from the unscaled centre */
     float near_mod = sat(length(pc) * cb.effect_sampling_radius_near_limit_rec) * CACAO_NEAR_LIMIT_SCALE + CACAO_NEAR_LIMIT_BIAS;
@@ -486,7 +490,7 @@ void main()
 #if GEN_Q >= 1 && GEN_BASE == 0
     edges = depth_edges(zc, zl, zr, zt, zb);
     {
-        vec3 v = vec3(pc.xy / pc.z, 1.0);
+        vec3 v = vec3((cb.ndc_to_view_mul * uvs + cb.ndc_to_view_add) * cb.view_xy_z.x, 1.0); /* d pos / d z */
         vec3 dl = vec3(-px_size.x, 0.0, 0.0) + v * (zl - pc.z);
         vec3 dr = vec3(px_size.x, 0.0, 0.0) + v * (zr - pc.z);
         vec3 dt = vec3(0.0, -px_size.y, 0.0) + v * (zt - pc.z);

@@ -162,7 +162,7 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
 /* X-list of members: M(type, name) for scalars/vectors, A(type, name, count) for arrays.
  * Order is chosen so std140 needs no padding that C would not also insert. */
 #define CACAO_CONSTANTS_MEMBERS(M, A)                                                              \
-    M(VEC2, depth_unpack)               /* view z = x / (y - d) */                                 \
+    M(VEC2, depth_unpack)               /* view z = (x + depth_unpack_d.x d) / (y + depth_unpack_d.y d) */ \
     M(VEC2, camera_tan_half_fov)        /* (tanX, tanY), informational */                          \
     M(VEC2, ndc_to_view_mul)            /* (2 tanX, -2 tanY) */                                    \
     M(VEC2, ndc_to_view_add)            /* (-tanX, tanY) */                                        \
@@ -200,7 +200,10 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     A(VEC4, pattern_rot_scale, 20)      /* [slice * 5 + j] = (m0, m1, m2, m3) */                   \
     A(VEC4, sample_pattern, 32)         /* CACAO_SAMPLE_PATTERN_VALUES; in the block because a */  \
                                         /* dynamically indexed GLSL const array is copied per call */ \
-    M(MAT4, normals_to_view)            /* n'_j = sum_i E[j][i] n_i, stored column-major */
+    M(MAT4, normals_to_view)            /* n'_j = sum_i E[j][i] n_i, stored column-major */       \
+    M(VEC2, depth_unpack_d)             /* (0, -1) perspective, (P(3,3), 0) orthographic */       \
+    M(VEC2, view_xy_z)                  /* view xy = (ndc_to_view_mul uv + add) (x z + y) */       \
+    M(VEC2, edge_depth)                 /* depth an edge is relative to = x z + y */
 
 #ifdef CACAO_GLSL
 layout(std140, set = 0, binding = CACAO_BINDING_CONSTANTS) uniform cacao_constants_block {

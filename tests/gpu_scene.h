@@ -21,17 +21,23 @@ typedef struct scene_buffers {
     float projection[16], projection_reversed[16], view_from_world[16];
 } scene_buffers;
 
-static inline void scene_buffers_render(const cacao_scene *scene, scene_buffers *b) {
+/* The scene through a lens (orthographic, off-centre; all zero: the centred perspective). */
+static inline void scene_buffers_render_lens(const cacao_scene *scene, const cacao_lens *lens, scene_buffers *b) {
     b->width = scene->camera.width;
     b->height = scene->camera.height;
     const size_t n = (size_t)b->width * b->height;
     b->depth = malloc(n * sizeof(float));
     b->depth_reversed = malloc(n * sizeof(float));
     b->normals = malloc(3 * n * sizeof(float));
-    cacao_scene_render(scene, b->depth, b->depth_reversed, b->normals);
-    cacao_camera_projection(&scene->camera, false, b->projection);
-    cacao_camera_projection(&scene->camera, true, b->projection_reversed);
+    cacao_scene_render_lens(scene, lens, b->depth, b->depth_reversed, b->normals);
+    cacao_camera_projection_lens(&scene->camera, lens, false, b->projection);
+    cacao_camera_projection_lens(&scene->camera, lens, true, b->projection_reversed);
     cacao_camera_view_from_world(&scene->camera, b->view_from_world);
+}
+
+static inline void scene_buffers_render(const cacao_scene *scene, scene_buffers *b) {
+    const cacao_lens centred = {0};
+    scene_buffers_render_lens(scene, &centred, b);
 }
 
 /* Renders the embedded default scene at w x h into b; returns its AO radius. */
@@ -50,7 +56,10 @@ static inline void scene_buffers_free(scene_buffers *b) {
 /* The scenes' normals are right-handed view space (camera-facing +z); cacao's view space has
  * camera-facing normals at -z: N = diag(1, 1, -1). Float normals: unpack 1, 0. */
 static inline vkdev_frame scene_frame(const scene_buffers *b, bool reversed, bool with_normals) {
-    vkdev_frame f = {.width = b->width, .height = b->height, .depth = reversed ? b->depth_reversed : b->depth};
+    vkdev_frame f = {.width = b->width,
+                     .height = b->height,
+                     .depth = reversed ? b->depth_reversed : b->depth,
+                     .depth_reversed = reversed};
     memcpy(f.projection, reversed ? b->projection_reversed : b->projection, sizeof f.projection);
     if (with_normals) vkdev_frame_set_view_normals(&f, b->normals);
     return f;

@@ -16,6 +16,7 @@
 
 /* Relative: |a - b| <= tol * |b|; an expected 0 must be met exactly. */
 #define NEAR(a, b, tol) (fabs((double)(a) - (double)(b)) <= (tol)*fabs((double)(b)))
+#include "projections.h"
 #define CHECK_NEAR(a, b, tol)                                                                                          \
     do {                                                                                                               \
         if (!NEAR(a, b, tol)) {                                                                                        \
@@ -90,8 +91,8 @@ static void test_worked_example(void) {
     CHECK_NEAR(r.depth_unpack.y, -0.00050025, 1e-6);
     const double n = 0.05, f = 100.0, z = 3.0;
     const double d = f * (z - n) / (z * (f - n)), dr = n * (f - z) / (z * (f - n));
-    CHECK_NEAR(c.depth_unpack.x / (c.depth_unpack.y - d), z, 1e-4);
-    CHECK_NEAR(r.depth_unpack.x / (r.depth_unpack.y - dr), z, 1e-4);
+    CHECK_NEAR(c.depth_unpack.x / (c.depth_unpack.y + c.depth_unpack_d.y * d), z, 1e-4);
+    CHECK_NEAR(r.depth_unpack.x / (r.depth_unpack.y + r.depth_unpack_d.y * dr), z, 1e-4);
 
     /* Downsampled: S = 240x135, I = 120x68, LoadCounterAvgDiv = 4.3252594e-6. */
     const cacao_settings sd = {.quality = CACAO_QUALITY_HIGHEST, .downsample = true};
@@ -215,7 +216,97 @@ static int compare_with_amd(const char *shared, const char *scene) {
     return compared;
 }
 
+/* Every convention engines use - {standard, reversed, infinite-far, infinite-far reversed,
+ * orthographic, orthographic reversed} x {RH, LH} x {row-, column-major} x {centred, jittered by
+ * a sub-pixel TAA offset, a quarter-width asymmetric frustum}: points projected by the test's own
+ * matrix (projections.h) come back to their view position (x, y, distance) through the constants
+ * exactly as the shader's view_z / view_pos use them. */
+static void test_projection_conventions(void) {
+    const uint32_t w = 64, h = 48;
+    const double jitters[3][2] = {{0, 0}, {0.37 * 2.0 / w, -0.21 * 2.0 / h}, {0.5, 0.0}};
+    const double n = 0.1, f = 100.0;
+    int cases = 0;
+    for (int k = 0; k < PROJ_KIND_COUNT; ++k)
+        for (int lh = 0; lh < 2; ++lh)
+            for (int rm = 0; rm < 2; ++rm)
+                for (int j = 0; j < 3; ++j) {
+                    const bool ortho = proj_is_ortho((proj_kind)k);
+                    const double sx = ortho ? 8.0 : 0.8, sy = ortho ? 6.0 : 0.6;
+                    float p[16], pt[16];
+                    proj_build((proj_kind)k, lh, sx, sy, n, f, jitters[j][0], jitters[j][1], p);
+                    proj_transpose(p, pt);
+                    const cacao_settings s = {.quality = CACAO_QUALITY_HIGH};
+                    cacao_plan plan;
+                    char err[256];
+                    CHECK(cacao_plan_build(&s, w, h, &plan, err, sizeof err) == CACAO_SUCCESS);
+                    cacao_inputs in = {.matrices_row_major = rm, .depth_reversed = proj_is_reversed((proj_kind)k)};
+                    memcpy(in.projection, rm ? p : pt, sizeof in.projection);
+                    if (cacaoi_check_projection(&in, err, sizeof err) != CACAO_SUCCESS) {
+                        fprintf(stderr, "%s lh=%d rm=%d j=%d refused: %s\n", proj_kind_names[k], lh, rm, j, err);
+                        ++test_failures;
+                        continue;
+                    }
+                    cacao_constants c;
+                    cacaoi_fill_constants(&plan, &in, &c);
+                    double worst = 0.0;
+                    for (int i = 0; i < 50; ++i) {
+                        const double z = 0.5 + 49.5 * (double)((i * 37) % 50) / 49.0;
+                        const double ndc_x = -0.9 + 1.8 * (double)((i * 13) % 50) / 49.0;
+                        const double ndc_y = -0.9 + 1.8 * (double)((i * 29) % 50) / 49.0;
+                        const double scale = ortho ? 1.0 : z;
+                        const double x = (ndc_x - jitters[j][0]) * sx * scale, y = (ndc_y - jitters[j][1]) * sy * scale;
+                        const float d = (float)proj_depth((proj_kind)k, n, f, z);
+                        const float u = (float)((ndc_x + 1.0) * 0.5), v = (float)((1.0 - ndc_y) * 0.5);
+                        const float vz =
+                            (c.depth_unpack.x + c.depth_unpack_d.x * d) / (c.depth_unpack.y + c.depth_unpack_d.y * d);
+                        const float xs = c.view_xy_z.x * vz + c.view_xy_z.y;
+                        const float vx = (c.ndc_to_view_mul.x * u + c.ndc_to_view_add.x) * xs;
+                        const float vy = (c.ndc_to_view_mul.y * v + c.ndc_to_view_add.y) * xs;
+                        const double e = fmax(fabs(vz - z) / z, fmax(fabs(vx - x), fabs(vy - y)) / (sy * scale));
+                        worst = fmax(worst, e);
+                    }
+                    if (!(worst <= 2e-3)) {
+                        fprintf(stderr, "%s lh=%d rm=%d jitter=%d: view position off by %.3g (relative)\n",
+                                proj_kind_names[k], lh, rm, j, worst);
+                        ++test_failures;
+                    }
+                    ++cases;
+                }
+    printf("projection conventions: %d cases reconstruct their view positions\n", cases);
+}
+
+/* Projections the library cannot handle are refused with the matrix element named. */
+static void test_projection_refusals(void) {
+    float p[16];
+    proj_build(PROJ_STANDARD, false, 0.8, 0.6, 0.1, 100.0, 0.0, 0.0, p);
+    const struct {
+        int index;
+        float value;
+        const char *named;
+    } cases[] = {{1, 0.3f, "P(0,1)"}, {8, 0.2f, "P(2,0)"}, {15, 1.0f, "P(3,3)"}, {11, 0.0f, "P(2,3)"}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        cacao_inputs in = {.matrices_row_major = true};
+        memcpy(in.projection, p, sizeof p);
+        in.projection[cases[i].index] = cases[i].value;
+        char err[256] = "";
+        CHECK(cacaoi_check_projection(&in, err, sizeof err) == CACAO_ERROR_INVALID_ARGUMENT);
+        CHECK(strstr(err, cases[i].named) != NULL);
+    }
+    /* Orthographic: oblique (P(0,2) != 0) and a non-positive w are refused. */
+    proj_build(PROJ_ORTHO, false, 8.0, 6.0, 0.1, 100.0, 0.0, 0.0, p);
+    cacao_inputs in = {.matrices_row_major = true};
+    memcpy(in.projection, p, sizeof p);
+    in.projection[2] = 0.1f;
+    char err[256] = "";
+    CHECK(cacaoi_check_projection(&in, err, sizeof err) == CACAO_ERROR_INVALID_ARGUMENT && strstr(err, "P(0,2)"));
+    in.projection[2] = 0.0f;
+    in.projection[15] = -1.0f;
+    CHECK(cacaoi_check_projection(&in, err, sizeof err) == CACAO_ERROR_INVALID_ARGUMENT && strstr(err, "P(3,3)"));
+}
+
 int main(int argc, char **argv) {
+    test_projection_conventions();
+    test_projection_refusals();
     if (argc < 2) {
         test_worked_example();
         test_simple_projection();

@@ -257,12 +257,18 @@ typedef struct cacao_inputs {
     cacao_image output;
     /* Projection in math convention (clip = P * v), depth to [0,1] standard or reversed, clip y up
      * (P(1,1) > 0), left- or right-handed. Stored row-major when matrices_row_major, else
-     * column-major (GLM). */
+     * column-major (GLM). Perspective (P(3,2) != 0; far plane finite or infinite) or orthographic
+     * (P(3,2) == 0, P(3,3) > 0); off-centre and jittered frusta through P(0,2), P(1,2)
+     * (orthographic: P(0,3), P(1,3)). Skewed and oblique projections are refused. */
     float projection[16];
     /* Maps the caller's normals to cacao's view space (x right, y up, z forward; camera-facing
      * normals have negative z): n' = N * n (upper 3x3). All zero = identity. Same storage rule. */
     float normals_to_view[16];
     bool matrices_row_major;
+    /* Orthographic projections only: true when depth 1 is the near plane (reverse-Z). An
+     * orthographic matrix does not show that (an LH standard and an RH reversed one look alike);
+     * a perspective projection shows its convention and ignores this. */
+    bool depth_reversed;
     float normals_unpack_mul;   /* both 0: 2 and -1 (UNORM-packed normals) */
     float normals_unpack_add;
     /* Optional GPU timing: when set, cacao writes plan.step_count + 1 timestamps (compute stage)

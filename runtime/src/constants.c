@@ -16,6 +16,70 @@ static bool all_zero(const float m[16]) {
     return true;
 }
 
+/* The projection's view: x right, y up, z = distance forward (cacao's view space), whatever the
+ * caller's handedness, depth convention, jitter or asymmetric frustum. */
+typedef struct projection_view {
+    bool ortho;
+    float h;                    /* +1: the caller's view looks down +z (LH), -1: down -z (RH) */
+    float xy_mul[2], xy_add[2]; /* view xy = (xy_mul * uv + xy_add) * (perspective ? z : 1) */
+    float z_num[2], z_den[2];   /* view z = (z_num[0] + z_num[1] d) / (z_den[0] + z_den[1] d) */
+} projection_view;
+
+static projection_view projection_view_of(const cacao_inputs *in) {
+    const bool rm = in->matrices_row_major;
+    const float p00 = mat_at(in->projection, rm, 0, 0), p11 = mat_at(in->projection, rm, 1, 1);
+    const float p02 = mat_at(in->projection, rm, 0, 2), p12 = mat_at(in->projection, rm, 1, 2);
+    const float p03 = mat_at(in->projection, rm, 0, 3), p13 = mat_at(in->projection, rm, 1, 3);
+    const float p22 = mat_at(in->projection, rm, 2, 2), p23 = mat_at(in->projection, rm, 2, 3);
+    const float p32 = mat_at(in->projection, rm, 3, 2), p33 = mat_at(in->projection, rm, 3, 3);
+    projection_view v = {.ortho = p32 == 0.0f};
+    if (!v.ortho) {
+        /* clip w = p32 * z_caller = |p32| * z; ndc = 2u - 1 (x), 1 - 2v (y, clip y up). */
+        const float w = fabsf(p32);
+        v.h = p32 > 0.0f ? 1.0f : -1.0f;
+        v.xy_mul[0] = 2.0f * w / p00;
+        v.xy_add[0] = (-w - v.h * p02) / p00;
+        v.xy_mul[1] = -2.0f * w / p11;
+        v.xy_add[1] = (w - v.h * p12) / p11;
+        /* d = (p22 h z + p23) / (|p32| z)  =>  z = (-p23 / |p32|) / (h p22 / |p32| - d): AMD's
+         * DepthUnpackConsts (M, A) for a unit w row. */
+        v.z_num[0] = -p23 / w;
+        v.z_den[0] = v.h * p22 / w;
+        v.z_den[1] = -1.0f;
+    } else {
+        /* clip w = p33 > 0; depth grows away from the camera unless depth_reversed. */
+        v.h = ((p22 > 0.0f) != in->depth_reversed) ? 1.0f : -1.0f;
+        v.xy_mul[0] = 2.0f * p33 / p00;
+        v.xy_add[0] = (-p33 - p03) / p00;
+        v.xy_mul[1] = -2.0f * p33 / p11;
+        v.xy_add[1] = (p33 - p13) / p11;
+        /* d = (p22 h z + p23) / p33  =>  z = (p33 d - p23) / (h p22), measured from the eye plane,
+         * or from the near plane when that lies behind the eye (z >= 0 is in front). */
+        const float near_d = in->depth_reversed ? 1.0f : 0.0f;
+        const float near_z = (p33 * near_d - p23) / (v.h * p22);
+        const float shift = near_z < 0.0f ? near_z : 0.0f;
+        v.z_num[0] = -p23 - shift * v.h * p22;
+        v.z_num[1] = p33;
+        v.z_den[0] = v.h * p22;
+    }
+    return v;
+}
+
+/* View-space scale that keeps the far plane inside half's range (see cacaoi_fill_constants), but
+ * never pushes the near plane into half's subnormals. */
+static float view_scale(const projection_view *v) {
+    double z_far = 0.0, z_near = INFINITY;
+    for (int d = 0; d <= 1; ++d) {
+        const double z = ((double)v->z_num[0] + v->z_num[1] * d) / ((double)v->z_den[0] + v->z_den[1] * d);
+        if (isfinite(z) && z > 0.0) z_far = fmax(z_far, z), z_near = fmin(z_near, z);
+    }
+    const double limit = 60000.0, smallest_normal = 6.2e-5;
+    if (!(z_far > limit)) return 1.0f;
+    double k = limit / z_far;
+    if (isfinite(z_near) && z_near * k < smallest_normal) k = fmin(1.0, smallest_normal / z_near);
+    return (float)k;
+}
+
 cacao_result cacaoi_check_projection(const cacao_inputs *in, char *error, size_t error_size) {
     for (int i = 0; i < 16; ++i) {
         if (!isfinite(in->projection[i])) {
@@ -28,16 +92,56 @@ cacao_result cacaoi_check_projection(const cacao_inputs *in, char *error, size_t
         }
     }
     const bool rm = in->matrices_row_major;
-    if (!(mat_at(in->projection, rm, 0, 0) > 0.0f) || !(mat_at(in->projection, rm, 1, 1) > 0.0f)) {
+#define P(r, c) mat_at(in->projection, rm, r, c)
+    if (!(P(0, 0) > 0.0f) || !(P(1, 1) > 0.0f)) {
         cacaoi_set_error(error, error_size,
                         "inputs.projection: P(0,0) and P(1,1) must be positive (clip y up; check matrices_row_major)");
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
-    if (mat_at(in->projection, rm, 2, 3) == 0.0f) {
+    if (P(0, 1) != 0.0f || P(1, 0) != 0.0f || P(2, 0) != 0.0f || P(2, 1) != 0.0f || P(3, 0) != 0.0f ||
+        P(3, 1) != 0.0f) {
         cacaoi_set_error(error, error_size,
-                        "inputs.projection: P(2,3) is 0, so depth cannot be linearised (not a perspective projection)");
+                        "inputs.projection: P(0,1), P(1,0), P(2,0), P(2,1), P(3,0) and P(3,1) must be 0 (a skewed or "
+                        "rotated projection is not supported; check matrices_row_major)");
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
+    const bool ortho = P(3, 2) == 0.0f;
+    if (!ortho) {
+        if (P(3, 3) != 0.0f || P(0, 3) != 0.0f || P(1, 3) != 0.0f) {
+            cacaoi_set_error(error, error_size,
+                            "inputs.projection: P(3,2) != 0 (perspective) needs P(3,3), P(0,3) and P(1,3) to be 0");
+            return CACAO_ERROR_INVALID_ARGUMENT;
+        }
+        if (P(2, 3) == 0.0f) {
+            cacaoi_set_error(
+                error, error_size,
+                "inputs.projection: P(2,3) is 0, so depth cannot be linearised (not a perspective projection)");
+            return CACAO_ERROR_INVALID_ARGUMENT;
+        }
+    } else {
+        if (!(P(3, 3) > 0.0f) || P(2, 2) == 0.0f) {
+            cacaoi_set_error(error, error_size,
+                            "inputs.projection: P(3,2) is 0 (orthographic), which needs P(3,3) > 0 and P(2,2) != 0");
+            return CACAO_ERROR_INVALID_ARGUMENT;
+        }
+        if (P(0, 2) != 0.0f || P(1, 2) != 0.0f) {
+            cacaoi_set_error(error, error_size,
+                            "inputs.projection: orthographic with P(0,2) or P(1,2) != 0 (oblique) is not supported; "
+                            "offset an orthographic frustum with P(0,3), P(1,3)");
+            return CACAO_ERROR_INVALID_ARGUMENT;
+        }
+    }
+#undef P
+    /* Every constant derived below must be a finite number (no overflow for extreme matrices). */
+    const projection_view v = projection_view_of(in);
+    const float all[] = {v.xy_mul[0], v.xy_mul[1], v.xy_add[0], v.xy_add[1],
+                         v.z_num[0],  v.z_num[1],  v.z_den[0],  v.z_den[1]};
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; ++i)
+        if (!isfinite(all[i])) {
+            cacaoi_set_error(error, error_size,
+                            "inputs.projection: too extreme for single precision (derived unprojection is not finite)");
+            return CACAO_ERROR_INVALID_ARGUMENT;
+        }
     if (!isfinite(in->normals_unpack_mul) || !isfinite(in->normals_unpack_add)) {
         cacaoi_set_error(error, error_size, "inputs.normals_unpack_mul/add must be finite numbers");
         return CACAO_ERROR_INVALID_ARGUMENT;
@@ -68,44 +172,51 @@ void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao
     const bool rm = in->matrices_row_major;
     memset(c, 0, sizeof *c);
 
-    /* Depth linearisation: z = M / (A - d); the sign fix makes RH and reversed-Z work. */
-    const float depth_mul = -mat_at(in->projection, rm, 2, 3);
-    float depth_add = mat_at(in->projection, rm, 2, 2);
-    if (depth_mul * depth_add < 0.0f) depth_add = -depth_add;
-    c->depth_unpack = v2(depth_mul, depth_add);
-
-    const float tan_y = 1.0f / mat_at(in->projection, rm, 1, 1);
-    const float tan_x = 1.0f / mat_at(in->projection, rm, 0, 0);
-    c->camera_tan_half_fov = v2(tan_x, tan_y);
-    c->ndc_to_view_mul = v2(2.0f * tan_x, -2.0f * tan_y);
-    c->ndc_to_view_add = v2(-tan_x, tan_y);
-    c->depth_uv_to_view_mul = c->ndc_to_view_mul; /* depth size == output size */
+    const projection_view v = projection_view_of(in);
+    /* The deinterleaved view z is R16F (largest value 65504): when the far plane lies beyond that,
+     * the whole view space is scaled by k < 1 (positions, radius, fade-out, near limit, bilateral
+     * distance), which AO does not see; half's relative precision is the same at every scale.
+     * k stays 1 for a far plane within range and for an infinite one. */
+    const float k = view_scale(&v);
+    c->depth_unpack = v2(k * v.z_num[0], v.z_den[0]);
+    c->depth_unpack_d = v2(k * v.z_num[1], v.z_den[1]);
+    c->view_xy_z = v.ortho ? v2(0.0f, 1.0f) : v2(1.0f, 0.0f);
+    const float xy_k = v.ortho ? k : 1.0f; /* perspective xy scale with z already */
+    c->ndc_to_view_mul = v2(xy_k * v.xy_mul[0], xy_k * v.xy_mul[1]);
+    c->ndc_to_view_add = v2(xy_k * v.xy_add[0], xy_k * v.xy_add[1]);
+    c->camera_tan_half_fov = v2(0.5f * v.xy_mul[0], -0.5f * v.xy_mul[1]); /* ortho: half extents */
+    c->depth_uv_to_view_mul = c->ndc_to_view_mul;                         /* depth size == output size */
     c->depth_uv_to_view_add = c->ndc_to_view_add;
+    const float tan_y = c->camera_tan_half_fov.y;
+    /* Depth edges compare depth differences with a fraction of a depth; orthographic pixels all
+     * have one footprint, that of a perspective pixel at the depth where a 60-degree fov has it. */
+    c->edge_depth = v.ortho ? v2(0.0f, xy_k * tan_y / 0.57735027f) : v2(1.0f, 0.0f);
 
     const unsigned quality = cacaoi_key_quality(s->quality);
     float radius = fminf(fmaxf(s->radius, 0.0f), 100000.0f);
     if (quality == CACAO_KEY_QUALITY_LOWEST) radius *= (float)CACAO_LOWEST_RADIUS_FACTOR;
+    radius *= k;
     c->effect_radius = radius;
     c->effect_shadow_strength = fminf(fmaxf(s->shadow_multiplier * (float)CACAO_STRENGTH_MULTIPLIER, 0.0f), 10.0f);
     c->effect_shadow_pow = fminf(fmaxf(s->shadow_power, 0.0f), 10.0f);
     c->effect_shadow_clamp = fminf(fmaxf(s->shadow_clamp, 0.0f), 1.0f);
-    c->effect_fade_out_mul = -1.0f / (s->fade_out_to - s->fade_out_from);
+    c->effect_fade_out_mul = -1.0f / (k * (s->fade_out_to - s->fade_out_from));
     c->effect_fade_out_add = s->fade_out_from / (s->fade_out_to - s->fade_out_from) + 1.0f;
     c->effect_horizon_angle_threshold = fminf(fmaxf(s->horizon_angle_threshold, 0.0f), 1.0f);
     /* Near limit from the raw radius, not the LOWEST-reduced one ([quirk] NEARLIMIT-RAW-RADIUS). */
-    float near_limit = s->radius * (float)CACAO_NEAR_LIMIT_RADIUS_FACTOR;
+    float near_limit = k * s->radius * (float)CACAO_NEAR_LIMIT_RADIUS_FACTOR;
     if (quality <= CACAO_KEY_QUALITY_LOW) near_limit *= (float)CACAO_LOW_NEAR_LIMIT_FACTOR;
     near_limit /= tan_y;
-    c->effect_sampling_radius_near_limit_rec = 1.0f / near_limit;
+    /* Orthographic: the footprint does not grow near the camera, so no near limit (factor 1). */
+    c->effect_sampling_radius_near_limit_rec = v.ortho ? 1.0e30f : 1.0f / near_limit;
     c->depth_precision_offset_mod = (float)CACAO_DEPTH_PRECISION_OFFSET_MOD;
     c->neg_rec_effect_radius = -1.0f / radius;
-    c->load_counter_avg_div =
-        (float)(9.0 / ((double)plan->importance_width * (double)plan->importance_height * 255.0));
+    c->load_counter_avg_div = (float)(9.0 / ((double)plan->importance_width * (double)plan->importance_height * 255.0));
     c->adaptive_sample_count_limit = s->adaptive_quality_limit;
     c->inv_sharpness = fminf(fmaxf(1.0f - s->sharpness, 0.0f), 1.0f);
     c->slice_count = (int)plan->slice_count;
     c->bilateral_sigma_squared = s->bilateral_sigma_squared;
-    c->bilateral_similarity_distance_sigma = s->bilateral_similarity_distance_sigma;
+    c->bilateral_similarity_distance_sigma = s->bilateral_similarity_distance_sigma * k * k;
     const bool default_unpack = in->normals_unpack_mul == 0.0f && in->normals_unpack_add == 0.0f;
     c->normals_unpack_mul = default_unpack ? 2.0f : in->normals_unpack_mul;
     c->normals_unpack_add = default_unpack ? -1.0f : in->normals_unpack_add;

@@ -4,6 +4,8 @@
  *   cli_tool scene DIR W H        the default scene at WxH as a scene folder (depth.pfm,
  *                                 depth_reversed.pfm, normals.pfm, camera.json)
  *   cli_tool plane DIR W H        a plane facing the camera, filling the view, as a scene folder
+ *   cli_tool ortho DIR W H        the default scene through an orthographic lens, as a scene folder
+ *   cli_tool offcentre DIR W H    the same through a quarter-width off-centre perspective lens
  *   cli_tool const FILE W H V     a 1-channel image of W x H, every pixel V (format by extension)
  *   cli_tool convert IN OUT [8]   re-writes an image in OUT's format (.png: 16-bit, or 8-bit with 8)
  *   cli_tool truncate IN OUT N    copies the first N bytes of IN
@@ -58,11 +60,11 @@ static void add_matrix(cJSON *root, const char *name, const float m[16]) {
     for (int i = 0; i < 16; ++i) cJSON_AddItemToArray(array, cJSON_CreateNumber(m[i]));
 }
 
-static bool write_camera(const char *dir, const cacao_scene *scene) {
+static bool write_camera(const char *dir, const cacao_scene *scene, const cacao_lens *lens) {
     const cacao_camera *c = &scene->camera;
     float p[16], pr[16];
-    cacao_camera_projection(c, false, p);
-    cacao_camera_projection(c, true, pr);
+    cacao_camera_projection_lens(c, lens, false, p);
+    cacao_camera_projection_lens(c, lens, true, pr);
     cJSON *root = cJSON_CreateObject();
     cJSON_AddNumberToObject(root, "width", c->width);
     cJSON_AddNumberToObject(root, "height", c->height);
@@ -83,12 +85,12 @@ static bool write_camera(const char *dir, const cacao_scene *scene) {
     return ok;
 }
 
-static int write_scene_folder(const char *dir, const cacao_scene *scene) {
+static int write_scene_folder(const char *dir, const cacao_scene *scene, const cacao_lens *lens) {
     const uint32_t w = scene->camera.width, h = scene->camera.height;
     cacao_img depth = {w, h, 1, malloc(sizeof(float) * w * h)};
     cacao_img reversed = {w, h, 1, malloc(sizeof(float) * w * h)};
     cacao_img normals = {w, h, 3, malloc(sizeof(float) * 3 * w * h)};
-    cacao_scene_render(scene, depth.data, reversed.data, normals.data);
+    cacao_scene_render_lens(scene, lens, depth.data, reversed.data, normals.data);
     char path[4096], err[512] = "cannot write camera.json";
     bool ok = true;
     snprintf(path, sizeof path, "%s/depth.pfm", dir);
@@ -97,7 +99,7 @@ static int write_scene_folder(const char *dir, const cacao_scene *scene) {
     ok = ok && cacao_pfm_write(path, &reversed, err, sizeof err);
     snprintf(path, sizeof path, "%s/normals.pfm", dir);
     ok = ok && cacao_pfm_write(path, &normals, err, sizeof err);
-    ok = ok && write_camera(dir, scene);
+    ok = ok && write_camera(dir, scene, lens);
     cacao_img_free(&depth);
     cacao_img_free(&reversed);
     cacao_img_free(&normals);
@@ -108,7 +110,16 @@ static int make_scene(const char *dir, uint32_t w, uint32_t h, bool plane) {
     static const cacao_prim facing[] = {{CACAO_PRIM_PLANE, {0, 0, -6}, {0, 0, 1}, 0}};
     cacao_scene scene = cacao_default_scene(w, h);
     if (plane) scene = (cacao_scene){facing, 1, {w, h, 60.0, 0.1, 100.0, {0, 0, 0}, {0, 0, -1}, {0, 1, 0}}, 1.0};
-    return write_scene_folder(dir, &scene);
+    const cacao_lens centred = {0};
+    return write_scene_folder(dir, &scene, &centred);
+}
+
+/* The default scene through an orthographic lens (half height 5) or a quarter-width off-centre
+ * perspective one, with their projection matrices in camera.json. */
+static int make_lens_scene(const char *dir, uint32_t w, uint32_t h, bool ortho) {
+    const cacao_scene scene = cacao_default_scene(w, h);
+    const cacao_lens lens = {.ortho_half_height = ortho ? 5.0 : 0.0, .jitter_ndc = {ortho ? 0.0 : 0.5, 0.0}};
+    return write_scene_folder(dir, &scene, &lens);
 }
 
 static int make_const(const char *path, uint32_t w, uint32_t h, float value) {
@@ -197,6 +208,8 @@ int main(int argc, char **argv) {
     const char *cmd = argc > 1 ? argv[1] : "";
     if ((strcmp(cmd, "scene") == 0 || strcmp(cmd, "plane") == 0) && argc == 5)
         return make_scene(argv[2], (uint32_t)atoi(argv[3]), (uint32_t)atoi(argv[4]), cmd[0] == 'p');
+    if ((strcmp(cmd, "ortho") == 0 || strcmp(cmd, "offcentre") == 0) && argc == 5)
+        return make_lens_scene(argv[2], (uint32_t)atoi(argv[3]), (uint32_t)atoi(argv[4]), strcmp(cmd, "ortho") == 0);
     if (strcmp(cmd, "const") == 0 && argc == 6)
         return make_const(argv[2], (uint32_t)atoi(argv[3]), (uint32_t)atoi(argv[4]), strtof(argv[5], NULL));
     if (strcmp(cmd, "convert") == 0 && (argc == 4 || argc == 5)) return convert(argv[2], argv[3], argc == 5 ? 8 : 16);

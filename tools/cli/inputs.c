@@ -86,7 +86,8 @@ static bool read_normals_image(const char *path, cacao_img *out, char *err, size
  * it and no --fov/--near/--far overrides it, else the scenes' perspective built from the
  * effective fov/near/far with aspect = width/height. */
 static bool build_projection(const cli_options *o, const cacao_camera_file *file, const char *camera_path,
-                             uint32_t width, uint32_t height, float out[16], char *err, size_t n) {
+                             uint32_t width, uint32_t height, float out[16], char *source, size_t source_size,
+                             char *err, size_t n) {
     const bool overridden = o->fov_y_deg > 0 || o->near_z > 0 || o->far_z > 0;
     const double fov = o->fov_y_deg > 0 ? o->fov_y_deg : file ? file->fov_y_deg : 0;
     const double near_z = o->near_z > 0 ? o->near_z : file ? file->near_z : 0;
@@ -106,10 +107,18 @@ static bool build_projection(const cli_options *o, const cacao_camera_file *file
         return false;
     }
     const bool has_matrix = file && (o->reverse_z ? file->has_projection_reversed : file->has_projection);
-    if (has_matrix && !overridden)
+    if (has_matrix && !overridden) {
         memcpy(out, o->reverse_z ? file->projection_reversed : file->projection, 16 * sizeof(float));
-    else
+        snprintf(source, source_size, "%s: field '%s'", camera_path,
+                 o->reverse_z ? "projection_reversed" : "projection");
+    } else {
         cacao_perspective(fov, (double)width / height, near_z, far_z, o->reverse_z, out);
+        if (overridden)
+            snprintf(source, source_size, "--fov/--near/--far (fov %g, near %g, far %g)", fov, near_z, far_z);
+        else
+            snprintf(source, source_size, "%s: fields 'fov_y_deg', 'near', 'far' (%g, %g, %g)", camera_path, fov,
+                     near_z, far_z);
+    }
     return true;
 }
 
@@ -137,6 +146,7 @@ static bool load_default_scene(const cli_options *o, cli_inputs *in, char *err, 
     cacao_scene_render(scene, standard, o->reverse_z ? in->depth.data : NULL, in->normals.data);
     if (standard != in->depth.data) free(standard);
     cacao_camera_projection(&scene->camera, o->reverse_z, in->projection);
+    snprintf(in->projection_source, sizeof in->projection_source, "the default scene's camera");
     in->ao_radius_world = scene->ao_radius_world;
     return true;
 }
@@ -175,7 +185,7 @@ static bool load_files(const cli_options *o, const char *depth_path, const char 
     if (!check_same_size(&in->depth, &in->normals, depth_path, normals_path, err, n)) return false;
     in->ao_radius_world = camera_path ? camera.ao_radius_world : 0.0;
     return build_projection(o, camera_path ? &camera : NULL, camera_path, in->depth.width, in->depth.height,
-                            in->projection, err, n);
+                            in->projection, in->projection_source, sizeof in->projection_source, err, n);
 }
 
 static bool load_scene_dir(const cli_options *o, cli_inputs *in, char *err, size_t n) {
@@ -210,12 +220,10 @@ static bool check_source_flags(const cli_options *o, char *err, size_t n) {
 bool cli_inputs_load(const cli_options *o, cli_inputs *in, char *err, size_t n) {
     memset(in, 0, sizeof *in);
     bool ok = check_source_flags(o, err, n);
-    if (ok && o->scene_dir)
-        ok = load_scene_dir(o, in, err, n);
-    else if (ok && o->depth_path)
-        ok = load_files(o, o->depth_path, o->normals_path, o->camera_path, in, err, n);
-    else if (ok)
-        ok = load_default_scene(o, in, err, n);
+    if (ok && o->scene_dir) ok = load_scene_dir(o, in, err, n);
+    else if (ok && o->depth_path) ok = load_files(o, o->depth_path, o->normals_path, o->camera_path, in, err, n);
+    else if (ok) ok = load_default_scene(o, in, err, n);
+    in->depth_reversed = o->reverse_z;
     if (!ok) cli_inputs_free(in);
     return ok;
 }

@@ -13,6 +13,8 @@ typedef struct cli_inputs {
     cacao_img depth;          /* 1 channel, raw [0,1] depth in the run's convention */
     cacao_img normals;        /* 3 channels, right-handed view space; data NULL when none */
     float projection[16];     /* row-major, acting on column vectors */
+    bool depth_reversed;      /* --reverse-z: depth 1 is near (tells an orthographic matrix's convention) */
+    char projection_source[320]; /* the flags or camera file field the projection came from */
     double ao_radius_world;   /* the scene's radius; 0 = none given */
 } cli_inputs;
 

@@ -124,7 +124,10 @@ typedef struct render_result {
 } render_result;
 
 static vkdev_frame make_frame(const cli_inputs *in, const cacao_settings *encoded) {
-    vkdev_frame frame = {.width = in->depth.width, .height = in->depth.height, .depth = in->depth.data};
+    vkdev_frame frame = {.width = in->depth.width,
+                         .height = in->depth.height,
+                         .depth = in->depth.data,
+                         .depth_reversed = in->depth_reversed};
     memcpy(frame.projection, in->projection, sizeof frame.projection);
     if (in->normals.data && !encoded->generate_normals) vkdev_frame_set_view_normals(&frame, in->normals.data);
     return frame;
@@ -150,7 +153,10 @@ static bool run_on_device(vkdev *dev, const cli_options *o, const cli_inputs *in
     const cacao_result r = vkdev_run_timed(dev, encoded, &frame, o->warmup, o->repeat ? o->repeat : 1, out->ao.data,
                                            &out->timings, why, sizeof why);
     if (r == CACAO_SUCCESS) return true;
-    set_err(err, "%s: %s", cacao_result_string(r), why);
+    if (strncmp(why, "inputs.projection", 17) == 0) /* name what the user gave, then why */
+        set_err(err, "%s: the projection is refused (%s)", in->projection_source, why);
+    else
+        set_err(err, "%s: %s", cacao_result_string(r), why);
     return false;
 }
 

@@ -158,8 +158,9 @@ bool cacao_camera_json_read(const char *path, cacao_camera_file *out, char *err,
         snprintf(err, n, "%s: fields 'near' and 'far' must satisfy 0 < near < far", path);
         return false;
     }
-    if (out->ao_radius_world < 0) {
-        snprintf(err, n, "%s: field 'ao_radius_world' must not be negative", path);
+    if (out->ao_radius_world < 0 || !isfinite((float)out->ao_radius_world)) {
+        snprintf(err, n, "%s: field 'ao_radius_world' must be a non-negative number below 3.4e38 (single precision)",
+                 path);
         return false;
     }
     return true;

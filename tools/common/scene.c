@@ -41,12 +41,29 @@ static camera_frame camera_frame_of(const cacao_camera *cam) {
 }
 
 void cacao_camera_projection(const cacao_camera *cam, bool reversed, float out[16]) {
-    double t = tan(cam->fov_y_deg * (PI / 360.0));
+    const cacao_lens centred = {0};
+    cacao_camera_projection_lens(cam, &centred, reversed, out);
+}
+
+void cacao_camera_projection_lens(const cacao_camera *cam, const cacao_lens *lens, bool reversed, float out[16]) {
     double aspect = (double)cam->width / (double)cam->height;
     double n = cam->near_z, f = cam->far_z;
     for (int i = 0; i < 16; i++) out[i] = 0.0f;
+    if (lens->ortho_half_height > 0.0) { /* right-handed: z_view = -distance */
+        out[0] = (float)(1.0 / (aspect * lens->ortho_half_height));
+        out[5] = (float)(1.0 / lens->ortho_half_height);
+        out[3] = (float)lens->jitter_ndc[0];
+        out[7] = (float)lens->jitter_ndc[1];
+        out[10] = (float)(reversed ? 1.0 / (f - n) : -1.0 / (f - n));
+        out[11] = (float)(reversed ? f / (f - n) : -n / (f - n));
+        out[15] = 1.0f;
+        return;
+    }
+    double t = tan(cam->fov_y_deg * (PI / 360.0));
     out[0] = (float)(1.0 / (aspect * t));
     out[5] = (float)(1.0 / t);
+    out[2] = (float)-lens->jitter_ndc[0]; /* clip w = -z_view */
+    out[6] = (float)-lens->jitter_ndc[1];
     out[10] = (float)(reversed ? n / (f - n) : -f / (f - n));
     out[11] = (float)(reversed ? f * n / (f - n) : -f * n / (f - n));
     out[14] = -1.0f;
@@ -163,29 +180,41 @@ static bool intersect(const cacao_prim *p, vec3 origin, vec3 dir, double t_min, 
 
 void cacao_scene_render(const cacao_scene *scene, float *depth, float *depth_reversed,
                         float *normals) {
+    const cacao_lens centred = {0};
+    cacao_scene_render_lens(scene, &centred, depth, depth_reversed, normals);
+}
+
+void cacao_scene_render_lens(const cacao_scene *scene, const cacao_lens *lens, float *depth, float *depth_reversed,
+                             float *normals) {
     const cacao_camera *cam = &scene->camera;
     camera_frame frame = camera_frame_of(cam);
     vec3 eye = v3(cam->eye);
     double n = cam->near_z, f = cam->far_z;
+    const bool ortho = lens->ortho_half_height > 0.0;
+    const double sy = ortho ? lens->ortho_half_height : frame.tan_half_y;
+    const double sx = sy * ((double)cam->width / (double)cam->height);
     for (uint32_t y = 0; y < cam->height; y++) {
-        double view_y = (1.0 - 2.0 * ((y + 0.5) / cam->height)) * frame.tan_half_y;
+        double view_y = (1.0 - 2.0 * ((y + 0.5) / cam->height) - lens->jitter_ndc[1]) * sy;
         for (uint32_t x = 0; x < cam->width; x++) {
-            double view_x = (2.0 * ((x + 0.5) / cam->width) - 1.0) * frame.tan_half_x;
-            vec3 dir = sub(add(scale(frame.right, view_x), scale(frame.up, view_y)), frame.back);
+            double view_x = (2.0 * ((x + 0.5) / cam->width) - 1.0 - lens->jitter_ndc[0]) * sx;
+            vec3 across = add(scale(frame.right, view_x), scale(frame.up, view_y));
+            vec3 origin = ortho ? add(eye, across) : eye;
+            vec3 dir = ortho ? scale(frame.back, -1.0) : sub(across, frame.back);
 
             /* Closest hit in [near, far]; the far plane itself counts as inside. */
             hit best = {nextafter(f, INFINITY), {0, 0, 0}};
             bool any = false;
             for (uint32_t i = 0; i < scene->prim_count; i++) {
                 hit h;
-                if (intersect(&scene->prims[i], eye, dir, n, best.t, &h)) best = h, any = true;
+                if (intersect(&scene->prims[i], origin, dir, n, best.t, &h)) best = h, any = true;
             }
 
             size_t pixel = (size_t)y * cam->width + x;
             double z = best.t;
-            depth[pixel] = any ? (float)(f * (z - n) / (z * (f - n))) : 1.0f;
+            depth[pixel] = !any ? 1.0f : ortho ? (float)((z - n) / (f - n)) : (float)(f * (z - n) / (z * (f - n)));
             if (depth_reversed)
-                depth_reversed[pixel] = any ? (float)(n * (f - z) / (z * (f - n))) : 0.0f;
+                depth_reversed[pixel] =
+                    !any ? 0.0f : ortho ? (float)((f - z) / (f - n)) : (float)(n * (f - z) / (z * (f - n)));
             if (normals) {
                 vec3 view_normal = {0, 0, 0};
                 if (any) {

@@ -22,6 +22,15 @@ typedef struct cacao_camera {
     double up[3];            /* world up hint, not parallel to target - eye */
 } cacao_camera;
 
+/* How a camera projects, beyond the plain centred perspective: all zero is that. */
+typedef struct cacao_lens {
+    /* > 0 makes the camera orthographic with this half height (world units; fov_y_deg unused). */
+    double ortho_half_height;
+    /* A frustum offset in NDC units (x right, y up), as a TAA jitter or an asymmetric frustum:
+     * image content moves by jitter_ndc * size / 2 pixels, right and up. */
+    double jitter_ndc[2];
+} cacao_lens;
+
 typedef enum cacao_prim_kind {
     CACAO_PRIM_PLANE,  /* infinite plane through a with normal b (any length) */
     CACAO_PRIM_BOX,    /* solid axis-aligned box from corner a (min) to corner b (max) */
@@ -53,9 +62,17 @@ typedef struct cacao_scene {
 void cacao_scene_render(const cacao_scene *scene, float *depth, float *depth_reversed,
                         float *normals);
 
+/* The same through a lens: orthographic depth is d = (z-near)/(far-near), d_r = 1 - d. */
+void cacao_scene_render_lens(const cacao_scene *scene, const cacao_lens *lens, float *depth, float *depth_reversed,
+                             float *normals);
+
 /* The README's projection (reversed = false: standard depth; true: reverse-Z), row-major 4x4
  * acting on column vectors: clip = P * (x, y, z, 1) in view space, clip.w = -Z_view. */
 void cacao_camera_projection(const cacao_camera *cam, bool reversed, float out[16]);
+
+/* The same through a lens (an orthographic one has P(3,2) = 0, P(3,3) = 1; a jitter lands in
+ * P(0,2), P(1,2), or P(0,3), P(1,3) when orthographic). */
+void cacao_camera_projection_lens(const cacao_camera *cam, const cacao_lens *lens, bool reversed, float out[16]);
 
 /* World to view space, row-major 4x4 acting on column vectors: rows [right; up; back], translation
  * -R * eye, with back = normalize(eye - target), right = normalize(up_hint x back). */

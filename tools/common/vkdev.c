@@ -511,6 +511,7 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
         .normals = {normals.image, normals.view, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
         .output = {output.image, output.view, out_format, VK_IMAGE_LAYOUT_GENERAL},
         .matrices_row_major = true,
+        .depth_reversed = frame->depth_reversed,
         .normals_unpack_mul = frame->normals_unpack_mul,
         .normals_unpack_add = frame->normals_unpack_add,
         .timestamp_query_pool = dev->timestamps,

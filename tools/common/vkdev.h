@@ -49,6 +49,7 @@ typedef struct vkdev_frame {
     const float *depth;        /* width*height raw depth, row 0 = top */
     const float *normals;      /* width*height*3 or NULL */
     float projection[16];      /* row-major, column vectors (scenes' camera.json convention) */
+    bool depth_reversed;       /* cacao_inputs.depth_reversed (orthographic projections) */
     float normals_to_view[16]; /* row-major; zero = identity */
     float normals_unpack_mul, normals_unpack_add;
     VkFormat output_format;    /* 0 = R32_SFLOAT */

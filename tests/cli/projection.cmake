@@ -1,0 +1,33 @@
+# Projections through camera.json: an orthographic scene folder (the default scene through an
+# orthographic lens, its projection / projection_reversed matrices in camera.json) gives the same
+# AO for standard and reverse-Z depth (mean |diff| below 0.5/255) and real occlusion (mean AO
+# clearly below 1: an orthographic camera once got none at all); an off-centre (quarter-width)
+# perspective folder likewise. Degenerate cameras are refused naming the flag or the camera field.
+include(${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake)
+set(HALF_STEP 0.00196)
+file(MAKE_DIRECTORY ${WORK}/ortho ${WORK}/offcentre)
+tool(ignored ortho ${WORK}/ortho 160 90)
+tool(ignored offcentre ${WORK}/offcentre 160 90)
+tool(ignored const ${WORK}/white.pfm 160 90 1)
+foreach(kind ortho offcentre)
+  cacao_ok(std --scene ${WORK}/${kind} --validate -o ${WORK}/${kind}_std.pfm)
+  cacao_ok(rev --scene ${WORK}/${kind} --validate --reverse-z -o ${WORK}/${kind}_rev.pfm)
+  mean_abs_diff(d ${WORK}/${kind}_std.pfm ${WORK}/${kind}_rev.pfm)
+  expect_between("${kind}: standard vs reverse-Z, mean |diff|" ${d} 0 ${HALF_STEP})
+  mean_abs_diff(occ ${WORK}/${kind}_std.pfm ${WORK}/white.pfm)
+  expect_between("${kind}: mean occlusion (1 - AO)" ${occ} 0.01 0.5)
+endforeach()
+
+function(expect_error needle)
+  cacao_run(r --validate -o ${WORK}/refused.png ${ARGN})
+  string(FIND "${r_err}" "${needle}" at)
+  if(r_rc EQUAL 0 OR at EQUAL -1 OR EXISTS ${WORK}/refused.png)
+    message(FATAL_ERROR "cacao ${ARGN}: exit ${r_rc}, stderr '${r_err}', expected an error naming '${needle}'")
+  endif()
+endfunction()
+expect_error("--fov/--near/--far (fov 1e-300" --depth ${ROOM}/depth.pfm --fov 1e-300 --near 0.1 --far 100)
+expect_error("--fov/--near/--far (fov 60, near 1e-308" --depth ${ROOM}/depth.pfm --fov 60 --near 1e-308 --far 1e308)
+file(WRITE ${WORK}/big_radius.json "{\"fov_y_deg\": 60, \"near\": 0.1, \"far\": 500, \"ao_radius_world\": 1e39}")
+expect_error("field 'ao_radius_world'" --depth ${ROOM}/depth.pfm --camera ${WORK}/big_radius.json)
+file(WRITE ${WORK}/skewed.json "{\"fov_y_deg\": 60, \"near\": 0.1, \"far\": 500, \"projection\": [1,0.5,0,0, 0,1.7,0,0, 0,0,-1,-0.2, 0,0,-1,0]}")
+expect_error("skewed.json: field 'projection'" --depth ${ROOM}/depth.pfm --camera ${WORK}/skewed.json)
