@@ -399,14 +399,28 @@ vec3 load_normal_or_zero(ivec2 p, ivec2 s, int layer)
     return in_rect(p, s) ? texelFetch(normals, ivec3(p, layer), 0).xyz : vec3(0.0);
 }
 
+/* floor(a / b) for 0 <= a < 2^24, 0 < b < 2^24: a float division (vectorises, unlike an integer
+ * one on a CPU device) and one correction step either way, which makes it exact. */
+ivec2 div_floor(ivec2 a, ivec2 b)
+{
+    ivec2 q = ivec2(vec2(a) / vec2(b));
+    q -= ivec2(greaterThan(q * b, a));
+    q += ivec2(lessThanEqual((q + 1) * b, a));
+    return q;
+}
+
 /* ViewspaceDepthTap (point, clamp, explicit LOD) at the centre of slice texel p, emulated with
- * integer math: the texel of level L that covers UV (p + 0.5)/S. */
+ * integer math: the texel of level L that covers UV (p + 0.5)/S (at level 0: p itself). */
 float depth_tap(ivec2 p, int level, ivec2 s, int layer)
 {
     ivec2 pc = clamp(p, ivec2(0), s - 1);
+#if GEN_Q >= 2
     ivec2 sl = max(s >> level, ivec2(1));
-    ivec2 tl = min(((2 * pc + 1) * sl) / (2 * s), sl - 1);
+    ivec2 tl = min(div_floor((2 * pc + 1) * sl, 2 * s), sl - 1);
     return texelFetch(depths, ivec3(tl, layer), level).r;
+#else
+    return texelFetch(depths, ivec3(pc, layer), 0).r;
+#endif
 }
 
 /* Nearest mip for an explicit LOD, with Vulkan's round-half-down: ceil(lod + 0.5) - 1. */
