@@ -323,8 +323,10 @@ void main()
 #else
     /* 4x4 neighbourhood without corners; pos[j][i] = column i, row j. */
     vec3 pos[4][4];
-    for (int j = 0; j < 4; ++j) {
-        for (int i = 0; i < 4; ++i) {
+    /* fully unrolled: with constant indices the array lives in registers (a dynamically indexed
+     * local array is copied to memory on lavapipe) */
+    [[unroll]] for (int j = 0; j < 4; ++j) {
+        [[unroll]] for (int i = 0; i < 4; ++i) {
             pos[j][i] = vec3(0.0);
             if ((i == 0 || i == 3) && (j == 0 || j == 3)) continue;
             ivec2 o = ivec2(i - 1, j - 1);
@@ -341,8 +343,9 @@ void main()
         }
     }
 
-    for (int layer = 0; layer < cb.slice_count; ++layer) {
-        int k = slice_of_layer(layer);
+    [[unroll]] for (int k = 0; k < 4; ++k) {
+        if (cb.slice_count == 2 && (k == 1 || k == 2)) continue; /* LOWEST: slices 0 and 3 */
+        int layer = cb.slice_count == 2 ? k / 3 : k;
         int ci = 1 + (k & 1), cj = 1 + (k >> 1); /* centre (1,1) slice 0 ... (2,2) slice 3 */
         vec3 pc = pos[cj][ci];
         vec3 pl = pos[cj][ci - 1], pr = pos[cj][ci + 1];
