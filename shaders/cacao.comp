@@ -445,7 +445,7 @@ void accumulate_tap(vec4 s, bool use_pattern_weight, ivec2 xy, vec2 uvd, vec2 in
 #else
     int level = 0;
 #endif
-    for (int side = 0; side < 2; ++side) {
+    [[unroll]] for (int side = 0; side < 2; ++side) {
         ivec2 os = side == 0 ? o : -o;
         vec2 uv = uvd + vec2(os) * inv_s;
         float z = depth_tap(xy + os, level, size, layer);
@@ -536,7 +536,7 @@ void main()
 
     /* 9. taps */
 #if GEN_TAPS > 0
-    for (int i = 0; i < GEN_TAPS; ++i)
+    [[unroll]] for (int i = 0; i < GEN_TAPS; ++i)
         accumulate_tap(pattern_entry(i), true, xy, uvd, inv_s, size, layer, max_level, rot_scale,
                        mip_offset, pc, n, falloff, obsc_sum, weight_sum);
 #endif
@@ -881,21 +881,22 @@ void main()
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
     ivec2 l = ivec2(gl_LocalInvocationID.xy);
     float zf[4];
-    for (int o = 0; o < 4; ++o) zf[o] = view_z(load_src_depth_or_zero(2 * t + ivec2(o & 1, o >> 1)));
+    [[unroll]] for (int o = 0; o < 4; ++o) zf[o] = view_z(load_src_depth_or_zero(2 * t + ivec2(o & 1, o >> 1)));
 
     rfloat centre = up_value[(l.y + 2) * UP_TABLE + l.x + 2];
     rfloat tot[4], wsum[4];
-    for (int o = 0; o < 4; ++o) {
+    [[unroll]] for (int o = 0; o < 4; ++o) {
         tot[o] = rfloat(CACAO_BILATERAL_EPSILON) * centre;
         wsum[o] = rfloat(CACAO_BILATERAL_EPSILON);
     }
-    for (int y = -2; y <= 2; ++y) {
-        for (int x = -2; x <= 2; ++x) {
+    /* fully unrolled: tot[] and wsum[] stay in registers */
+    [[unroll]] for (int y = -2; y <= 2; ++y) {
+        [[unroll]] for (int x = -2; x <= 2; ++x) {
             int idx = (l.y + 2 + y) * UP_TABLE + (l.x + 2 + x);
             rfloat v = up_value[idx];
             float zq = up_depth[idx];
             bool valid = zq > -1.0e29;
-            for (int o = 0; o < 4; ++o) {
+            [[unroll]] for (int o = 0; o < 4; ++o) {
                 float dx = float(x) - 0.5 * float(o & 1);
                 float dy = float(y) - 0.5 * float(o >> 1);
                 float ws = exp(-(dx * dx + dy * dy) / cb.bilateral_sigma_squared);
@@ -909,7 +910,7 @@ void main()
     }
 
     ivec2 out_size = imageSize(output_image);
-    for (int o = 0; o < 4; ++o) {
+    [[unroll]] for (int o = 0; o < 4; ++o) {
         ivec2 p = 2 * t + ivec2(o & 1, o >> 1);
         if (in_rect(p, out_size)) imageStore(output_image, p, vec4(float(tot[o] / wsum[o]), 0.0, 0.0, 0.0));
     }
