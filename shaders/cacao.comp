@@ -1,5 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : enable
+#extension GL_EXT_control_flow_attributes : enable
 #if defined(CACAO_FP16) && CACAO_FP16 == 1
 #extension GL_EXT_shader_explicit_arithmetic_types_float16 : enable
 #endif
@@ -326,8 +327,10 @@ void main()
 #else
     /* 4x4 neighbourhood without corners; pos[j][i] = column i, row j. */
     vec3 pos[4][4];
-    for (int j = 0; j < 4; ++j) {
-        for (int i = 0; i < 4; ++i) {
+    /* fully unrolled: with constant indices the array lives in registers (a dynamically indexed
+     * local array is copied to memory on lavapipe) */
+    [[unroll]] for (int j = 0; j < 4; ++j) {
+        [[unroll]] for (int i = 0; i < 4; ++i) {
             pos[j][i] = vec3(0.0);
             if ((i == 0 || i == 3) && (j == 0 || j == 3)) continue;
             ivec2 o = ivec2(i - 1, j - 1);
@@ -344,8 +347,9 @@ void main()
         }
     }
 
-    for (int layer = 0; layer < cb.slice_count; ++layer) {
-        int k = slice_of_layer(layer);
+    [[unroll]] for (int k = 0; k < 4; ++k) {
+        if (cb.slice_count == 2 && (k == 1 || k == 2)) continue; /* LOWEST: slices 0 and 3 */
+        int layer = cb.slice_count == 2 ? k / 3 : k;
         int ci = 1 + (k & 1), cj = 1 + (k >> 1); /* centre (1,1) slice 0 ... (2,2) slice 3 */
         vec3 pc = pos[cj][ci];
         vec3 pl = pos[cj][ci - 1], pr = pos[cj][ci + 1];
@@ -402,14 +406,28 @@ vec3 load_normal_or_zero(ivec2 p, ivec2 s, int layer)
     return in_rect(p, s) ? texelFetch(normals, ivec3(p, layer), 0).xyz : vec3(0.0);
 }
 
+/* floor(a / b) for 0 <= a < 2^24, 0 < b < 2^24: a float division (vectorises, unlike an integer
+ * one on a CPU device) and one correction step either way, which makes it exact. */
+ivec2 div_floor(ivec2 a, ivec2 b)
+{
+    ivec2 q = ivec2(vec2(a) / vec2(b));
+    q -= ivec2(greaterThan(q * b, a));
+    q += ivec2(lessThanEqual((q + 1) * b, a));
+    return q;
+}
+
 /* ViewspaceDepthTap (point, clamp, explicit LOD) at the centre of slice texel p, emulated with
- * integer math: the texel of level L that covers UV (p + 0.5)/S. */
+ * integer math: the texel of level L that covers UV (p + 0.5)/S (at level 0: p itself). */
 float depth_tap(ivec2 p, int level, ivec2 s, int layer)
 {
     ivec2 pc = clamp(p, ivec2(0), s - 1);
+#if GEN_Q >= 2
     ivec2 sl = max(s >> level, ivec2(1));
-    ivec2 tl = min(((2 * pc + 1) * sl) / (2 * s), sl - 1);
+    ivec2 tl = min(div_floor((2 * pc + 1) * sl, 2 * s), sl - 1);
     return texelFetch(depths, ivec3(tl, layer), level).r;
+#else
+    return texelFetch(depths, ivec3(pc, layer), 0).r;
+#endif
 }
 
 /* Nearest mip for an explicit LOD, with Vulkan's round-half-down: ceil(lod + 0.5) - 1. */
@@ -431,7 +449,7 @@ void accumulate_tap(vec4 s, bool use_pattern_weight, ivec2 xy, vec2 uvd, vec2 in
 #else
     int level = 0;
 #endif
-    for (int side = 0; side < 2; ++side) {
+    [[unroll]] for (int side = 0; side < 2; ++side) {
         ivec2 os = side == 0 ? o : -o;
         vec2 uv = uvd + vec2(os) * inv_s;
         float z = depth_tap(xy + os, level, size, layer);
@@ -522,7 +540,7 @@ void main()
 
     /* 9. taps */
 #if GEN_TAPS > 0
-    for (int i = 0; i < GEN_TAPS; ++i)
+    [[unroll]] for (int i = 0; i < GEN_TAPS; ++i)
         accumulate_tap(pattern_entry(i), true, xy, uvd, inv_s, size, layer, max_level, rot_scale,
                        mip_offset, pc, n, falloff, obsc_sum, weight_sum);
 #endif
@@ -640,31 +658,22 @@ void main()
 
 /* ============================== BLUR ============================== */
 #if CACAO_PASS == CACAO_PASS_BLUR
-/* spec: blur.md (padded-domain formulation, N Jacobi iterations in one dispatch) */
+/* spec: blur.md (padded-domain formulation, N Jacobi iterations in one dispatch).
+ * The padded tile (64x32 slice texels) is split into 4x2 blocks, one per thread. A thread keeps its
+ * block's values and edge weights in registers for all N iterations; shared memory only carries
+ * the values its neighbours need (one barrier per iteration, double-buffered). The inner
+ * (64-2N)x(32-2N) texels are exact: values at distance d from the padded border are wrong after
+ * d iterations at most, and the inner region is N away from it. */
 layout(local_size_x = CACAO_WG_BLUR_X, local_size_y = CACAO_WG_BLUR_Y) in;
 
 #define BLUR_N CACAO_BLUR_PASSES
-#define BLUR_P (CACAO_BLUR_TILE + 2 * BLUR_N) /* padded tile side */
-#define BLUR_ENTRIES (BLUR_P * BLUR_P)
-#define BLUR_THREADS (CACAO_WG_BLUR_X * CACAO_WG_BLUR_Y)
-#define BLUR_PER_THREAD ((BLUR_ENTRIES + BLUR_THREADS - 1) / BLUR_THREADS)
+#define BX CACAO_BLUR_BLOCK_X
+#define BY CACAO_BLUR_BLOCK_Y
+#define BLUR_PX (CACAO_WG_BLUR_X * BX) /* padded tile width */
+#define BLUR_PY (CACAO_WG_BLUR_Y * BY) /* padded tile height */
 
-/* N = 8: values 2 x 2304 x 4 B + edges 2304 x 4 B = 27 KiB (fp32); 9 + 18 KiB (fp16). */
-shared rfloat blur_values[2][BLUR_ENTRIES];
-#if CACAO_FP16 == 1
-shared f16vec4 blur_edges[BLUR_ENTRIES]; /* unpacked once: LRTB weights in [0,1] */
-#else
-shared uint blur_edges[BLUR_ENTRIES];    /* 8-bit packed edges, unpacked per iteration */
-#endif
-
-rvec4 blur_edge_weights(int i)
-{
-#if CACAO_FP16 == 1
-    return blur_edges[i];
-#else
-    return unpack_edge_bits(blur_edges[i]);
-#endif
-}
+/* 2 x 2048 values: 16 KiB (fp32), 8 KiB (fp16). */
+shared rfloat blur_values[2][BLUR_PY][BLUR_PX];
 
 rfloat blur_store_value(float v)
 {
@@ -679,59 +688,67 @@ void main()
 {
     ivec2 s = textureSize(ssao_in, 0).xy;
     int layer = int(gl_WorkGroupID.z);
-    ivec2 tile_origin = ivec2(gl_WorkGroupID.xy) * CACAO_BLUR_TILE;
-    int tid = int(gl_LocalInvocationIndex);
+    ivec2 tile_origin = ivec2(gl_WorkGroupID.xy) * ivec2(CACAO_BLUR_OUT_X(BLUR_N), CACAO_BLUR_OUT_Y(BLUR_N));
+    ivec2 b0 = ivec2(gl_LocalInvocationID.xy) * ivec2(BX, BY); /* block origin in the padded tile */
 
-    /* padded tile: value and packed edges both from the mirrored texel ([quirk] BLUR-BORDER-EDGES) */
-    for (int k = 0; k < BLUR_PER_THREAD; ++k) {
-        int i = tid + k * BLUR_THREADS;
-        if (i < BLUR_ENTRIES) {
-            ivec2 lp = ivec2(i % BLUR_P, i / BLUR_P);
-            ivec2 c = mirror_coord(tile_origin - BLUR_N + lp, s);
+    /* the block: value and edges both from the mirrored texel ([quirk] BLUR-BORDER-EDGES) */
+    rfloat v[BY][BX];
+    rvec4 e[BY][BX];
+    rfloat wsum[BY][BX];
+    float packed[BY][BX];
+    [[unroll]] for (int y = 0; y < BY; ++y) {
+        [[unroll]] for (int x = 0; x < BX; ++x) {
+            ivec2 c = mirror_coord(tile_origin - BLUR_N + b0 + ivec2(x, y), s);
             vec2 ae = texelFetch(ssao_in, ivec3(c, layer), 0).rg;
-            blur_values[0][i] = blur_store_value(ae.r);
-#if CACAO_FP16 == 1
-            blur_edges[i] = unpack_edges(ae.g);
-#else
-            blur_edges[i] = edges_bits(ae.g);
-#endif
+            v[y][x] = blur_store_value(ae.r);
+            packed[y][x] = ae.g;
+            e[y][x] = unpack_edges(ae.g);
+            wsum[y][x] = rfloat(CACAO_BLUR_CENTRE_WEIGHT) + e[y][x].x + e[y][x].y + e[y][x].z + e[y][x].w;
         }
     }
-    barrier();
 
-    /* N Jacobi iterations over the whole padded tile; reads past the tile clamp to it (such
-     * values never reach the inner 32x32 within N iterations). */
-    for (int it = 0; it < BLUR_N; ++it) {
-        int src = it & 1, dst = 1 - src;
-        for (int k = 0; k < BLUR_PER_THREAD; ++k) {
-            int i = tid + k * BLUR_THREADS;
-            if (i < BLUR_ENTRIES) {
-                int x = i % BLUR_P, y = i / BLUR_P;
-                rvec4 e = blur_edge_weights(i);
-                rfloat a = blur_values[src][i];
-                rfloat al = blur_values[src][y * BLUR_P + max(x - 1, 0)];
-                rfloat ar = blur_values[src][y * BLUR_P + min(x + 1, BLUR_P - 1)];
-                rfloat at = blur_values[src][max(y - 1, 0) * BLUR_P + x];
-                rfloat ab = blur_values[src][min(y + 1, BLUR_P - 1) * BLUR_P + x];
-                rfloat sum = rfloat(CACAO_BLUR_CENTRE_WEIGHT) * a + e.x * al + e.y * ar + e.z * at + e.w * ab;
-                rfloat wsum = rfloat(CACAO_BLUR_CENTRE_WEIGHT) + e.x + e.y + e.z + e.w;
-                blur_values[dst][i] = blur_store_value(float(sum / wsum));
-            }
-        }
+    /* neighbours outside the block; reads past the padded tile clamp to it */
+    int xl = max(b0.x - 1, 0), xr = min(b0.x + BX, BLUR_PX - 1);
+    int yt = max(b0.y - 1, 0), yb = min(b0.y + BY, BLUR_PY - 1);
+
+    [[unroll]] for (int it = 0; it < BLUR_N; ++it) {
+        int buf = it & 1;
+        [[unroll]] for (int y = 0; y < BY; ++y)
+            [[unroll]] for (int x = 0; x < BX; ++x) blur_values[buf][b0.y + y][b0.x + x] = v[y][x];
         barrier();
+        rfloat left[BY], right[BY], top[BX], bottom[BX];
+        [[unroll]] for (int y = 0; y < BY; ++y) {
+            left[y] = xl == b0.x ? v[y][0] : blur_values[buf][b0.y + y][xl];
+            right[y] = xr == b0.x + BX - 1 ? v[y][BX - 1] : blur_values[buf][b0.y + y][xr];
+        }
+        [[unroll]] for (int x = 0; x < BX; ++x) {
+            top[x] = yt == b0.y ? v[0][x] : blur_values[buf][yt][b0.x + x];
+            bottom[x] = yb == b0.y + BY - 1 ? v[BY - 1][x] : blur_values[buf][yb][b0.x + x];
+        }
+        rfloat nv[BY][BX];
+        [[unroll]] for (int y = 0; y < BY; ++y) {
+            [[unroll]] for (int x = 0; x < BX; ++x) {
+                rfloat al = x > 0 ? v[y][x - 1] : left[y];
+                rfloat ar = x < BX - 1 ? v[y][x + 1] : right[y];
+                rfloat at = y > 0 ? v[y - 1][x] : top[x];
+                rfloat ab = y < BY - 1 ? v[y + 1][x] : bottom[x];
+                rvec4 w = e[y][x];
+                rfloat sum = rfloat(CACAO_BLUR_CENTRE_WEIGHT) * v[y][x] + w.x * al + w.y * ar + w.z * at + w.w * ab;
+                nv[y][x] = blur_store_value(float(sum / wsum[y][x]));
+            }
+        }
+        v = nv;
+        /* no second barrier: the next iteration writes the other buffer, and the one after
+         * this buffer again only after that iteration's barrier */
     }
 
-    /* inner 32x32: (blurred AO, original packed edges) */
-    const int fin = BLUR_N & 1;
-    for (int k = 0; k < BLUR_PER_THREAD; ++k) {
-        int i = tid + k * BLUR_THREADS;
-        if (i < BLUR_ENTRIES) {
-            ivec2 o = ivec2(i % BLUR_P, i / BLUR_P) - BLUR_N;
+    /* inner texels: (blurred AO, original packed edges) */
+    [[unroll]] for (int y = 0; y < BY; ++y) {
+        [[unroll]] for (int x = 0; x < BX; ++x) {
+            ivec2 o = b0 + ivec2(x, y) - BLUR_N;
             ivec2 p = tile_origin + o;
-            if (in_rect(o, ivec2(CACAO_BLUR_TILE)) && in_rect(p, s)) {
-                float packed_edges = texelFetch(ssao_in, ivec3(p, layer), 0).g;
-                imageStore(ssao_out, ivec3(p, layer), vec4(float(blur_values[fin][i]), packed_edges, 0.0, 0.0));
-            }
+            if (in_rect(o, ivec2(CACAO_BLUR_OUT_X(BLUR_N), CACAO_BLUR_OUT_Y(BLUR_N))) && in_rect(p, s))
+                imageStore(ssao_out, ivec3(p, layer), vec4(float(v[y][x]), packed[y][x], 0.0, 0.0));
         }
     }
 }
@@ -868,21 +885,22 @@ void main()
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
     ivec2 l = ivec2(gl_LocalInvocationID.xy);
     float zf[4];
-    for (int o = 0; o < 4; ++o) zf[o] = view_z(load_src_depth_or_zero(2 * t + ivec2(o & 1, o >> 1)));
+    [[unroll]] for (int o = 0; o < 4; ++o) zf[o] = view_z(load_src_depth_or_zero(2 * t + ivec2(o & 1, o >> 1)));
 
     rfloat centre = up_value[(l.y + 2) * UP_TABLE + l.x + 2];
     rfloat tot[4], wsum[4];
-    for (int o = 0; o < 4; ++o) {
+    [[unroll]] for (int o = 0; o < 4; ++o) {
         tot[o] = rfloat(CACAO_BILATERAL_EPSILON) * centre;
         wsum[o] = rfloat(CACAO_BILATERAL_EPSILON);
     }
-    for (int y = -2; y <= 2; ++y) {
-        for (int x = -2; x <= 2; ++x) {
+    /* fully unrolled: tot[] and wsum[] stay in registers */
+    [[unroll]] for (int y = -2; y <= 2; ++y) {
+        [[unroll]] for (int x = -2; x <= 2; ++x) {
             int idx = (l.y + 2 + y) * UP_TABLE + (l.x + 2 + x);
             rfloat v = up_value[idx];
             float zq = up_depth[idx];
             bool valid = zq > -1.0e29;
-            for (int o = 0; o < 4; ++o) {
+            [[unroll]] for (int o = 0; o < 4; ++o) {
                 float dx = float(x) - 0.5 * float(o & 1);
                 float dy = float(y) - 0.5 * float(o >> 1);
                 float ws = exp(-(dx * dx + dy * dy) / cb.bilateral_sigma_squared);
@@ -896,7 +914,7 @@ void main()
     }
 
     ivec2 out_size = imageSize(output_image);
-    for (int o = 0; o < 4; ++o) {
+    [[unroll]] for (int o = 0; o < 4; ++o) {
         ivec2 p = 2 * t + ivec2(o & 1, o >> 1);
         if (in_rect(p, out_size)) imageStore(output_image, p, vec4(float(tot[o] / wsum[o]), 0.0, 0.0, 0.0));
     }

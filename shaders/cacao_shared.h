@@ -70,7 +70,11 @@
 #define CACAO_WG_IMPORTANCE_Y 8
 #define CACAO_WG_BLUR_X 16
 #define CACAO_WG_BLUR_Y 16
-#define CACAO_BLUR_TILE 32               /* output texels per blur workgroup and axis */
+#define CACAO_BLUR_BLOCK_X 4             /* padded-tile texels each blur thread owns, x */
+#define CACAO_BLUR_BLOCK_Y 2             /* ... and y: the padded tile is 64x32 */
+/* Output texels per blur workgroup for N iterations: the padded tile less N on each side. */
+#define CACAO_BLUR_OUT_X(n) (CACAO_WG_BLUR_X * CACAO_BLUR_BLOCK_X - 2 * (n))
+#define CACAO_BLUR_OUT_Y(n) (CACAO_WG_BLUR_Y * CACAO_BLUR_BLOCK_Y - 2 * (n))
 #define CACAO_WG_APPLY_X 8
 #define CACAO_WG_APPLY_Y 8
 #define CACAO_WG_UPSAMPLE_X 8            /* each upsample thread writes 2x2 output pixels */

@@ -80,7 +80,7 @@ static void test_dispatch_sizes(void) {
     CHECK(p.steps[0].dispatch[0] == 120 && p.steps[0].dispatch[1] == 68);  /* ceil(960/8), ceil(540/8) */
     CHECK(p.steps[3].dispatch[0] == 60 && p.steps[3].dispatch[1] == 34);   /* importance: ceil(480/8), ceil(270/8) */
     CHECK(p.steps[6].dispatch[2] == 4);                                    /* generate: 4 slices */
-    CHECK(p.steps[7].dispatch[0] == 30 && p.steps[7].dispatch[1] == 17);   /* blur: 32x32 tiles */
+    CHECK(p.steps[7].dispatch[0] == 16 && p.steps[7].dispatch[1] == 20);   /* blur, N = 2: ceil(960/60), ceil(540/28) */
     CHECK(p.steps[8].dispatch[0] == 240 && p.steps[8].dispatch[1] == 135); /* apply: ceil(1920/8) */
     cacao_plan d = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true,
                                           .generate_normals = true}, 1001, 37);

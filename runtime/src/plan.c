@@ -199,7 +199,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     cacao_resource ao = CACAO_RES_SSAO_PING;
     if (blur > 0) {
         key = (cacao_key){CACAO_PASS_BLUR, 0, 0, (uint8_t)blur, fp16};
-        st = add_step(&b, &key, div_up(sw, CACAO_BLUR_TILE), div_up(sh, CACAO_BLUR_TILE), slices);
+        st = add_step(&b, &key, div_up(sw, CACAO_BLUR_OUT_X(blur)), div_up(sh, CACAO_BLUR_OUT_Y(blur)), slices);
         bind(st, CACAO_BINDING_SSAO_IN, CACAO_RES_SSAO_PING, 0, false);
         bind(st, CACAO_BINDING_SSAO_OUT, CACAO_RES_SSAO_PONG, 0, true);
         finish_step(&b, st);
