@@ -31,10 +31,7 @@ int main(void) {
     vkdev dev;
     open_device(&dev);
     cacao_context *ctx = NULL;
-    CHECK(cacao_context_create(&(cacao_context_desc){.physical_device = dev.physical_device,
-                                                     .device = dev.device,
-                                                     .shader_float16_enabled = dev.fp16},
-                               &ctx) == CACAO_SUCCESS);
+    CHECK(vkdev_context_create(&dev, &ctx) == CACAO_SUCCESS);
     CHECK(cacao_embedded_permutation_count() == 15);
     expect_missing(&dev, ctx, &(cacao_settings){.quality = CACAO_QUALITY_HIGHEST}, "generate.q3base");
     expect_missing(&dev, ctx, &(cacao_settings){.quality = CACAO_QUALITY_LOW}, "generate.q0");

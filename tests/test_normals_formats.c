@@ -29,10 +29,7 @@ int main(void) {
     vkdev dev;
     open_device(&dev);
     cacao_context *ctx = NULL;
-    CHECK(cacao_context_create(&(cacao_context_desc){.physical_device = dev.physical_device,
-                                                     .device = dev.device,
-                                                     .shader_float16_enabled = dev.fp16},
-                               &ctx) == CACAO_SUCCESS);
+    CHECK(vkdev_context_create(&dev, &ctx) == CACAO_SUCCESS);
     CHECK(cacao_context_set_settings(ctx, &(cacao_settings){.quality = CACAO_QUALITY_LOW}) == CACAO_SUCCESS);
     CHECK(cacao_context_resize(ctx, 64, 64, NULL) == CACAO_SUCCESS);
 

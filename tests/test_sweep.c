@@ -23,10 +23,7 @@ int main(int argc, char **argv) {
     const size_t n = (size_t)w * h;
     float *ao = malloc(n * sizeof *ao), *ao32 = malloc(n * sizeof *ao32);
     cacao_context *ctx = NULL;
-    if (cacao_context_create(&(cacao_context_desc){.physical_device = dev.physical_device,
-                                                   .device = dev.device,
-                                                   .shader_float16_enabled = dev.fp16},
-                             &ctx) != CACAO_SUCCESS) {
+    if (vkdev_context_create(&dev, &ctx) != CACAO_SUCCESS) {
         fprintf(stderr, "cannot create a cacao context\n");
         return 1;
     }

@@ -421,6 +421,12 @@ static double now_ms(void) {
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
 
+cacao_result vkdev_context_create(vkdev *dev, cacao_context **ctx) {
+    const cacao_context_desc desc = {
+        .physical_device = dev->physical_device, .device = dev->device, .shader_float16_enabled = dev->fp16};
+    return cacao_context_create(&desc, ctx);
+}
+
 cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t repeat,
                        float *ao, cacao_timings *timings, char *err, size_t n) {
     return vkdev_run_timed(dev, settings, frame, 0, repeat, ao, timings, err, n);
@@ -429,10 +435,7 @@ cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_f
 cacao_result vkdev_run_timed(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t warmup,
                              uint32_t repeat, float *ao, cacao_timings *timings, char *err, size_t n) {
     cacao_context *ctx = NULL;
-    cacao_result r = cacao_context_create(
-        &(cacao_context_desc){.physical_device = dev->physical_device, .device = dev->device,
-                              .shader_float16_enabled = dev->fp16},
-        &ctx);
+    cacao_result r = vkdev_context_create(dev, &ctx);
     if (r != CACAO_SUCCESS) {
         set_err(err, n, "cacao_context_create: %s", cacao_result_string(r));
         return r;

@@ -81,6 +81,9 @@ void vkdev_buffer_destroy(vkdev *dev, vkdev_buffer *b);
 cacao_result vkdev_run_timed(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t warmup,
                              uint32_t repeat, float *ao, cacao_timings *timings, char *err, size_t err_size);
 
+/* A cacao context on this device (its fp16 support as the device reports it). */
+cacao_result vkdev_context_create(vkdev *dev, cacao_context **ctx);
+
 /* vkdev_run_timed without warm-up frames. */
 cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t repeat,
                        float *ao, cacao_timings *timings, char *err, size_t err_size);
