@@ -95,6 +95,17 @@ vec4 depth_edges(float c, float l, float r, float t, float b)
     return sat(CACAO_EDGE_SLOPE - e / (CACAO_EDGE_DEPTH_FRACTION * (cb.edge_depth.x * c + cb.edge_depth.y)));
 }
 
+/* Normal from the unit directions towards the left, right, top and bottom neighbours, each
+ * cross product weighted by the edges of its two directions (spec: prepare.md "Normals
+ * reconstructed from depth"); camera-facing (negative z) in cacao's view space. */
+vec3 normal_from_neighbours(vec3 l, vec3 r, vec3 u, vec3 b, vec4 e)
+{
+    vec4 a = vec4(e.x * e.z, e.z * e.y, e.y * e.w, e.w * e.x);
+    vec3 n = vec3(0.0, 0.0, CACAO_NORMAL_BIAS_Z) + a.x * cross(l, u) + a.y * cross(u, r) + a.z * cross(r, b) +
+             a.w * cross(b, l);
+    return normalize(n);
+}
+
 /* Per-sample obscurance (spec: generate.md "Obs"). max0 keeps D3D's NaN rule for a zero delta. */
 float obscurance(vec3 n, vec3 delta, float falloff, float horizon)
 {
@@ -355,12 +366,8 @@ void main()
         vec3 pl = pos[cj][ci - 1], pr = pos[cj][ci + 1];
         vec3 pt = pos[cj - 1][ci], pb = pos[cj + 1][ci];
         vec4 e = depth_edges(pc.z, pl.z, pr.z, pt.z, pb.z);
-        vec4 a = vec4(e.x * e.z, e.z * e.y, e.y * e.w, e.w * e.x);
-        vec3 l = normalize(pl - pc), r = normalize(pr - pc);
-        vec3 u = normalize(pt - pc), b = normalize(pb - pc);
-        vec3 n = vec3(0.0, 0.0, CACAO_NORMAL_BIAS_Z) + a.x * cross(l, u) + a.y * cross(u, r) +
-                 a.z * cross(r, b) + a.w * cross(b, l);
-        n = normalize(n);
+        vec3 n = normal_from_neighbours(normalize(pl - pc), normalize(pr - pc), normalize(pt - pc),
+                                        normalize(pb - pc), e);
         imageStore(normals_out, ivec3(t, layer), vec4(n, 1.0));
     }
 #endif
@@ -920,3 +927,294 @@ void main()
     }
 }
 #endif /* UPSAMPLE */
+
+/* ============================== HORIZON-SLICE ESTIMATORS ============================== */
+#if CACAO_PASS == CACAO_PASS_SLICE_PREPARE || CACAO_PASS == CACAO_PASS_SLICE_MAIN || \
+    CACAO_PASS == CACAO_PASS_SLICE_DENOISE
+/* spec: estimators.md. GTAO and the cosine-weighted visibility bitmask, at full resolution, one
+ * invocation per pixel, all in fp32. View z of background pixels (the far plane, or depth that
+ * gives no finite positive z: NaN, Inf, an infinite far plane) is stored as -1: such pixels output
+ * 1 and are ignored as samples and as denoise neighbours. */
+layout(local_size_x = CACAO_WG_SLICE_X, local_size_y = CACAO_WG_SLICE_Y) in;
+
+const float SLICE_PI = 3.14159265358979;
+const float SLICE_HALF_PI = 1.57079632679490;
+
+/* View-space position of pixel p's centre at view z (estimators.md section 1). */
+vec3 slice_pos(ivec2 p, float z) { return view_pos((vec2(p) + 0.5) * cb.depth_buffer_inverse_dimensions, z); }
+
+/* Unit vector from the surface point towards the camera. */
+vec3 slice_to_camera(vec3 pos) { return cb.slice_ortho != 0 ? vec3(0.0, 0.0, -1.0) : -normalize(pos); }
+
+/* A stored normal, renormalised; zero or non-finite -> facing the camera. */
+vec3 slice_normal(vec3 stored, vec3 to_camera)
+{
+    float len2 = dot(stored, stored);
+    return (len2 > 1e-12 && len2 < 1e30) ? stored * inversesqrt(len2) : to_camera;
+}
+
+#if CACAO_PASS == CACAO_PASS_SLICE_PREPARE
+layout(set = 0, binding = CACAO_BINDING_SRC_DEPTH) uniform sampler2D src_depth;
+#if CACAO_VARIANT == CACAO_SLICE_NORMALS_INPUT
+layout(set = 0, binding = CACAO_BINDING_SRC_NORMALS) uniform sampler2D src_normals;
+#endif
+layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT0, r32f) uniform writeonly image2DArray view_depth_out;
+layout(set = 0, binding = CACAO_BINDING_NORMALS_OUT, rgba8_snorm) uniform writeonly image2DArray view_normals_out;
+
+/* Raw depth -> view z, -1 for background (estimators.md section 1: the denominator keeps 1 - d
+ * exact where d is near 1). */
+float slice_view_z(float d)
+{
+    if (d == cb.slice_far_depth) return -1.0;
+    float z = (cb.depth_unpack.x + cb.depth_unpack_d.x * d) /
+              (cb.slice_depth_den_a + cb.slice_depth_den_b * d + cb.slice_depth_den_c * (1.0 - d));
+    return (z > 0.0 && z < 3.0e38) ? z : -1.0; /* NaN fails z > 0 */
+}
+
+float load_view_z(ivec2 p, ivec2 size) { return in_rect(p, size) ? slice_view_z(texelFetch(src_depth, p, 0).r) : -1.0; }
+
+#if CACAO_VARIANT == CACAO_SLICE_NORMALS_DEPTH
+/* Unit direction from pc to a neighbour, zero where the neighbour is missing (off-image or
+ * background): its cross products then carry no weight. */
+vec3 neighbour_dir(vec3 pc, ivec2 q, float zq)
+{
+    if (!(zq > 0.0)) return vec3(0.0);
+    vec3 d = slice_pos(q, zq) - pc;
+    float len2 = dot(d, d);
+    return len2 > 0.0 ? d * inversesqrt(len2) : vec3(0.0);
+}
+#endif
+
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = textureSize(src_depth, 0);
+    if (!in_rect(p, size)) return;
+    float z = load_view_z(p, size);
+    vec3 n = vec3(0.0, 0.0, -1.0);
+    if (z > 0.0) {
+        vec3 pc = slice_pos(p, z);
+        vec3 to_camera = slice_to_camera(pc);
+#if CACAO_VARIANT == CACAO_SLICE_NORMALS_INPUT
+        vec3 rgb = texelFetch(src_normals, p, 0).rgb;
+        n = (cb.normals_to_view * vec4(rgb * cb.normals_unpack_mul + cb.normals_unpack_add, 0.0)).xyz;
+        n = slice_normal(n, to_camera);
+#else
+        ivec2 ql = p - ivec2(1, 0), qr = p + ivec2(1, 0), qt = p - ivec2(0, 1), qb = p + ivec2(0, 1);
+        float zl = load_view_z(ql, size), zr = load_view_z(qr, size);
+        float zt = load_view_z(qt, size), zb = load_view_z(qb, size);
+        /* a missing neighbour counts as a full edge (weight 0) */
+        vec4 e = depth_edges(z, zl > 0.0 ? zl : 1e30, zr > 0.0 ? zr : 1e30, zt > 0.0 ? zt : 1e30,
+                             zb > 0.0 ? zb : 1e30);
+        n = normal_from_neighbours(neighbour_dir(pc, ql, zl), neighbour_dir(pc, qr, zr), neighbour_dir(pc, qt, zt),
+                                   neighbour_dir(pc, qb, zb), e);
+        n = slice_normal(n, to_camera);
+#endif
+    }
+    imageStore(view_depth_out, ivec3(p, 0), vec4(z));
+    imageStore(view_normals_out, ivec3(p, 0), vec4(n, 0.0));
+}
+#endif /* SLICE_PREPARE */
+
+#if CACAO_PASS == CACAO_PASS_SLICE_MAIN || CACAO_PASS == CACAO_PASS_SLICE_DENOISE
+layout(set = 0, binding = CACAO_BINDING_DEPTHS) uniform sampler2DArray view_depth;
+layout(set = 0, binding = CACAO_BINDING_NORMALS) uniform sampler2DArray view_normals;
+
+float fetch_view_z(ivec2 p) { return texelFetch(view_depth, ivec3(p, 0), 0).r; }
+vec3 fetch_normal(ivec2 p, vec3 to_camera) { return slice_normal(texelFetch(view_normals, ivec3(p, 0), 0).xyz, to_camera); }
+
+#if (CACAO_PASS == CACAO_PASS_SLICE_MAIN && CACAO_VARIANT >= CACAO_SLICE_GTAO_DIRECT) || \
+    (CACAO_PASS == CACAO_PASS_SLICE_DENOISE && CACAO_VARIANT == CACAO_DENOISE_FINAL)
+layout(set = 0, binding = CACAO_BINDING_OUTPUT) uniform writeonly image2D output_image;
+void store_visibility(ivec2 p, float v) { imageStore(output_image, p, vec4(v, 0.0, 0.0, 0.0)); }
+#else
+layout(set = 0, binding = CACAO_BINDING_SSAO_OUT, r16f) uniform writeonly image2DArray ao_out;
+void store_visibility(ivec2 p, float v) { imageStore(ao_out, ivec3(p, 0), vec4(v)); }
+#endif
+#endif
+
+#if CACAO_PASS == CACAO_PASS_SLICE_MAIN
+#define SLICE_BITMASK (CACAO_VARIANT == CACAO_SLICE_BITMASK || CACAO_VARIANT == CACAO_SLICE_BITMASK_DIRECT)
+
+/* Hilbert-curve index of (x, y) in a 64x64 tile (estimators.md section 2.1). */
+uint hilbert_index(uint x, uint y)
+{
+    uint h = 0u;
+    [[unroll]] for (uint c = 32u; c > 0u; c >>= 1u) {
+        uint rx = (x & c) != 0u ? 1u : 0u, ry = (y & c) != 0u ? 1u : 0u;
+        h += c * c * ((3u * rx) ^ ry);
+        if (ry == 0u) {
+            if (rx == 1u) {
+                x = 63u - x;
+                y = 63u - y;
+            }
+            uint t = x;
+            x = y;
+            y = t;
+        }
+    }
+    return h;
+}
+
+/* frac(x) of a 0.32 fixed-point fraction, below 1 (24 significant bits). */
+float unit_fraction(uint fixed_point) { return float(fixed_point >> 8u) * (1.0 / 16777216.0); }
+
+/* R2 / R1 sequences in 0.32 fixed point: h * alpha mod 1 is exact in uint arithmetic, where the
+ * float product of XeGTAO loses bits at large h (alpha * 2^32: 0.7548776662, 0.5698402910,
+ * 0.6180339887; 2^31 is the 0.5 offset). */
+const uint R2_X = 3242174889u, R2_Y = 2447445414u, R1 = 2654435769u, HALF = 2147483648u;
+
+/* G(theta) of estimators.md section 2.3; C(theta) = sgn(theta) G(theta). */
+float arc_g(float theta, float n, float cos_n, float sin_n)
+{
+    return (cos_n + 2.0 * theta * sin_n - cos(2.0 * theta - n)) * 0.25;
+}
+float arc_c(float theta, float n, float cos_n, float sin_n) { return sign(theta) * arc_g(theta, n, cos_n, sin_n); }
+
+float slice_visibility(ivec2 p, float z, ivec2 size)
+{
+    vec3 pos = slice_pos(p, z);
+    vec3 v = slice_to_camera(pos);
+    vec3 nrm = fetch_normal(p, v);
+    const float radius = cb.slice_radius;
+    float rpx = radius / (cb.slice_pixel_size * view_xy_scale(z)); /* radius in pixels */
+    float min_s = CACAO_SLICE_MIN_OFFSET_PX / rpx;
+    uint h = hilbert_index(uint(p.x) & 63u, uint(p.y) & 63u) + uint(cb.slice_noise_offset);
+    float xi_s = unit_fraction(h * R2_X + HALF);
+    uint xi_t = h * R2_Y + HALF;
+    const int ns = cb.slice_directions, m = cb.slice_steps;
+    float sum_vis = 0.0, sum_full = 0.0;
+    for (int i = 0; i < ns; ++i) {
+        float phi = SLICE_PI * (float(i) + xi_s) / float(ns);
+        vec2 dir = vec2(cos(phi), sin(phi));
+        vec3 d3 = vec3(dir, 0.0);
+        vec3 t = normalize(d3 - dot(d3, v) * v);
+        vec3 a = normalize(cross(t, v));
+        vec3 pn = nrm - dot(nrm, a) * a;
+        float pl = length(pn);
+        float n = clamp(atan(dot(pn, t), dot(pn, v)), -SLICE_HALF_PI, SLICE_HALF_PI);
+        float cos_n = cos(n), sin_n = sin(n);
+        float full = cos_n + n * sin_n; /* F(n) */
+        vec2 offset_dir = vec2(dir.x, -dir.y); /* rows grow downwards */
+#if SLICE_BITMASK
+        float c_low = arc_c(n - SLICE_HALF_PI, n, cos_n, sin_n);
+        float inv_full = 1.0 / full;
+        uint bits = 0u;
+        float occluded = 0.0;
+#else
+        float low_pos = -sin_n, low_neg = sin_n; /* cos(n +- pi/2): the half-circle edges */
+        float c_pos = low_pos, c_neg = low_neg;
+#endif
+        bool open_pos = true, open_neg = true; /* a side stops at its first off-screen sample */
+        for (int j = 0; j < m; ++j) {
+            float xi = unit_fraction(xi_t + uint(i + j * m) * R1);
+            float s = (float(j) + xi) / float(m);
+#if !SLICE_BITMASK
+            s *= s; /* GTAO: quadratic step spacing */
+#endif
+            float len = (s + min_s) * rpx;
+            ivec2 delta = ivec2(roundEven(len * offset_dir));
+            [[unroll]] for (int side = 0; side < 2; ++side) {
+                bool positive = side == 0;
+                if (!(positive ? open_pos : open_neg)) continue;
+                ivec2 q = positive ? p + delta : p - delta;
+                if (!in_rect(q, size)) {
+                    if (positive) open_pos = false;
+                    else open_neg = false;
+                    continue;
+                }
+                float zq = fetch_view_z(q);
+                if (!(zq > 0.0)) continue; /* background: weight 0 */
+                vec3 sample_pos = slice_pos(q, zq);
+                vec3 delta3 = sample_pos - pos;
+                float dist2 = dot(delta3, delta3);
+                float dist = sqrt(dist2);
+#if SLICE_BITMASK
+                float w = cb.slice_binary != 0 ? (dist <= radius ? 1.0 : 0.0) : max(0.0, 1.0 - dist2 / (radius * radius));
+                if (!(w > 0.0)) continue;
+                vec3 ray = cb.slice_ortho != 0 ? vec3(0.0, 0.0, 1.0) : normalize(sample_pos);
+                vec3 back = delta3 + cb.slice_thickness * ray;
+                float theta_front = atan(dot(delta3, t), dot(delta3, v));
+                float theta_back = atan(dot(back, t), dot(back, v));
+                float lo = min(theta_front, theta_back), hi = max(theta_front, theta_back);
+                float u_lo = sat((arc_c(clamp(lo, n - SLICE_HALF_PI, n + SLICE_HALF_PI), n, cos_n, sin_n) - c_low) * inv_full);
+                float u_hi = sat((arc_c(clamp(hi, n - SLICE_HALF_PI, n + SLICE_HALF_PI), n, cos_n, sin_n) - c_low) * inv_full);
+                int b0 = int(floor(32.0 * u_lo));
+                int nb = clamp(int(roundEven(32.0 * (u_hi - u_lo))), 0, 32 - b0);
+                uint mask = nb == 0 ? 0u : (0xFFFFFFFFu >> uint(32 - nb)) << uint(b0);
+                occluded += w * float(bitCount(mask & ~bits));
+                bits |= mask;
+#else
+                float w = sat((radius - dist) * cb.slice_falloff_mul);
+                float cs = dot(delta3, v) / dist;
+                if (positive) c_pos = max(c_pos, low_pos + (cs - low_pos) * w);
+                else c_neg = max(c_neg, low_neg + (cs - low_neg) * w);
+#endif
+            }
+        }
+#if SLICE_BITMASK
+        sum_vis += pl * full * occluded * (1.0 / 32.0); /* occluded share, summed as O_i */
+#else
+        float theta1 = acos(clamp(c_pos, -1.0, 1.0)), theta0 = -acos(clamp(c_neg, -1.0, 1.0));
+        sum_vis += pl * (arc_g(theta1, n, cos_n, sin_n) + arc_g(theta0, n, cos_n, sin_n));
+#endif
+        sum_full += pl * full;
+    }
+#if SLICE_BITMASK
+    float vis = sat(1.0 - sum_vis / max(sum_full, 1e-9));
+#else
+    float vis = sat(sum_vis / max(sum_full, 1e-9));
+#endif
+    /* the fade-out distance range of the settings: occlusion fades to none */
+    return 1.0 - (1.0 - vis) * sat(z * cb.effect_fade_out_mul + cb.effect_fade_out_add);
+}
+
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = textureSize(view_depth, 0).xy;
+    if (!in_rect(p, size)) return;
+    float z = fetch_view_z(p);
+    store_visibility(p, z > 0.0 ? slice_visibility(p, z, size) : 1.0);
+}
+#endif /* SLICE_MAIN */
+
+#if CACAO_PASS == CACAO_PASS_SLICE_DENOISE
+layout(set = 0, binding = CACAO_BINDING_SSAO_IN) uniform sampler2DArray ao_in;
+
+/* 3x3 bilateral filter (estimators.md section 5): weight by the distance of the neighbour's point
+ * from this pixel's tangent plane (relative to sigma z) and by the agreement of the normals. */
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = textureSize(view_depth, 0).xy;
+    if (!in_rect(p, size)) return;
+    float z = fetch_view_z(p);
+    if (!(z > 0.0)) {
+        store_visibility(p, 1.0);
+        return;
+    }
+    vec3 pos = slice_pos(p, z);
+    vec3 nrm = fetch_normal(p, slice_to_camera(pos));
+    float inv_scale = 1.0 / max(cb.slice_denoise_sigma * z, 1e-30);
+    float sum = texelFetch(ao_in, ivec3(p, 0), 0).r, weight_sum = 1.0;
+    [[unroll]] for (int j = -1; j <= 1; ++j) {
+        [[unroll]] for (int i = -1; i <= 1; ++i) {
+            ivec2 q = p + ivec2(i, j);
+            if ((i == 0 && j == 0) || !in_rect(q, size)) continue;
+            float zq = fetch_view_z(q);
+            if (!(zq > 0.0)) continue;
+            vec3 pq = slice_pos(q, zq);
+            vec3 nq = fetch_normal(q, slice_to_camera(pq));
+            float plane = dot(nrm, pq - pos) * inv_scale;
+            float agree = sat(dot(nrm, nq));
+            agree *= agree;
+            float w = exp(-plane * plane) * agree * agree;
+            sum += w * texelFetch(ao_in, ivec3(q, 0), 0).r;
+            weight_sum += w;
+        }
+    }
+    store_visibility(p, sum / weight_sum);
+}
+#endif /* SLICE_DENOISE */
+#endif /* HORIZON-SLICE ESTIMATORS */

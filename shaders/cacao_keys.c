@@ -6,12 +6,15 @@
 
 static const char *const pass_names[CACAO_PASS_COUNT] = {
     "prepare_depths", "prepare_normals", "generate", "importance", "importance_a",
-    "importance_b",   "blur",            "apply",    "upsample",
+    "importance_b",   "blur",            "apply",    "upsample",   "slice_prepare",
+    "slice_main",     "slice_denoise",
 };
 static const char *const depths_names[] = {"half", "full", "mips"};
 static const char *const normals_names[] = {"depth", "input"};
 static const char *const generate_names[] = {"q0", "q1", "q2", "q3", "q3base"};
 static const char *const output_names[] = {"smart", "nonsmart", "half"};
+static const char *const slice_main_names[] = {"gtao", "bitmask", "gtao_direct", "bitmask_direct"};
+static const char *const denoise_names[] = {"intermediate", "final"};
 static const char *const resolution_names[] = {"native", "downsampled"};
 static const char *const precision_names[] = {"fp32", "fp16"};
 
@@ -33,6 +36,9 @@ static const pass_axes axes[CACAO_PASS_COUNT] = {
     [CACAO_PASS_BLUR] = {1, false, true, true},
     [CACAO_PASS_APPLY] = {3, false, false, true},
     [CACAO_PASS_UPSAMPLE] = {3, false, false, true},
+    [CACAO_PASS_SLICE_PREPARE] = {2, false, false, false},
+    [CACAO_PASS_SLICE_MAIN] = {4, false, false, false},
+    [CACAO_PASS_SLICE_DENOISE] = {2, false, false, false},
 };
 
 const char *cacaoi_pass_name(unsigned pass) {
@@ -79,7 +85,10 @@ int cacaoi_key_compare(const cacao_key *a, const cacao_key *b) {
 static const char *variant_name(const cacao_key *key) {
     switch (key->pass) {
     case CACAO_PASS_PREPARE_DEPTHS: return depths_names[key->variant];
-    case CACAO_PASS_PREPARE_NORMALS: return normals_names[key->variant];
+    case CACAO_PASS_PREPARE_NORMALS:
+    case CACAO_PASS_SLICE_PREPARE: return normals_names[key->variant];
+    case CACAO_PASS_SLICE_MAIN: return slice_main_names[key->variant];
+    case CACAO_PASS_SLICE_DENOISE: return denoise_names[key->variant];
     case CACAO_PASS_GENERATE: return generate_names[key->variant];
     case CACAO_PASS_APPLY:
     case CACAO_PASS_UPSAMPLE: return output_names[key->variant];
@@ -106,7 +115,7 @@ size_t cacaoi_key_name(const cacao_key *key, char *buf, size_t buf_size) {
 
 bool cacaoi_key_parse(const char *name, cacao_key *out) {
     if (!name || !out) return false;
-    cacao_key keys[64];
+    cacao_key keys[128];
     size_t n = cacaoi_key_list(keys, sizeof keys / sizeof keys[0]);
     for (size_t i = 0; i < n && i < sizeof keys / sizeof keys[0]; ++i) {
         char buf[CACAO_KEY_NAME_MAX];
@@ -152,7 +161,23 @@ unsigned cacaoi_slice_count_for_quality(unsigned quality) {
     return quality == CACAO_KEY_QUALITY_LOWEST ? 2 : 4;
 }
 
+/* The horizon-slice estimators: full resolution, fp32, normals prepared once, denoise passes. */
+static size_t slice_keys_for_config(const cacao_key_config *c, cacao_key out[CACAO_KEY_CONFIG_MAX]) {
+    if (c->downsampled) return 0; /* full resolution only */
+    size_t n = 0;
+    const bool direct = c->blur_passes == 0;
+    const unsigned main_variant = (c->estimator == CACAO_KEY_ESTIMATOR_GTAO ? CACAO_SLICE_GTAO : CACAO_SLICE_BITMASK) +
+                                  (direct ? CACAO_SLICE_GTAO_DIRECT : 0);
+    out[n++] = (cacao_key){CACAO_PASS_SLICE_PREPARE,
+                           c->normals_from_input ? CACAO_SLICE_NORMALS_INPUT : CACAO_SLICE_NORMALS_DEPTH, 0, 0, 0};
+    out[n++] = (cacao_key){CACAO_PASS_SLICE_MAIN, (uint8_t)main_variant, 0, 0, 0};
+    if (c->blur_passes > 1) out[n++] = (cacao_key){CACAO_PASS_SLICE_DENOISE, CACAO_DENOISE_INTERMEDIATE, 0, 0, 0};
+    if (c->blur_passes > 0) out[n++] = (cacao_key){CACAO_PASS_SLICE_DENOISE, CACAO_DENOISE_FINAL, 0, 0, 0};
+    return n;
+}
+
 size_t cacaoi_keys_for_config(const cacao_key_config *c, cacao_key out[CACAO_KEY_CONFIG_MAX]) {
+    if (c->estimator != CACAO_KEY_ESTIMATOR_CACAO) return slice_keys_for_config(c, out);
     size_t n = 0;
     const uint8_t ds = c->downsampled ? 1 : 0, fp = c->fp16 ? 1 : 0;
     out[n++] = (cacao_key){CACAO_PASS_PREPARE_DEPTHS, (uint8_t)cacaoi_depths_variant_for_quality(c->quality), ds, 0, 0};
@@ -179,13 +204,14 @@ bool cacaoi_key_in_subset(const cacao_key *key, const cacao_key_subset *subset) 
             for (unsigned fp = 0; fp < 2; ++fp) {
                 if (!(subset->precision_mask & (1u << fp))) continue;
                 for (unsigned ni = 0; ni < 2; ++ni)
-                    for (unsigned blur = 0; blur <= CACAO_KEY_MAX_BLUR_PASSES; ++blur) {
-                        cacao_key_config c = {q, ds != 0, fp != 0, ni != 0, blur};
-                        cacao_key keys[CACAO_KEY_CONFIG_MAX];
-                        size_t n = cacaoi_keys_for_config(&c, keys);
-                        for (size_t i = 0; i < n; ++i)
-                            if (cacaoi_key_compare(&keys[i], key) == 0) return true;
-                    }
+                    for (unsigned blur = 0; blur <= CACAO_KEY_MAX_BLUR_PASSES; ++blur)
+                        for (unsigned est = 0; est < CACAO_KEY_ESTIMATOR_COUNT; ++est) {
+                            cacao_key_config c = {q, ds != 0, fp != 0, ni != 0, blur, est};
+                            cacao_key keys[CACAO_KEY_CONFIG_MAX];
+                            size_t n = cacaoi_keys_for_config(&c, keys);
+                            for (size_t i = 0; i < n; ++i)
+                                if (cacaoi_key_compare(&keys[i], key) == 0) return true;
+                        }
             }
         }
     }

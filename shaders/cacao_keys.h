@@ -73,13 +73,20 @@ unsigned cacaoi_generate_variant_for_quality(unsigned quality); /* Q3 for HIGHES
 unsigned cacaoi_output_variant_for_quality(unsigned quality, bool downsampled);
 unsigned cacaoi_slice_count_for_quality(unsigned quality);
 
+/* Estimators (the public cacao_estimator less one: 0-based, no "default"). */
+#define CACAO_KEY_ESTIMATOR_CACAO 0
+#define CACAO_KEY_ESTIMATOR_GTAO 1
+#define CACAO_KEY_ESTIMATOR_BITMASK 2
+#define CACAO_KEY_ESTIMATOR_COUNT 3
+
 /* One configuration's axes, as far as they select shader keys. */
 typedef struct cacao_key_config {
     unsigned quality;      /* CACAO_KEY_QUALITY_* */
-    bool downsampled;
+    bool downsampled;      /* CACAO estimator only: the slice estimators have no downsampled keys */
     bool fp16;
     bool normals_from_input;
-    unsigned blur_passes;  /* 0..8 */
+    unsigned blur_passes;  /* 0..8 (slice estimators: denoise passes) */
+    unsigned estimator;    /* CACAO_KEY_ESTIMATOR_* */
 } cacao_key_config;
 
 /* Keys one configuration dispatches, in dispatch order (at most CACAO_KEY_CONFIG_MAX). */

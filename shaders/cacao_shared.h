@@ -21,7 +21,11 @@
 #define CACAO_PASS_BLUR 6
 #define CACAO_PASS_APPLY 7
 #define CACAO_PASS_UPSAMPLE 8
-#define CACAO_PASS_COUNT 9
+/* Horizon-slice estimators (GTAO, visibility bitmask; spec: estimators.md), full resolution. */
+#define CACAO_PASS_SLICE_PREPARE 9       /* view z (R32F) and view normals, one texel per pixel */
+#define CACAO_PASS_SLICE_MAIN 10         /* the estimator: raw visibility per pixel */
+#define CACAO_PASS_SLICE_DENOISE 11      /* 3x3 depth/normal-aware filter (estimators.md section 5) */
+#define CACAO_PASS_COUNT 12
 
 /* Depth-prepare variants (spec: prepare.md). HALF = slices 0 and 3 only (LOWEST), FULL = four
  * slices, MIPS = four slices plus mips 1..3 (HIGH and HIGHEST; MEDIUM never reads mips). */
@@ -40,6 +44,21 @@
 #define CACAO_OUTPUT_SMART 0
 #define CACAO_OUTPUT_NON_SMART 1
 #define CACAO_OUTPUT_HALF 2
+
+/* Slice-prepare variants: normals reconstructed from depth, or transformed from the input. */
+#define CACAO_SLICE_NORMALS_DEPTH 0
+#define CACAO_SLICE_NORMALS_INPUT 1
+
+/* Slice-main variants: estimator (GTAO or bitmask) x destination (raw intermediate for the
+ * denoiser, or the caller's output when no denoise pass runs). */
+#define CACAO_SLICE_GTAO 0
+#define CACAO_SLICE_BITMASK 1
+#define CACAO_SLICE_GTAO_DIRECT 2
+#define CACAO_SLICE_BITMASK_DIRECT 3
+
+/* Slice-denoise variants: into the ping-pong intermediate, or (the last pass) into the output. */
+#define CACAO_DENOISE_INTERMEDIATE 0
+#define CACAO_DENOISE_FINAL 1
 
 /* ---- Descriptor bindings (set 0, pushed with VK_KHR_push_descriptor) ---- */
 #define CACAO_BINDING_CONSTANTS 0        /* uniform block cacao_constants */
@@ -79,6 +98,8 @@
 #define CACAO_WG_APPLY_Y 8
 #define CACAO_WG_UPSAMPLE_X 8            /* each upsample thread writes 2x2 output pixels */
 #define CACAO_WG_UPSAMPLE_Y 8
+#define CACAO_WG_SLICE_X 8               /* slice prepare, main and denoise: one pixel per thread */
+#define CACAO_WG_SLICE_Y 8
 
 /* ---- Intermediate formats (VkFormat values, so they are plain numbers in GLSL too) ---- */
 #define CACAO_FORMAT_DEPTHS 76           /* VK_FORMAT_R16_SFLOAT      (GLSL r16f) */
@@ -119,6 +140,17 @@
 #define CACAO_NEAR_LIMIT_RADIUS_FACTOR 1.2
 #define CACAO_LOW_NEAR_LIMIT_FACTOR 1.5
 #define CACAO_LOWEST_RADIUS_FACTOR 0.8
+
+/* ---- Horizon-slice estimators (spec: estimators.md sections 2-6) ---- */
+#define CACAO_SLICE_GTAO_RADIUS_FACTOR 1.457   /* k_R of GTAO; bitmask uses R itself */
+#define CACAO_SLICE_GTAO_FALLOFF_RANGE 0.615   /* r_f, falloff visibility */
+#define CACAO_SLICE_GTAO_BINARY_FALLOFF_RANGE 0.3 /* r_f, binary visibility */
+#define CACAO_SLICE_MIN_OFFSET_PX 1.3          /* nearest sample offset: never the centre pixel */
+#define CACAO_SLICE_THICKNESS_FALLOFF 1.0      /* bitmask thickness / R, falloff visibility */
+#define CACAO_SLICE_THICKNESS_BINARY 0.5       /* bitmask thickness / R, binary visibility */
+#define CACAO_SLICE_DENOISE_SIGMA 0.02         /* tangent-plane distance / view z */
+#define CACAO_SLICE_MAX_DIRECTIONS 16
+#define CACAO_SLICE_MAX_STEPS 32
 
 /* Sample pattern: 32 entries of (x, y, weight, mip term), spec: constants.md section 1.
  * A C initialiser for float[128]; the host copies it into the constant block (sample_pattern). */
@@ -207,7 +239,21 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(MAT4, normals_to_view)            /* n'_j = sum_i E[j][i] n_i, stored column-major */       \
     M(VEC2, depth_unpack_d)             /* (0, -1) perspective, (P(3,3), 0) orthographic */       \
     M(VEC2, view_xy_z)                  /* view xy = (ndc_to_view_mul uv + add) (x z + y) */       \
-    M(VEC2, edge_depth)                 /* depth an edge is relative to = x z + y */
+    M(VEC2, edge_depth)                 /* depth an edge is relative to = x z + y */ \
+    M(FLOAT, slice_depth_den_a)         /* slice modes: view z = (depth_unpack.x + depth_unpack_d.x d) / */ \
+    M(FLOAT, slice_depth_den_b)         /*   (a + b d + c (1 - d)): 1 - d is exact where d is near 1 */ \
+    M(FLOAT, slice_depth_den_c)                                                                    \
+    M(FLOAT, slice_far_depth)           /* raw depth of the far plane: background (2 if none) */   \
+    M(FLOAT, slice_radius)              /* effective radius (k_R R), view units */                 \
+    M(FLOAT, slice_falloff_mul)         /* GTAO: w = sat((radius - dist) falloff_mul) */            \
+    M(FLOAT, slice_thickness)           /* bitmask: constant thickness T, view units */            \
+    M(FLOAT, slice_pixel_size)          /* view units per pixel at view_xy_scale 1 */              \
+    M(INT, slice_directions)            /* slices per pixel (NS) */                                \
+    M(INT, slice_steps)                 /* steps per side (M) */                                   \
+    M(INT, slice_binary)                /* 1: binary visibility within R, 0: falloff */            \
+    M(INT, slice_noise_offset)          /* 288 (frame mod 64): decorrelates frames, 0 = frame 0 */ \
+    M(INT, slice_ortho)                 /* 1: orthographic (view rays parallel to z) */            \
+    M(FLOAT, slice_denoise_sigma)
 
 #ifdef CACAO_GLSL
 layout(std140, set = 0, binding = CACAO_BINDING_CONSTANTS) uniform cacao_constants_block {

@@ -78,6 +78,24 @@ typedef enum cacao_precision {
     CACAO_PRECISION_FP16,        /* blur, apply and upsample in half precision (needs shaderFloat16) */
 } cacao_precision;
 
+/* What the AO estimates and how (spec: estimators.md). CACAO is AMD CACAO's look; GTAO and BITMASK
+ * are horizon-slice estimators of cosine-weighted visibility, evaluated at full resolution in fp32
+ * and measured against ray-traced truth (docs/estimators.md): GTAO is the cheaper, BITMASK (32
+ * equal-cosine sectors, constant thickness) the more accurate per depth read at high budgets. */
+typedef enum cacao_estimator {
+    CACAO_ESTIMATOR_DEFAULT = 0, /* = CACAO */
+    CACAO_ESTIMATOR_CACAO,
+    CACAO_ESTIMATOR_GTAO,
+    CACAO_ESTIMATOR_BITMASK,
+} cacao_estimator;
+
+/* The quantity GTAO / BITMASK estimate. */
+typedef enum cacao_visibility {
+    CACAO_VISIBILITY_DEFAULT = 0, /* = FALLOFF */
+    CACAO_VISIBILITY_FALLOFF,     /* occluders count max(0, 1 - t^2 / R^2) at hit distance t */
+    CACAO_VISIBILITY_BINARY,      /* occluders within R count fully, beyond R not at all */
+} cacao_visibility;
+
 /* Asks for an explicit 0 in a float field whose 0 would otherwise mean "default". */
 #define CACAO_ZERO (-1.0f)
 /* Asks for no blur (blur_pass_count 0 means the default, 2). */
@@ -100,7 +118,20 @@ typedef struct cacao_settings {
     cacao_quality quality;          /* 0 = HIGHEST */
     cacao_precision precision;      /* 0 = FP32 */
     bool generate_normals;          /* true: reconstruct normals from depth; false: inputs.normals */
-    bool downsample;                /* true: AO at quarter resolution, bilateral upsample */
+    bool downsample;                /* true: AO at quarter resolution, bilateral upsample (CACAO only) */
+    /* Horizon-slice estimators. With GTAO or BITMASK: radius is R (the world radius of the
+     * visibility estimated); quality picks the budget (slices x steps per side, 2 depth reads per
+     * step: LOWEST 2x2 = 8 reads, LOW 3x2 = 12, MEDIUM 3x3 = 18, HIGH 3x6 = 36, HIGHEST 4x8 = 64);
+     * blur_pass_count is the number of denoise passes (0 = 1, CACAO_BLUR_NONE = none); fade_out_*
+     * and generate_normals apply; the shadow, sharpness, detail, adaptive and bilateral fields and
+     * downsample do not (downsample is refused); precision FP16 runs FP32 (view z, angles and
+     * sector masks need single precision; cacao_context_precision tells). */
+    cacao_estimator estimator;      /* 0 = CACAO */
+    cacao_visibility visibility;    /* 0 = FALLOFF */
+    float thickness;                /* BITMASK: assumed occluder thickness, world units; 0 = 1.0 R
+                                       (FALLOFF) or 0.5 R (BINARY) */
+    int horizon_slices;             /* GTAO/BITMASK: slices per pixel 1..16; 0 = by quality */
+    int horizon_steps;              /* GTAO/BITMASK: steps per side 1..32; 0 = by quality */
 } cacao_settings;
 
 /* Fills every defaulted field of *in into *out and checks every field. An explicit zero keeps its
@@ -125,6 +156,10 @@ typedef enum cacao_resource {
     CACAO_RES_SSAO_PONG,        /* Q3 base result / blur output, RG8 */
     CACAO_RES_IMPORTANCE,       /* importance map, R8 (HIGHEST) */
     CACAO_RES_IMPORTANCE_PONG,  /* importance ping-pong, R8 (HIGHEST) */
+    CACAO_RES_VIEW_DEPTH,       /* GTAO/BITMASK: full-resolution view z, R32F (background < 0) */
+    CACAO_RES_VIEW_NORMALS,     /* GTAO/BITMASK: full-resolution view normals, RGBA8 SNORM */
+    CACAO_RES_AO_RAW,           /* GTAO/BITMASK: visibility before the last denoise pass, R16F */
+    CACAO_RES_AO_PONG,          /* GTAO/BITMASK: denoise ping-pong, R16F */
     CACAO_RES_COUNT
 } cacao_resource;
 
@@ -278,6 +313,9 @@ typedef struct cacao_inputs {
     VkQueryPool timestamp_query_pool;
     uint32_t timestamp_first_query;
     uint32_t timestamp_query_count;
+    /* GTAO/BITMASK: frame number for temporal accumulation; it decorrelates the sample pattern of
+     * successive frames (64 distinct patterns). 0 for a deterministic frame. */
+    uint32_t frame_index;
 } cacao_inputs;
 
 /* Records one frame: constant update, barriers and dispatches. cacao orders itself against the

@@ -165,6 +165,47 @@ static void fill_pattern(cacao_constants *c) {
         }
 }
 
+/* spec: estimators.md sections 1-6 - the horizon-slice estimators' constants. k is the view scale
+ * (every length scales with it, AO does not). */
+static void fill_slice_constants(const cacao_settings *s, const projection_view *v, float k, const cacao_plan *plan,
+                                 const cacao_inputs *in, cacao_constants *c) {
+    /* Depth denominator z_den[0] + z_den[1] d. Where z_den[0] is near 1 (standard Z), it is
+     * written (z_den[0] - 1) + (1 - d): 1 - d is exact in fp32 for d >= 0.5, so the far range keeps
+     * its precision instead of losing it to the cancellation in z_den[0] - d. */
+    const double den0 = v->z_den[0];
+    if (!v->ortho && fabs(den0 - 1.0) < 0.5 && v->z_den[1] == -1.0f) {
+        c->slice_depth_den_a = (float)(den0 - 1.0);
+        c->slice_depth_den_b = 0.0f;
+        c->slice_depth_den_c = 1.0f;
+    } else {
+        c->slice_depth_den_a = v->z_den[0];
+        c->slice_depth_den_b = v->z_den[1];
+        c->slice_depth_den_c = 0.0f;
+    }
+    /* Background: the far plane's raw depth (the end of [0,1] with the larger view z); an infinite
+     * far plane gives no finite z there, which the shader treats as background anyway. */
+    double z_at[2];
+    for (int d = 0; d <= 1; ++d) {
+        const double z = ((double)v->z_num[0] + v->z_num[1] * d) / (den0 + v->z_den[1] * d);
+        z_at[d] = isfinite(z) && z > 0.0 ? z : INFINITY;
+    }
+    c->slice_far_depth = z_at[1] >= z_at[0] ? 1.0f : 0.0f;
+    const bool gtao = s->estimator == CACAO_ESTIMATOR_GTAO, binary = s->visibility == CACAO_VISIBILITY_BINARY;
+    const float radius = k * s->radius;
+    c->slice_radius = gtao ? radius * (float)CACAO_SLICE_GTAO_RADIUS_FACTOR : radius;
+    const float falloff_range = (float)(binary ? CACAO_SLICE_GTAO_BINARY_FALLOFF_RANGE : CACAO_SLICE_GTAO_FALLOFF_RANGE);
+    c->slice_falloff_mul = 1.0f / (falloff_range * c->slice_radius);
+    const float thickness_factor = (float)(binary ? CACAO_SLICE_THICKNESS_BINARY : CACAO_SLICE_THICKNESS_FALLOFF);
+    c->slice_thickness = s->thickness > 0.0f ? k * s->thickness : thickness_factor * radius;
+    c->slice_pixel_size = fabsf(c->ndc_to_view_mul.y) / (float)plan->height;
+    c->slice_directions = s->horizon_slices;
+    c->slice_steps = s->horizon_steps;
+    c->slice_binary = binary ? 1 : 0;
+    c->slice_noise_offset = (int)(288u * (in->frame_index % 64u));
+    c->slice_ortho = v->ortho ? 1 : 0;
+    c->slice_denoise_sigma = (float)CACAO_SLICE_DENOISE_SIGMA;
+}
+
 void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao_constants *c) {
     cacao_settings literal;
     cacaoi_settings_literal(&plan->settings, &literal);
@@ -247,4 +288,5 @@ void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao
         for (int col = 0; col < 4; ++col)
             c->normals_to_view.m[4 * col + row] =
                 identity ? (row == col ? 1.0f : 0.0f) : mat_at(in->normals_to_view, rm, row, col);
+    if (s->estimator != CACAO_ESTIMATOR_CACAO) fill_slice_constants(s, &v, k, plan, in, c);
 }

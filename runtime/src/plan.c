@@ -8,7 +8,8 @@
 
 static const char *const resource_names[CACAO_RES_COUNT] = {
     "depth_input", "normals_input", "output",    "constants",  "load_counter",   "depths",
-    "normals",     "ssao_ping",     "ssao_pong", "importance", "importance_pong",
+    "normals",     "ssao_ping",     "ssao_pong", "importance", "importance_pong", "view_depth",
+    "view_normals", "ao_raw",       "ao_pong",
 };
 
 const char *cacao_resource_name(cacao_resource resource) {
@@ -77,6 +78,8 @@ static const struct {
     INTERMEDIATE(CACAO_RES_DEPTHS, R16_SFLOAT, 2),    INTERMEDIATE(CACAO_RES_NORMALS, R8G8B8A8_SNORM, 4),
     INTERMEDIATE(CACAO_RES_SSAO_PING, R8G8_UNORM, 2), INTERMEDIATE(CACAO_RES_SSAO_PONG, R8G8_UNORM, 2),
     INTERMEDIATE(CACAO_RES_IMPORTANCE, R8_UNORM, 1),  INTERMEDIATE(CACAO_RES_IMPORTANCE_PONG, R8_UNORM, 1),
+    INTERMEDIATE(CACAO_RES_VIEW_DEPTH, R32_SFLOAT, 4),  INTERMEDIATE(CACAO_RES_VIEW_NORMALS, R8G8B8A8_SNORM, 4),
+    INTERMEDIATE(CACAO_RES_AO_RAW, R16_SFLOAT, 2),    INTERMEDIATE(CACAO_RES_AO_PONG, R16_SFLOAT, 2),
 };
 #undef INTERMEDIATE
 
@@ -90,6 +93,59 @@ static void add_image(cacao_plan *p, cacao_resource res, uint32_t w, uint32_t h,
     }
     p->images[p->image_count++] = (cacao_plan_image){res, format, w, h, layers, mips, bytes};
     p->total_bytes += bytes;
+}
+
+/* The horizon-slice estimators (spec: estimators.md): prepare view z and normals at full
+ * resolution, run the estimator per pixel, then the denoise passes (the last one writes the
+ * output; with no denoise the estimator writes it). */
+static void build_slice_plan(cacao_plan *plan, unsigned blur) {
+    const cacao_settings *s = &plan->settings;
+    const uint32_t w = plan->width, h = plan->height;
+    plan->slice_width = w;
+    plan->slice_height = h;
+    plan->slice_count = 1;
+    add_image(plan, CACAO_RES_VIEW_DEPTH, w, h, 1, 1);
+    add_image(plan, CACAO_RES_VIEW_NORMALS, w, h, 1, 1);
+    if (blur > 0) add_image(plan, CACAO_RES_AO_RAW, w, h, 1, 1);
+    if (blur > 1) add_image(plan, CACAO_RES_AO_PONG, w, h, 1, 1);
+    plan->total_bytes += sizeof(cacao_constants);
+
+    plan_builder b = {plan, 0, 0};
+    const uint32_t gx = div_up(w, CACAO_WG_SLICE_X), gy = div_up(h, CACAO_WG_SLICE_Y);
+    cacao_key key = {CACAO_PASS_SLICE_PREPARE,
+                     s->generate_normals ? CACAO_SLICE_NORMALS_DEPTH : CACAO_SLICE_NORMALS_INPUT, 0, 0, 0};
+    cacao_plan_step *st = add_step(&b, &key, gx, gy, 1);
+    bind(st, CACAO_BINDING_SRC_DEPTH, CACAO_RES_DEPTH_INPUT, 0, false);
+    if (!s->generate_normals) bind(st, CACAO_BINDING_SRC_NORMALS, CACAO_RES_NORMALS_INPUT, 0, false);
+    bind(st, CACAO_BINDING_DEPTHS_OUT0, CACAO_RES_VIEW_DEPTH, 0, true);
+    bind(st, CACAO_BINDING_NORMALS_OUT, CACAO_RES_VIEW_NORMALS, 0, true);
+    finish_step(&b, st);
+
+    const bool gtao = s->estimator == CACAO_ESTIMATOR_GTAO;
+    key = (cacao_key){CACAO_PASS_SLICE_MAIN,
+                      (uint8_t)((gtao ? CACAO_SLICE_GTAO : CACAO_SLICE_BITMASK) + (blur == 0 ? CACAO_SLICE_GTAO_DIRECT : 0)),
+                      0, 0, 0};
+    st = add_step(&b, &key, gx, gy, 1);
+    bind(st, CACAO_BINDING_DEPTHS, CACAO_RES_VIEW_DEPTH, 0, false);
+    bind(st, CACAO_BINDING_NORMALS, CACAO_RES_VIEW_NORMALS, 0, false);
+    if (blur == 0) bind(st, CACAO_BINDING_OUTPUT, CACAO_RES_OUTPUT, 0, true);
+    else bind(st, CACAO_BINDING_SSAO_OUT, CACAO_RES_AO_RAW, 0, true);
+    finish_step(&b, st);
+
+    cacao_resource ao = CACAO_RES_AO_RAW;
+    for (unsigned pass = 1; pass <= blur; ++pass) {
+        const bool last = pass == blur;
+        key = (cacao_key){CACAO_PASS_SLICE_DENOISE, last ? CACAO_DENOISE_FINAL : CACAO_DENOISE_INTERMEDIATE, 0, 0, 0};
+        st = add_step(&b, &key, gx, gy, 1);
+        bind(st, CACAO_BINDING_SSAO_IN, ao, 0, false);
+        bind(st, CACAO_BINDING_DEPTHS, CACAO_RES_VIEW_DEPTH, 0, false);
+        bind(st, CACAO_BINDING_NORMALS, CACAO_RES_VIEW_NORMALS, 0, false);
+        const cacao_resource next = ao == CACAO_RES_AO_RAW ? CACAO_RES_AO_PONG : CACAO_RES_AO_RAW;
+        if (last) bind(st, CACAO_BINDING_OUTPUT, CACAO_RES_OUTPUT, 0, true);
+        else bind(st, CACAO_BINDING_SSAO_OUT, next, 0, true);
+        finish_step(&b, st);
+        ao = next;
+    }
 }
 
 cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, uint32_t height,
@@ -120,6 +176,10 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     const unsigned depths_variant = cacaoi_depths_variant_for_quality(quality);
     const uint32_t mips = depths_variant == CACAO_DEPTHS_MIPS ? CACAO_DEPTH_MIP_COUNT : 1;
     const unsigned blur = s.blur_pass_count == CACAO_BLUR_NONE ? 0 : (unsigned)s.blur_pass_count;
+    if (s.estimator != CACAO_ESTIMATOR_CACAO) {
+        build_slice_plan(plan, blur);
+        return CACAO_SUCCESS;
+    }
     plan->slice_width = sw;
     plan->slice_height = sh;
     plan->importance_width = iw;
@@ -225,13 +285,22 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
 
 void cacao_plan_print(const cacao_plan *p, FILE *out) {
     const int blur = p->settings.blur_pass_count == CACAO_BLUR_NONE ? 0 : p->settings.blur_pass_count;
-    fprintf(out, "plan: %ux%u, quality %s, %s, blur %d, %s, normals %s\n", p->width, p->height,
-            cacaoi_quality_names[cacaoi_key_quality(p->settings.quality)], p->settings.downsample ? "downsampled" : "native",
-            blur, p->settings.precision == CACAO_PRECISION_FP16 ? "fp16" : "fp32",
+    static const char *const estimator_names[] = {"default", "cacao", "gtao", "bitmask"};
+    fprintf(out, "plan: %ux%u, estimator %s, quality %s, %s, blur %d, %s, normals %s\n", p->width, p->height,
+            estimator_names[p->settings.estimator], cacaoi_quality_names[cacaoi_key_quality(p->settings.quality)],
+            p->settings.downsample ? "downsampled" : "native", blur,
+            p->settings.precision == CACAO_PRECISION_FP16 ? "fp16" : "fp32",
             p->settings.generate_normals ? "from depth" : "from input");
-    fprintf(out, "slices: %u of %ux%u", p->slice_count, p->slice_width, p->slice_height);
-    if (p->uses_load_counter) fprintf(out, "; importance map %ux%u", p->importance_width, p->importance_height);
-    fprintf(out, "\n");
+    if (p->settings.estimator != CACAO_ESTIMATOR_CACAO) {
+        fprintf(out, "horizon slices: %d x %d steps per side = %d depth reads per pixel, %s visibility\n",
+                p->settings.horizon_slices, p->settings.horizon_steps,
+                2 * p->settings.horizon_slices * p->settings.horizon_steps,
+                p->settings.visibility == CACAO_VISIBILITY_BINARY ? "binary" : "falloff");
+    } else {
+        fprintf(out, "slices: %u of %ux%u", p->slice_count, p->slice_width, p->slice_height);
+        if (p->uses_load_counter) fprintf(out, "; importance map %ux%u", p->importance_width, p->importance_height);
+        fprintf(out, "\n");
+    }
     for (uint32_t i = 0; i < p->step_count; ++i) {
         const cacao_plan_step *s = &p->steps[i];
         if (s->barrier_before) {

@@ -54,7 +54,12 @@ static const float_rule float_rules[] = {
     RULE(adaptive_quality_limit, 0.45f, true, 0.0f, 1.0f, false),
     RULE(bilateral_sigma_squared, 5.0f, false, 0.0f, 1e30f, true),
     RULE(bilateral_similarity_distance_sigma, 0.01f, false, 0.0f, 1e30f, true),
+    RULE(thickness, 0.0f, false, 0.0f, 1e30f, false), /* 0 stays 0: "relative to R", see the plan */
 };
+
+/* Budget of the horizon-slice estimators per quality level (LOWEST..HIGHEST): slices x steps per
+ * side; 2 depth reads per step (spec: estimators.md section 6). */
+static const int slice_budget[CACAO_KEY_QUALITY_COUNT][2] = {{2, 2}, {3, 2}, {3, 3}, {3, 6}, {4, 8}};
 
 cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *out, char *error,
                                     size_t error_size) {
@@ -87,7 +92,35 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
                         (double)s.fade_out_to, (double)fade_from);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
-    if (s.blur_pass_count == 0) s.blur_pass_count = 2;
+    if (s.estimator == CACAO_ESTIMATOR_DEFAULT) s.estimator = CACAO_ESTIMATOR_CACAO;
+    if ((int)s.estimator < CACAO_ESTIMATOR_CACAO || (int)s.estimator > CACAO_ESTIMATOR_BITMASK) {
+        cacaoi_set_error(error, error_size, "settings.estimator = %d is not a cacao_estimator", (int)in->estimator);
+        return CACAO_ERROR_INVALID_ARGUMENT;
+    }
+    if (s.visibility == CACAO_VISIBILITY_DEFAULT) s.visibility = CACAO_VISIBILITY_FALLOFF;
+    if ((int)s.visibility < CACAO_VISIBILITY_FALLOFF || (int)s.visibility > CACAO_VISIBILITY_BINARY) {
+        cacaoi_set_error(error, error_size, "settings.visibility = %d is not a cacao_visibility", (int)in->visibility);
+        return CACAO_ERROR_INVALID_ARGUMENT;
+    }
+    const bool slice = s.estimator != CACAO_ESTIMATOR_CACAO;
+    if (slice && s.downsample) {
+        cacaoi_set_error(error, error_size,
+                        "settings.downsample: the %s estimator runs at full resolution only (use quality for a "
+                        "cheaper budget)",
+                        s.estimator == CACAO_ESTIMATOR_GTAO ? "gtao" : "bitmask");
+        return CACAO_ERROR_INVALID_ARGUMENT;
+    }
+    if (s.horizon_slices < 0 || s.horizon_slices > CACAO_SLICE_MAX_DIRECTIONS) {
+        cacaoi_set_error(error, error_size, "settings.horizon_slices = %d is outside 1..%d (0 = by quality)",
+                        s.horizon_slices, CACAO_SLICE_MAX_DIRECTIONS);
+        return CACAO_ERROR_INVALID_ARGUMENT;
+    }
+    if (s.horizon_steps < 0 || s.horizon_steps > CACAO_SLICE_MAX_STEPS) {
+        cacaoi_set_error(error, error_size, "settings.horizon_steps = %d is outside 1..%d (0 = by quality)",
+                        s.horizon_steps, CACAO_SLICE_MAX_STEPS);
+        return CACAO_ERROR_INVALID_ARGUMENT;
+    }
+    if (s.blur_pass_count == 0) s.blur_pass_count = slice ? 1 : 2;
     else if (s.blur_pass_count == CACAO_BLUR_NONE) {
         /* stays CACAO_BLUR_NONE (see cacaoi_settings_literal) */
     } else if (s.blur_pass_count < 1 || s.blur_pass_count > 8) {
@@ -101,6 +134,12 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     if (s.precision == CACAO_PRECISION_DEFAULT) s.precision = CACAO_PRECISION_FP32;
+    if (slice && s.precision == CACAO_PRECISION_FP16) s.precision = CACAO_PRECISION_FP32; /* documented */
+    if (slice) {
+        const unsigned q = cacaoi_key_quality(s.quality);
+        if (s.horizon_slices == 0) s.horizon_slices = slice_budget[q][0];
+        if (s.horizon_steps == 0) s.horizon_steps = slice_budget[q][1];
+    }
     if ((int)s.precision != CACAO_PRECISION_FP32 && (int)s.precision != CACAO_PRECISION_FP16) {
         cacaoi_set_error(error, error_size, "settings.precision = %d is not a cacao_precision", (int)in->precision);
         return CACAO_ERROR_INVALID_ARGUMENT;

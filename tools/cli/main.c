@@ -123,11 +123,12 @@ typedef struct render_result {
     char device_name[256];
 } render_result;
 
-static vkdev_frame make_frame(const cli_inputs *in, const cacao_settings *encoded) {
+static vkdev_frame make_frame(const cli_inputs *in, const cacao_settings *encoded, uint32_t frame_index) {
     vkdev_frame frame = {.width = in->depth.width,
                          .height = in->depth.height,
                          .depth = in->depth.data,
-                         .depth_reversed = in->depth_reversed};
+                         .depth_reversed = in->depth_reversed,
+                         .frame_index = frame_index};
     memcpy(frame.projection, in->projection, sizeof frame.projection);
     if (in->normals.data && !encoded->generate_normals) vkdev_frame_set_view_normals(&frame, in->normals.data);
     return frame;
@@ -147,7 +148,7 @@ static bool plan_of_run(const vkdev *dev, const cacao_settings *encoded, uint32_
 
 static bool run_on_device(vkdev *dev, const cli_options *o, const cli_inputs *in, const cacao_settings *encoded,
                           render_result *out, char *err) {
-    const vkdev_frame frame = make_frame(in, encoded);
+    const vkdev_frame frame = make_frame(in, encoded, o->frame_index);
     if (!plan_of_run(dev, encoded, frame.width, frame.height, &out->plan, err)) return false;
     char why[ERR_SIZE - 128];
     const cacao_result r = vkdev_run_timed(dev, encoded, &frame, o->warmup, o->repeat ? o->repeat : 1, out->ao.data,

@@ -27,6 +27,7 @@ typedef enum flag_kind {
     SET_BLUR,           /* blur_pass_count, literal 0..8 */
     SET_ENUM,           /* an enum of cacao_settings, by name */
     SET_BOOL,           /* bool of cacao_settings; the flag sets it true */
+    SET_INT,            /* int of cacao_settings, a whole number 0..int_max (0 = the runtime's default) */
 } flag_kind;
 
 typedef struct flag_def {
@@ -41,10 +42,13 @@ typedef struct flag_def {
     const char *json2;
     const char *const *names; /* SET_ENUM: names by enum value (index 0 = the runtime's default, unnamed) */
     int name_count;
+    int int_max; /* SET_INT: largest value */
 } flag_def;
 
 static const char *const quality_names[] = {NULL, "lowest", "low", "medium", "high", "highest"};
 static const char *const precision_names[] = {NULL, "fp32", "fp16"};
+static const char *const estimator_names[] = {NULL, "cacao", "gtao", "bitmask"};
+static const char *const visibility_names[] = {NULL, "falloff", "binary"};
 
 #define SECTION(title)                                                                                                 \
     { .name = title, .kind = FLAG_SECTION }
@@ -138,6 +142,43 @@ static const flag_def flags[] = {
      .name_count = 3},
     SET("--no-normals", NULL, SET_BOOL, generate_normals,
         "reconstruct normals from depth even when normals are given (automatic without normals)"),
+    SECTION("Estimator (docs/estimators.md)"),
+    {.name = "--estimator",
+     .value = "E",
+     .kind = SET_ENUM,
+     .offset = offsetof(cacao_settings, estimator),
+     .json = "estimator",
+     .help = "cacao (AMD CACAO's look), gtao or bitmask (horizon-slice estimators of ray-traced visibility, full "
+             "resolution; --quality picks their budget, --blur their denoise passes)",
+     .names = estimator_names,
+     .name_count = 4},
+    {.name = "--visibility",
+     .value = "V",
+     .kind = SET_ENUM,
+     .offset = offsetof(cacao_settings, visibility),
+     .json = "visibility",
+     .help = "gtao/bitmask: falloff (occluders weighted 1 - t^2/R^2 by hit distance t) or binary (occluded "
+             "within R)",
+     .names = visibility_names,
+     .name_count = 3},
+    OPT("--frame", NULL, "N", FLAG_COUNT0, frame_index,
+        "gtao/bitmask: frame index of the sample pattern (temporal accumulation; 0 = deterministic)"),
+    SET("--thickness", "T", SET_FLOAT, thickness,
+        "bitmask: assumed occluder thickness, world units (default 1.0 R falloff, 0.5 R binary)"),
+    {.name = "--slices",
+     .value = "N",
+     .kind = SET_INT,
+     .offset = offsetof(cacao_settings, horizon_slices),
+     .json = "horizon_slices",
+     .help = "gtao/bitmask: slices per pixel, 1..16 (0 = by quality)",
+     .int_max = 16},
+    {.name = "--steps",
+     .value = "N",
+     .kind = SET_INT,
+     .offset = offsetof(cacao_settings, horizon_steps),
+     .json = "horizon_steps",
+     .help = "gtao/bitmask: steps per slice side, 1..32 (0 = by quality); depth reads = 2 x slices x steps",
+     .int_max = 32},
     SECTION("Device"),
     OPT("--device", NULL, "N|NAME", FLAG_PATH, device, "Vulkan device by index or name substring (default lavapipe)"),
     OPT("--list-devices", NULL, NULL, FLAG_SWITCH, list_devices, "list the Vulkan devices and exit"),
@@ -204,6 +245,16 @@ static bool store_blur(double literal, cacao_settings *s, const char *label, cha
         return false;
     }
     s->blur_pass_count = literal == 0 ? CACAO_BLUR_NONE : (int)literal;
+    return true;
+}
+
+static bool store_int(const flag_def *def, double literal, cacao_settings *s, const char *label, char *err,
+                      size_t n) {
+    if (!(literal >= 0 && literal <= def->int_max) || literal != floor(literal)) {
+        set_err(err, n, "%s: must be a whole number, 0 (default) to %d", label, def->int_max);
+        return false;
+    }
+    *int_field(s, def->offset) = (int)literal;
     return true;
 }
 
@@ -288,6 +339,9 @@ static bool apply_setting_flag(const flag_def *def, const char *value, cli_optio
         break;
     case SET_ENUM:
         ok = store_enum(def, value, &o->settings, label, err, n);
+        break;
+    case SET_INT:
+        ok = parse_number_flag(value, &number, label, err, n) && store_int(def, number, &o->settings, label, err, n);
         break;
     case SET_BOOL:
         *bool_field(&o->settings, def->offset) = true;
@@ -389,7 +443,8 @@ static const flag_def *find_json_key(const char *key, size_t *offset) {
 
 static bool apply_json_item(const flag_def *def, size_t offset, const cJSON *item, cli_options *o, const char *label,
                             char *err, size_t n) {
-    const bool want_number = def->kind == SET_FLOAT || def->kind == SET_FLOAT_PAIR || def->kind == SET_BLUR;
+    const bool want_number =
+        def->kind == SET_FLOAT || def->kind == SET_FLOAT_PAIR || def->kind == SET_BLUR || def->kind == SET_INT;
     if (want_number && !cJSON_IsNumber(item)) {
         set_err(err, n, "%s: must be a number", label);
         return false;
@@ -406,6 +461,8 @@ static bool apply_json_item(const flag_def *def, size_t offset, const cJSON *ite
         return store_blur(item->valuedouble, &o->settings, label, err, n);
     case SET_ENUM:
         return store_enum(def, item->valuestring, &o->settings, label, err, n);
+    case SET_INT:
+        return store_int(def, item->valuedouble, &o->settings, label, err, n);
     case SET_BOOL:
         *bool_field(&o->settings, offset) = cJSON_IsTrue(item);
         return true;
@@ -508,6 +565,7 @@ cJSON *cli_settings_to_json(const cacao_settings *resolved) {
         case SET_BOOL:
             cJSON_AddBoolToObject(root, def->json, *bool_field(&s, def->offset));
             break;
+        case SET_INT: cJSON_AddNumberToObject(root, def->json, *int_field(&s, def->offset)); break;
         default:
             break;
         }
@@ -534,6 +592,9 @@ static void default_text(const flag_def *def, const cacao_settings *d, char *tex
         break;
     case SET_ENUM:
         snprintf(text, size, "%s", def->names[*int_field(&s, def->offset)]);
+        break;
+    case SET_INT:
+        snprintf(text, size, "%d", *int_field(&s, def->offset));
         break;
     default:
         break;

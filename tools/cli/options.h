@@ -37,6 +37,7 @@ typedef struct cli_options {
     bool timings;
     uint32_t repeat;                 /* timed frames; 0 = 1 */
     uint32_t warmup;                 /* untimed frames before them; default 2 */
+    uint32_t frame_index;            /* cacao_inputs.frame_index (gtao/bitmask sample pattern) */
     /* Device. */
     const char *device;
     bool validate;

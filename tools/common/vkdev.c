@@ -515,6 +515,7 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
         .output = {output.image, output.view, out_format, VK_IMAGE_LAYOUT_GENERAL},
         .matrices_row_major = true,
         .depth_reversed = frame->depth_reversed,
+        .frame_index = frame->frame_index,
         .normals_unpack_mul = frame->normals_unpack_mul,
         .normals_unpack_add = frame->normals_unpack_add,
         .timestamp_query_pool = dev->timestamps,

@@ -53,6 +53,7 @@ typedef struct vkdev_frame {
     float normals_to_view[16]; /* row-major; zero = identity */
     float normals_unpack_mul, normals_unpack_add;
     VkFormat output_format;    /* 0 = R32_SFLOAT */
+    uint32_t frame_index;      /* cacao_inputs.frame_index (GTAO/BITMASK sample pattern) */
     /* Optional: called after the last cacao_record, before submission, to record extra commands
      * (e.g. copies of intermediates), and after the wait, to read them. */
     void (*after_record)(struct vkdev *dev, cacao_context *ctx, VkCommandBuffer cmd, void *user);
