@@ -1064,12 +1064,62 @@ float unit_fraction(uint fixed_point) { return float(fixed_point >> 8u) * (1.0 /
  * 0.6180339887; 2^31 is the 0.5 offset). */
 const uint R2_X = 3242174889u, R2_Y = 2447445414u, R1 = 2654435769u, HALF = 2147483648u;
 
-/* G(theta) of estimators.md section 2.3; C(theta) = sgn(theta) G(theta). */
-float arc_g(float theta, float n, float cos_n, float sin_n)
+/* atan2(y, x) in [-pi, pi] by a minimax polynomial on [0, 1] (max error about 1e-5 rad, far below
+ * a 32nd of the half-circle); GLSL's atan costs several times more on lavapipe. */
+float fast_atan2(float y, float x)
 {
-    return (cos_n + 2.0 * theta * sin_n - cos(2.0 * theta - n)) * 0.25;
+    float ax = abs(x), ay = abs(y);
+    float a = min(ax, ay) / max(max(ax, ay), 1e-30);
+    float s = a * a;
+    float r = ((-0.0464964749 * s + 0.15931422) * s - 0.327622764) * s * a + a;
+    if (ay > ax) r = SLICE_HALF_PI - r;
+    if (x < 0.0) r = SLICE_PI - r;
+    return y < 0.0 ? -r : r;
 }
-float arc_c(float theta, float n, float cos_n, float sin_n) { return sign(theta) * arc_g(theta, n, cos_n, sin_n); }
+
+/* One slice's frame (estimators.md section 2.2): tangent t, the normal's signed angle n from the
+ * view vector and cos n, sin n, the projected normal's length pl, F(n) = cos n + n sin n. Since
+ * t and v span the slice plane, pN . t = N . t and pN . v = N . v: no projection is needed. */
+struct slice_frame {
+    vec3 t;
+    float n, cos_n, sin_n, pl, full;
+};
+
+slice_frame make_slice_frame(vec2 dir, vec3 v, vec3 nrm)
+{
+    slice_frame f;
+    vec3 d3 = vec3(dir, 0.0);
+    float dv = dot(d3, v);
+    f.t = (d3 - dv * v) * inversesqrt(max(1.0 - dv * dv, 1e-12));
+    float nt = dot(nrm, f.t), nv = max(dot(nrm, v), 0.0); /* n is clamped to +-pi/2 */
+    f.pl = sqrt(nt * nt + nv * nv);
+    float inv_pl = f.pl > 0.0 ? 1.0 / f.pl : 0.0;
+    f.cos_n = nv * inv_pl;
+    f.sin_n = nt * inv_pl;
+    f.n = fast_atan2(nt, nv);
+    f.full = f.cos_n + f.n * f.sin_n;
+    return f;
+}
+
+/* 4 G(theta) of estimators.md section 2.3, with cos(2 theta) and sin(2 theta) given. */
+float arc_g4(float theta, float cos2, float sin2, slice_frame f)
+{
+    return f.cos_n + 2.0 * theta * f.sin_n - (cos2 * f.cos_n + sin2 * f.sin_n);
+}
+
+#if SLICE_BITMASK
+/* Fraction U of the slice's cosine-weighted half-circle below the direction (x, y) = (along v,
+ * along t) (estimators.md section 4.2); c_low4 = 4 C(n - pi/2), inv_full4 = 1 / (4 F(n)). */
+float sector_fraction(float x, float y, slice_frame f, float c_low4, float inv_full4)
+{
+    float theta = fast_atan2(y, x);
+    if (theta >= f.n + SLICE_HALF_PI) return 1.0;
+    if (theta <= f.n - SLICE_HALF_PI) return 0.0;
+    float inv_r2 = 1.0 / max(x * x + y * y, 1e-30);
+    float c4 = arc_g4(theta, (x * x - y * y) * inv_r2, 2.0 * x * y * inv_r2, f);
+    return sat(((theta < 0.0 ? -c4 : c4) - c_low4) * inv_full4);
+}
+#endif
 
 float slice_visibility(ivec2 p, float z, ivec2 size)
 {
@@ -1083,26 +1133,22 @@ float slice_visibility(ivec2 p, float z, ivec2 size)
     float xi_s = unit_fraction(h * R2_X + HALF);
     uint xi_t = h * R2_Y + HALF;
     const int ns = cb.slice_directions, m = cb.slice_steps;
+    const vec2 rotation = vec2(cb.slice_rotation_cos, cb.slice_rotation_sin);
+    float phi0 = SLICE_PI * xi_s / float(ns);
+    vec2 dir = vec2(cos(phi0), sin(phi0)); /* slice i: angle pi (i + xi_s) / ns */
     float sum_vis = 0.0, sum_full = 0.0;
     for (int i = 0; i < ns; ++i) {
-        float phi = SLICE_PI * (float(i) + xi_s) / float(ns);
-        vec2 dir = vec2(cos(phi), sin(phi));
-        vec3 d3 = vec3(dir, 0.0);
-        vec3 t = normalize(d3 - dot(d3, v) * v);
-        vec3 a = normalize(cross(t, v));
-        vec3 pn = nrm - dot(nrm, a) * a;
-        float pl = length(pn);
-        float n = clamp(atan(dot(pn, t), dot(pn, v)), -SLICE_HALF_PI, SLICE_HALF_PI);
-        float cos_n = cos(n), sin_n = sin(n);
-        float full = cos_n + n * sin_n; /* F(n) */
+        slice_frame f = make_slice_frame(dir, v, nrm);
         vec2 offset_dir = vec2(dir.x, -dir.y); /* rows grow downwards */
+        dir = vec2(dir.x * rotation.x - dir.y * rotation.y, dir.x * rotation.y + dir.y * rotation.x);
 #if SLICE_BITMASK
-        float c_low = arc_c(n - SLICE_HALF_PI, n, cos_n, sin_n);
-        float inv_full = 1.0 / full;
+        /* 4 C(n - pi/2) = -G4(n - pi/2) for n - pi/2 <= 0: cos(2 theta - n) = -cos n there */
+        float c_low4 = -(f.cos_n + 2.0 * (f.n - SLICE_HALF_PI) * f.sin_n + f.cos_n);
+        float inv_full4 = 0.25 / max(f.full, 1e-12);
         uint bits = 0u;
         float occluded = 0.0;
 #else
-        float low_pos = -sin_n, low_neg = sin_n; /* cos(n +- pi/2): the half-circle edges */
+        float low_pos = -f.sin_n, low_neg = f.sin_n; /* cos(n +- pi/2): the half-circle edges */
         float c_pos = low_pos, c_neg = low_neg;
 #endif
         bool open_pos = true, open_neg = true; /* a side stops at its first off-screen sample */
@@ -1128,37 +1174,50 @@ float slice_visibility(ivec2 p, float z, ivec2 size)
                 vec3 sample_pos = slice_pos(q, zq);
                 vec3 delta3 = sample_pos - pos;
                 float dist2 = dot(delta3, delta3);
-                float dist = sqrt(dist2);
+                float x = dot(delta3, v), y = dot(delta3, f.t);
 #if SLICE_BITMASK
-                float w = cb.slice_binary != 0 ? (dist <= radius ? 1.0 : 0.0) : max(0.0, 1.0 - dist2 / (radius * radius));
+                float w = cb.slice_binary != 0 ? (dist2 <= radius * radius ? 1.0 : 0.0)
+                                               : max(0.0, 1.0 - dist2 / (radius * radius));
                 if (!(w > 0.0)) continue;
-                vec3 ray = cb.slice_ortho != 0 ? vec3(0.0, 0.0, 1.0) : normalize(sample_pos);
-                vec3 back = delta3 + cb.slice_thickness * ray;
-                float theta_front = atan(dot(delta3, t), dot(delta3, v));
-                float theta_back = atan(dot(back, t), dot(back, v));
-                float lo = min(theta_front, theta_back), hi = max(theta_front, theta_back);
-                float u_lo = sat((arc_c(clamp(lo, n - SLICE_HALF_PI, n + SLICE_HALF_PI), n, cos_n, sin_n) - c_low) * inv_full);
-                float u_hi = sat((arc_c(clamp(hi, n - SLICE_HALF_PI, n + SLICE_HALF_PI), n, cos_n, sin_n) - c_low) * inv_full);
+                /* back point: T further along the sample's own view ray (y: S . t = delta . t) */
+                float xb = x, yb = y;
+                if (cb.slice_ortho != 0) {
+                    xb -= cb.slice_thickness * v.z;
+                } else {
+                    float along = cb.slice_thickness * inversesqrt(dot(sample_pos, sample_pos));
+                    xb += along * dot(sample_pos, v);
+                    yb += along * y;
+                }
+                float u_front = sector_fraction(x, y, f, c_low4, inv_full4);
+                float u_back = sector_fraction(xb, yb, f, c_low4, inv_full4);
+                float u_lo = min(u_front, u_back), u_hi = max(u_front, u_back);
                 int b0 = int(floor(32.0 * u_lo));
                 int nb = clamp(int(roundEven(32.0 * (u_hi - u_lo))), 0, 32 - b0);
                 uint mask = nb == 0 ? 0u : (0xFFFFFFFFu >> uint(32 - nb)) << uint(b0);
                 occluded += w * float(bitCount(mask & ~bits));
                 bits |= mask;
 #else
-                float w = sat((radius - dist) * cb.slice_falloff_mul);
-                float cs = dot(delta3, v) / dist;
+                float inv_dist = inversesqrt(dist2);
+                float w = sat((radius - dist2 * inv_dist) * cb.slice_falloff_mul);
+                float cs = x * inv_dist;
                 if (positive) c_pos = max(c_pos, low_pos + (cs - low_pos) * w);
                 else c_neg = max(c_neg, low_neg + (cs - low_neg) * w);
 #endif
             }
         }
 #if SLICE_BITMASK
-        sum_vis += pl * full * occluded * (1.0 / 32.0); /* occluded share, summed as O_i */
+        sum_vis += f.pl * f.full * occluded * (1.0 / 32.0); /* occluded share, summed as O_i */
 #else
-        float theta1 = acos(clamp(c_pos, -1.0, 1.0)), theta0 = -acos(clamp(c_neg, -1.0, 1.0));
-        sum_vis += pl * (arc_g(theta1, n, cos_n, sin_n) + arc_g(theta0, n, cos_n, sin_n));
+        /* theta1 = acos(c+) in [0, pi], theta0 = -acos(c-): cos 2 theta = 2 c^2 - 1,
+         * sin 2 theta = 2 c sin theta with sin theta = +-sqrt(1 - c^2) */
+        c_pos = clamp(c_pos, -1.0, 1.0);
+        c_neg = clamp(c_neg, -1.0, 1.0);
+        float s_pos = sqrt(1.0 - c_pos * c_pos), s_neg = -sqrt(1.0 - c_neg * c_neg);
+        float g4 = arc_g4(acos(c_pos), 2.0 * c_pos * c_pos - 1.0, 2.0 * c_pos * s_pos, f) +
+                   arc_g4(-acos(c_neg), 2.0 * c_neg * c_neg - 1.0, 2.0 * c_neg * s_neg, f);
+        sum_vis += f.pl * 0.25 * g4;
 #endif
-        sum_full += pl * full;
+        sum_full += f.pl * f.full;
     }
 #if SLICE_BITMASK
     float vis = sat(1.0 - sum_vis / max(sum_full, 1e-9));

@@ -253,7 +253,9 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(INT, slice_binary)                /* 1: binary visibility within R, 0: falloff */            \
     M(INT, slice_noise_offset)          /* 288 (frame mod 64): decorrelates frames, 0 = frame 0 */ \
     M(INT, slice_ortho)                 /* 1: orthographic (view rays parallel to z) */            \
-    M(FLOAT, slice_denoise_sigma)
+    M(FLOAT, slice_denoise_sigma)                                                                  \
+    M(FLOAT, slice_rotation_cos)        /* cos, sin of pi / slices: from one slice to the next */ \
+    M(FLOAT, slice_rotation_sin)
 
 #ifdef CACAO_GLSL
 layout(std140, set = 0, binding = CACAO_BINDING_CONSTANTS) uniform cacao_constants_block {

@@ -204,6 +204,9 @@ static void fill_slice_constants(const cacao_settings *s, const projection_view 
     c->slice_noise_offset = (int)(288u * (in->frame_index % 64u));
     c->slice_ortho = v->ortho ? 1 : 0;
     c->slice_denoise_sigma = (float)CACAO_SLICE_DENOISE_SIGMA;
+    const double step = 3.14159265358979323846 / s->horizon_slices;
+    c->slice_rotation_cos = (float)cos(step);
+    c->slice_rotation_sin = (float)sin(step);
 }
 
 void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao_constants *c) {
