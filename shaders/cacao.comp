@@ -958,8 +958,8 @@ layout(set = 0, binding = CACAO_BINDING_SRC_DEPTH) uniform sampler2D src_depth;
 #if CACAO_VARIANT == CACAO_SLICE_NORMALS_INPUT
 layout(set = 0, binding = CACAO_BINDING_SRC_NORMALS) uniform sampler2D src_normals;
 #endif
-layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT0, r32f) uniform writeonly image2DArray view_depth_out;
-layout(set = 0, binding = CACAO_BINDING_NORMALS_OUT, rgba8_snorm) uniform writeonly image2DArray view_normals_out;
+layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT0, r32f) uniform writeonly image2D view_depth_out;
+layout(set = 0, binding = CACAO_BINDING_NORMALS_OUT, rgba8_snorm) uniform writeonly image2D view_normals_out;
 
 /* Raw depth -> view z, -1 for background (estimators.md section 1: the denominator keeps 1 - d
  * exact where d is near 1). */
@@ -1011,25 +1011,25 @@ void main()
         n = slice_normal(n, to_camera);
 #endif
     }
-    imageStore(view_depth_out, ivec3(p, 0), vec4(z));
-    imageStore(view_normals_out, ivec3(p, 0), vec4(n, 0.0));
+    imageStore(view_depth_out, p, vec4(z));
+    imageStore(view_normals_out, p, vec4(n, 0.0));
 }
 #endif /* SLICE_PREPARE */
 
 #if CACAO_PASS == CACAO_PASS_SLICE_MAIN || CACAO_PASS == CACAO_PASS_SLICE_DENOISE
-layout(set = 0, binding = CACAO_BINDING_DEPTHS) uniform sampler2DArray view_depth;
-layout(set = 0, binding = CACAO_BINDING_NORMALS) uniform sampler2DArray view_normals;
+layout(set = 0, binding = CACAO_BINDING_DEPTHS) uniform sampler2D view_depth;
+layout(set = 0, binding = CACAO_BINDING_NORMALS) uniform sampler2D view_normals;
 
-float fetch_view_z(ivec2 p) { return texelFetch(view_depth, ivec3(p, 0), 0).r; }
-vec3 fetch_normal(ivec2 p, vec3 to_camera) { return slice_normal(texelFetch(view_normals, ivec3(p, 0), 0).xyz, to_camera); }
+float fetch_view_z(ivec2 p) { return texelFetch(view_depth, p, 0).r; }
+vec3 fetch_normal(ivec2 p, vec3 to_camera) { return slice_normal(texelFetch(view_normals, p, 0).xyz, to_camera); }
 
 #if (CACAO_PASS == CACAO_PASS_SLICE_MAIN && CACAO_VARIANT >= CACAO_SLICE_GTAO_DIRECT) || \
     (CACAO_PASS == CACAO_PASS_SLICE_DENOISE && CACAO_VARIANT == CACAO_DENOISE_FINAL)
 layout(set = 0, binding = CACAO_BINDING_OUTPUT) uniform writeonly image2D output_image;
 void store_visibility(ivec2 p, float v) { imageStore(output_image, p, vec4(v, 0.0, 0.0, 0.0)); }
 #else
-layout(set = 0, binding = CACAO_BINDING_SSAO_OUT, r16f) uniform writeonly image2DArray ao_out;
-void store_visibility(ivec2 p, float v) { imageStore(ao_out, ivec3(p, 0), vec4(v)); }
+layout(set = 0, binding = CACAO_BINDING_SSAO_OUT, r16f) uniform writeonly image2D ao_out;
+void store_visibility(ivec2 p, float v) { imageStore(ao_out, p, vec4(v)); }
 #endif
 #endif
 
@@ -1231,7 +1231,7 @@ float slice_visibility(ivec2 p, float z, ivec2 size)
 void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size = textureSize(view_depth, 0).xy;
+    ivec2 size = textureSize(view_depth, 0);
     if (!in_rect(p, size)) return;
     float z = fetch_view_z(p);
     store_visibility(p, z > 0.0 ? slice_visibility(p, z, size) : 1.0);
@@ -1239,14 +1239,14 @@ void main()
 #endif /* SLICE_MAIN */
 
 #if CACAO_PASS == CACAO_PASS_SLICE_DENOISE
-layout(set = 0, binding = CACAO_BINDING_SSAO_IN) uniform sampler2DArray ao_in;
+layout(set = 0, binding = CACAO_BINDING_SSAO_IN) uniform sampler2D ao_in;
 
 /* 3x3 bilateral filter (estimators.md section 5): weight by the distance of the neighbour's point
  * from this pixel's tangent plane (relative to sigma z) and by the agreement of the normals. */
 void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size = textureSize(view_depth, 0).xy;
+    ivec2 size = textureSize(view_depth, 0);
     if (!in_rect(p, size)) return;
     float z = fetch_view_z(p);
     if (!(z > 0.0)) {
@@ -1256,7 +1256,7 @@ void main()
     vec3 pos = slice_pos(p, z);
     vec3 nrm = fetch_normal(p, slice_to_camera(pos));
     float inv_scale = 1.0 / max(cb.slice_denoise_sigma * z, 1e-30);
-    float sum = texelFetch(ao_in, ivec3(p, 0), 0).r, weight_sum = 1.0;
+    float sum = texelFetch(ao_in, p, 0).r, weight_sum = 1.0;
     [[unroll]] for (int j = -1; j <= 1; ++j) {
         [[unroll]] for (int i = -1; i <= 1; ++i) {
             ivec2 q = p + ivec2(i, j);
@@ -1269,7 +1269,7 @@ void main()
             float agree = sat(dot(nrm, nq));
             agree *= agree;
             float w = exp(-plane * plane) * agree * agree;
-            sum += w * texelFetch(ao_in, ivec3(q, 0), 0).r;
+            sum += w * texelFetch(ao_in, q, 0).r;
             weight_sum += w;
         }
     }

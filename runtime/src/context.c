@@ -228,7 +228,9 @@ static cacao_result create_image(cacao_context *ctx, const cacao_plan_image *pi)
     if (r != CACAO_SUCCESS) return r;
     vr = vkBindImageMemory(ctx->device, im->image, im->memory, 0);
     if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkBindImageMemory");
-    const bool array = pi->resource != CACAO_RES_IMPORTANCE && pi->resource != CACAO_RES_IMPORTANCE_PONG;
+    /* CACAO's deinterleaved intermediates are arrays of slices; the rest are plain 2D images. */
+    const bool array = pi->resource == CACAO_RES_DEPTHS || pi->resource == CACAO_RES_NORMALS ||
+                       pi->resource == CACAO_RES_SSAO_PING || pi->resource == CACAO_RES_SSAO_PONG;
     VkImageViewCreateInfo view = {
         .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
         .image = im->image,
