@@ -10,8 +10,9 @@
 static void test_names_round_trip(void) {
     cacao_key keys[64];
     size_t n = cacaoi_key_list(keys, 64);
-    /* 6 prepare_depths + 4 prepare_normals + 5 generate + 3 importance + 16 blur + 6 apply + 6 upsample */
-    CHECK(n == 46);
+    /* 6 prepare_depths + 4 prepare_normals + 5 generate + 3 importance + 16 blur + 6 apply + 6 upsample
+     * + 2 slice_prepare + 4 slice_main + 2 slice_denoise */
+    CHECK(n == 54);
     for (size_t i = 0; i < n; ++i) {
         char name[CACAO_KEY_NAME_MAX];
         CHECK(cacaoi_key_is_valid(&keys[i]));
@@ -49,12 +50,17 @@ static void test_subset(void) {
     cacao_key_subset s;
     CHECK(cacaoi_key_subset_parse("medium;high", "OFF", "fp32", &s));
     /* By hand: MEDIUM native = prepare_depths.full (no mips), Q1, apply.smart; HIGH native =
-     * prepare_depths.mips, Q2, apply.smart; both: either normals source, blur 1..8 fp32. */
+     * prepare_depths.mips, Q2, apply.smart; both: either normals source, blur 1..8 fp32. The
+     * horizon-slice estimators have no quality axis (quality is their budget, a constant) and run
+     * native in fp32: all their keys belong to any subset with native resolution. */
     const char *expected[] = {"prepare_depths.full.native", "prepare_depths.mips.native",
                               "prepare_normals.depth.native", "prepare_normals.input.native",
                               "generate.q1", "generate.q2", "blur.1.fp32", "blur.2.fp32",
                               "blur.3.fp32", "blur.4.fp32", "blur.5.fp32", "blur.6.fp32",
-                              "blur.7.fp32", "blur.8.fp32", "apply.smart.fp32"};
+                              "blur.7.fp32", "blur.8.fp32", "apply.smart.fp32", "slice_prepare.depth",
+                              "slice_prepare.input", "slice_main.gtao", "slice_main.bitmask",
+                              "slice_main.gtao_direct", "slice_main.bitmask_direct",
+                              "slice_denoise.intermediate", "slice_denoise.final"};
     cacao_key keys[64];
     size_t n = cacaoi_key_list(keys, 64), kept = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -70,6 +76,10 @@ static void test_subset(void) {
     CHECK(kept == sizeof expected / sizeof expected[0]);
     cacao_key_subset all = CACAO_KEY_SUBSET_ALL;
     for (size_t i = 0; i < n; ++i) CHECK(cacaoi_key_in_subset(&keys[i], &all)); /* no dead keys */
+    /* downsampled only: no slice-estimator key (they run at full resolution only) */
+    CHECK(cacaoi_key_subset_parse("high", "ONLY", "fp32", &s));
+    for (size_t i = 0; i < n; ++i)
+        if (keys[i].pass >= CACAO_PASS_SLICE_PREPARE) CHECK(!cacaoi_key_in_subset(&keys[i], &s));
     CHECK(!cacaoi_key_subset_parse("ultra", "OFF", "fp32", &s));
     CHECK(!cacaoi_key_subset_parse("high", "MAYBE", "fp32", &s));
     CHECK(!cacaoi_key_subset_parse("high", "OFF", "fp64", &s));

@@ -221,6 +221,13 @@ static bool runtime_accepts_zero(size_t offset) {
     return cacao_settings_resolve(&probe, &resolved, NULL, 0) == CACAO_SUCCESS;
 }
 
+/* Whether the runtime's default of this float field is 0 itself (a default that depends on other
+ * settings), so that a literal 0 is simply that default. */
+static bool runtime_default_is_zero(size_t offset) {
+    cacao_settings probe = {0}, resolved;
+    return cacao_settings_resolve(&probe, &resolved, NULL, 0) == CACAO_SUCCESS && *float_field(&resolved, offset) == 0.0f;
+}
+
 /* Stores a literal float: finite, not negative, 0 as CACAO_ZERO where the runtime allows 0. */
 static bool store_float(size_t offset, double literal, cacao_settings *s, const char *label, char *err, size_t n) {
     if (!isfinite(literal)) {
@@ -230,6 +237,10 @@ static bool store_float(size_t offset, double literal, cacao_settings *s, const 
     if (literal < 0.0) {
         set_err(err, n, "%s: must not be negative", label);
         return false;
+    }
+    if (literal == 0.0 && runtime_default_is_zero(offset)) { /* e.g. thickness: 0 = relative to R */
+        *float_field(s, offset) = 0.0f;
+        return true;
     }
     if (literal == 0.0 && !runtime_accepts_zero(offset)) {
         set_err(err, n, "%s: must be greater than 0", label);
