@@ -1,0 +1,455 @@
+/* test_estimators - the horizon-slice estimators (GTAO, visibility bitmask) against facts known
+ * independently of this implementation:
+ *  - the synthetic crease of shared/spec/estimators.md section 9.3: per-row means of the spec's
+ *    double-precision prototype (raw output, columns 400-559) and the closed-form visibility of a
+ *    floor point at distance c R from a wall (V_fall, V_bin, section 9.1);
+ *  - unoccluded planes give 1 (the normalisation by the unoccluded slice weight, section 9.2);
+ *  - the bottom of a V-groove of opening alpha sees sin(alpha / 2) (edge formula, section 9.1);
+ *  - invariances any correct implementation has: standard vs reverse-Z depth, world scale, NaN and
+ *    Inf depth treated exactly as background, a 64-frame noise period, and frame accumulation
+ *    converging towards a 4x larger budget.
+ * With the shared scenes (argv[1]): RMSE against the ray-traced truths, bounded by issue 13's
+ * targets (what the spec's prototype reached). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gpu_scene.h"
+
+static const double pi = 3.14159265358979323846;
+
+/* The crease of section 9.3 as a 320x540 crop (columns 320-639 of the 960x540 frame: the same
+ * pixel centres, the same 64-pixel noise tiles, and every sample of columns 400-559 inside it). */
+#define CREASE_W 320
+#define CREASE_H 540
+#define CREASE_X0 320 /* crop offset: columns 400-559 of the frame are 80..239 here */
+
+static const cacao_prim crease_prims[] = {
+    {.kind = CACAO_PRIM_PLANE, .a = {0, 0, 0}, .b = {0, 1, 0}},  /* floor, 1.6 below the eye */
+    {.kind = CACAO_PRIM_PLANE, .a = {0, 0, -5}, .b = {0, 0, 1}}, /* wall, axial distance 5 */
+};
+
+static cacao_scene crease_scene(uint32_t prim_count, const cacao_prim *prims) {
+    return (cacao_scene){.prims = prims,
+                         .prim_count = prim_count,
+                         .camera = {.width = CREASE_W,
+                                    .height = CREASE_H,
+                                    .fov_y_deg = 60.0,
+                                    .near_z = 0.05,
+                                    .far_z = 100.0,
+                                    .eye = {0, 1.6, 0},
+                                    .target = {0, 1.6, -1},
+                                    .up = {0, 1, 0}},
+                         .ao_radius_world = 0.5};
+}
+
+/* Spec section 9.3: rows, c = d / R, and the prototype's raw row means. */
+static const int crease_rows[] = {209, 396, 404, 412, 418, 420, 424, 428, 432, 440};
+#define CREASE_ROWS 10
+typedef struct crease_config {
+    const char *name;
+    cacao_estimator estimator;
+    cacao_visibility visibility;
+    int slices, steps;
+    double prototype[CREASE_ROWS];
+} crease_config;
+static const crease_config crease_configs[] = {
+    {"gtao-f 3x3", CACAO_ESTIMATOR_GTAO, CACAO_VISIBILITY_FALLOFF, 3, 3,
+     {0.9999, 0.9700, 0.9252, 0.8166, 0.6325, 0.6105, 0.8650, 0.9533, 0.9850, 0.9957}},
+    {"gtao-f 4x8", CACAO_ESTIMATOR_GTAO, CACAO_VISIBILITY_FALLOFF, 4, 8,
+     {0.9997, 0.9359, 0.8610, 0.7166, 0.5454, 0.5776, 0.8254, 0.9346, 0.9746, 0.9907}},
+    {"gtao-f 8x16", CACAO_ESTIMATOR_GTAO, CACAO_VISIBILITY_FALLOFF, 8, 16,
+     {0.9996, 0.9275, 0.8421, 0.6931, 0.5374, 0.5707, 0.8185, 0.9281, 0.9693, 0.9860}},
+    {"bitmask-f 4x8", CACAO_ESTIMATOR_BITMASK, CACAO_VISIBILITY_FALLOFF, 4, 8,
+     {1.0000, 0.9426, 0.8628, 0.7255, 0.5719, 0.5743, 0.8182, 0.9427, 0.9914, 0.9986}},
+    {"bitmask-f 8x16", CACAO_ESTIMATOR_BITMASK, CACAO_VISIBILITY_FALLOFF, 8, 16,
+     {1.0000, 0.9290, 0.8415, 0.7020, 0.5495, 0.5640, 0.8071, 0.9331, 0.9874, 0.9979}},
+    {"bitmask-b 4x8", CACAO_ESTIMATOR_BITMASK, CACAO_VISIBILITY_BINARY, 4, 8,
+     {1.0000, 0.8510, 0.7450, 0.6313, 0.5402, 0.5352, 0.7025, 0.8491, 0.9510, 0.9986}},
+    {"bitmask-b 8x16", CACAO_ESTIMATOR_BITMASK, CACAO_VISIBILITY_BINARY, 8, 16,
+     {1.0000, 0.8313, 0.7326, 0.6212, 0.5296, 0.5272, 0.6920, 0.8305, 0.9401, 0.9979}},
+};
+
+/* Closed forms of section 9.1: a floor point at distance c R from an infinite wall. */
+static double v_bin(double c) { return c >= 1 ? 1 : 1 - (acos(c) - c * sqrt(1 - c * c)) / pi; }
+static double v_fall(double c) {
+    return c >= 1 ? 1 : 1 - ((1 + 2 * c * c) * acos(c) - 3 * c * sqrt(1 - c * c)) / pi;
+}
+
+/* c = d / R of a crease row in the 960x540 frame (section 9.3). */
+static double crease_c(int row) {
+    const double ry = (1 - 2 * (row + 0.5) / 540.0) * tan(pi / 6);
+    const double z = ry < 0 ? fmin(5.0, 1.6 / -ry) : 5.0;
+    const bool floor_row = ry < 0 && 1.6 / -ry < 5.0;
+    return (floor_row ? 5.0 - z : 1.6 + 5.0 * ry) / 0.5;
+}
+
+static double row_mean(const float *ao, uint32_t width, int row, uint32_t x0, uint32_t x1) {
+    double sum = 0;
+    for (uint32_t x = x0; x <= x1; ++x) sum += ao[(size_t)row * width + x];
+    return sum / (x1 - x0 + 1);
+}
+
+static cacao_settings slice_settings(cacao_estimator e, cacao_visibility v, int slices, int steps, float radius) {
+    return (cacao_settings){.estimator = e,
+                            .visibility = v,
+                            .horizon_slices = slices,
+                            .horizon_steps = steps,
+                            .radius = radius,
+                            .blur_pass_count = CACAO_BLUR_NONE,
+                            .fade_out_from = 1e6f,
+                            .fade_out_to = 2e6f};
+}
+
+/* The prototype's row means within 0.01 (a few thousandths of fp32-vs-double and depth-buffer
+ * rounding; measured worst below), and bitmask-f 8x16 floor rows within 0.015 of V_fall, which
+ * the spec reports for its prototype ("floor rows within 0.01 at 8x16"). */
+static void test_crease(vkdev *dev) {
+    const cacao_scene scene = crease_scene(2, crease_prims);
+    scene_buffers b;
+    scene_buffers_render(&scene, &b);
+    float *ao = malloc(sizeof(float) * CREASE_W * CREASE_H);
+    for (size_t k = 0; k < sizeof crease_configs / sizeof crease_configs[0]; ++k) {
+        const crease_config *cc = &crease_configs[k];
+        const cacao_settings s = slice_settings(cc->estimator, cc->visibility, cc->slices, cc->steps, 0.5f);
+        vkdev_frame f = scene_frame(&b, false, true);
+        if (!run(dev, &s, &f, ao)) continue;
+        double worst = 0, worst_analytic = 0;
+        for (int r = 0; r < CREASE_ROWS; ++r) {
+            const int row = crease_rows[r];
+            const double m = row_mean(ao, CREASE_W, row, 400 - CREASE_X0, 559 - CREASE_X0);
+            const double c = crease_c(row);
+            const double truth = cc->visibility == CACAO_VISIBILITY_BINARY ? v_bin(c) : v_fall(c);
+            worst = fmax(worst, fabs(m - cc->prototype[r]));
+            const bool floor_row = row >= 420;
+            if (floor_row) worst_analytic = fmax(worst_analytic, fabs(m - truth));
+            printf("crease %-14s row %d c %.3f: %.4f (prototype %.4f, closed form %.4f)\n", cc->name, row, c, m,
+                   cc->prototype[r], truth);
+        }
+        printf("crease %-14s: worst |row mean - prototype| %.4f, floor rows vs closed form %.4f\n", cc->name, worst,
+               worst_analytic);
+        CHECK(worst <= 0.01);
+        if (strcmp(cc->name, "bitmask-f 8x16") == 0) CHECK(worst_analytic <= 0.015);
+    }
+    free(ao);
+    scene_buffers_free(&b);
+}
+
+/* Unoccluded surfaces give 1 at every budget: a wall facing the camera, and a floor alone seen at
+ * grazing angles (pixel snapping darkens them slightly, GTAO most: spec pitfall 6 reports row
+ * means 0.991 at 4x8 and 0.986 at 8x16 for GTAO, 0.999 / 0.998 for the bitmask). */
+static void test_unoccluded(vkdev *dev) {
+    const cacao_prim wall[] = {crease_prims[1]}, floor_only[] = {crease_prims[0]};
+    const struct {
+        const char *name;
+        const cacao_prim *prims;
+    } cases[] = {{"wall", wall}, {"floor", floor_only}};
+    float *ao = malloc(sizeof(float) * CREASE_W * CREASE_H);
+    for (int c = 0; c < 2; ++c) {
+        const cacao_scene scene = crease_scene(1, cases[c].prims);
+        scene_buffers b;
+        scene_buffers_render(&scene, &b);
+        for (int e = CACAO_ESTIMATOR_GTAO; e <= CACAO_ESTIMATOR_BITMASK; ++e)
+            for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; q += 2) {
+                cacao_settings s = slice_settings(e, CACAO_VISIBILITY_FALLOFF, 0, 0, 0.5f);
+                s.quality = q;
+                vkdev_frame f = scene_frame(&b, false, true);
+                if (!run(dev, &s, &f, ao)) continue;
+                double lowest = 1, mean = 0;
+                size_t counted = 0;
+                for (size_t i = 0; i < (size_t)CREASE_W * CREASE_H; ++i) {
+                    if (b.depth[i] >= 1.0f) continue;
+                    lowest = fmin(lowest, ao[i]);
+                    mean += ao[i];
+                    ++counted;
+                }
+                mean /= (double)counted;
+                printf("unoccluded %-5s %-7s quality %d: mean %.5f, lowest %.5f\n", cases[c].name,
+                       e == CACAO_ESTIMATOR_GTAO ? "gtao" : "bitmask", q, mean, lowest);
+                CHECK(all_finite_unit(ao, (size_t)CREASE_W * CREASE_H));
+                /* Means over the image (measured: wall bitmask 0.99999-1.0, GTAO 0.9988-0.9997;
+                 * floor to the horizon bitmask 0.9954-0.9983, GTAO 0.9861-0.9945). Single pixels dip
+                 * (lowest printed) where snapped samples leave the slice plane, most at grazing rows. */
+                const bool bitmask = e == CACAO_ESTIMATOR_BITMASK;
+                CHECK(mean >= (c == 0 ? (bitmask ? 0.9999 : 0.998) : (bitmask ? 0.99 : 0.98)));
+            }
+        scene_buffers_free(&b);
+    }
+    free(ao);
+}
+
+/* The bottom of a V-groove of opening alpha, normal along the bisector, sees sin(alpha / 2). The
+ * camera looks straight down at the groove; the image's middle row lies on the bottom line. Unlike
+ * the crease rows, no prototype value exists here: the bound is the closed form's. */
+static void test_groove(vkdev *dev) {
+    const uint32_t w = 161, h = 161;
+    float *ao = malloc(sizeof(float) * w * h);
+    const double openings[] = {90.0, 120.0};
+    for (int k = 0; k < 2; ++k) {
+        const double half = openings[k] * pi / 360.0;
+        const cacao_prim groove[] = {
+            {.kind = CACAO_PRIM_PLANE, .a = {0, 0, 0}, .b = {0, sin(half), -cos(half)}},
+            {.kind = CACAO_PRIM_PLANE, .a = {0, 0, 0}, .b = {0, sin(half), cos(half)}},
+        };
+        const cacao_scene scene = {.prims = groove,
+                                   .prim_count = 2,
+                                   .camera = {.width = w,
+                                              .height = h,
+                                              .fov_y_deg = 40.0,
+                                              .near_z = 0.05,
+                                              .far_z = 100.0,
+                                              .eye = {0, 3, 0},
+                                              .target = {0, 0, 0},
+                                              .up = {0, 0, -1}},
+                                   .ao_radius_world = 0.5};
+        scene_buffers b;
+        scene_buffers_render(&scene, &b);
+        /* the bottom row's normal is the bisector: the mean of the two faces' normals */
+        const uint32_t mid = h / 2;
+        for (uint32_t x = 0; x < w; ++x) {
+            float *n = &b.normals[3 * ((size_t)mid * w + x)];
+            const float *up = &b.normals[3 * ((size_t)(mid - 1) * w + x)], *dn = &b.normals[3 * ((size_t)(mid + 1) * w + x)];
+            double s[3], len = 0;
+            for (int j = 0; j < 3; ++j) s[j] = (double)up[j] + dn[j], len += s[j] * s[j];
+            for (int j = 0; j < 3; ++j) n[j] = (float)(s[j] / sqrt(len));
+        }
+        const double truth = sin(half);
+        for (int e = CACAO_ESTIMATOR_GTAO; e <= CACAO_ESTIMATOR_BITMASK; ++e)
+            for (int v = CACAO_VISIBILITY_FALLOFF; v <= CACAO_VISIBILITY_BINARY; ++v) {
+                const cacao_settings s = slice_settings(e, v, 8, 16, 0.5f);
+                vkdev_frame f = scene_frame(&b, false, true);
+                if (!run(dev, &s, &f, ao)) continue;
+                const double m = row_mean(ao, w, (int)mid, 40, w - 41);
+                printf("V-groove %.0f deg, %s %s 8x16: bottom row %.4f, closed form sin(alpha/2) %.4f\n", openings[k],
+                       e == CACAO_ESTIMATOR_GTAO ? "gtao" : "bitmask", v == CACAO_VISIBILITY_BINARY ? "binary" : "falloff",
+                       m, truth);
+                /* measured 0.023-0.052 below: the groove runs along a pixel row, so samples snapped
+                 * to the next row sit on a wall at a steeper elevation than the slice's own (spec
+                 * pitfall 6); both estimators share it. Bound: 1.25 x the worst. */
+                CHECK(m < truth && truth - m <= 0.065);
+            }
+        scene_buffers_free(&b);
+    }
+    free(ao);
+}
+
+static double mean_abs_diff(const float *a, const float *b, size_t n) {
+    double m = 0;
+    for (size_t i = 0; i < n; ++i) m += fabs((double)a[i] - b[i]);
+    return m / (double)n;
+}
+
+/* The same geometry in reverse-Z depth, and at world scales 1e-3..1e3 (radius, near, far scaled),
+ * gives the same AO: the estimators see only view-space vectors and their ratios. */
+static void test_invariance(vkdev *dev) {
+    const uint32_t w = 320, h = 180;
+    const size_t n = (size_t)w * h;
+    float *ref = malloc(sizeof(float) * n), *ao = malloc(sizeof(float) * n);
+    const cacao_scene base = cacao_default_scene(w, h);
+    cacao_prim prims[64];
+    for (int e = CACAO_ESTIMATOR_GTAO; e <= CACAO_ESTIMATOR_BITMASK; ++e) {
+        scene_buffers b;
+        scene_buffers_render(&base, &b);
+        cacao_settings s = slice_settings(e, CACAO_VISIBILITY_FALLOFF, 0, 0, (float)base.ao_radius_world);
+        s.blur_pass_count = 0; /* the default denoise pass */
+        vkdev_frame f = scene_frame(&b, false, true), fr = scene_frame(&b, true, true);
+        if (run(dev, &s, &f, ref) && run(dev, &s, &fr, ao)) {
+            const double m = mean_abs_diff(ref, ao, n);
+            printf("%s reverse-Z vs standard: mean |diff| %.6f\n", e == CACAO_ESTIMATOR_GTAO ? "gtao" : "bitmask", m);
+            CHECK(m < 0.5 / 255.0);
+        }
+        scene_buffers_free(&b);
+        const double scales[] = {1e-3, 1e3};
+        for (int k = 0; k < 2; ++k) {
+            const double sc = scales[k];
+            cacao_scene scene = base;
+            for (uint32_t i = 0; i < base.prim_count && i < 64; ++i) {
+                prims[i] = base.prims[i];
+                for (int j = 0; j < 3; ++j) {
+                    prims[i].a[j] *= sc;
+                    if (prims[i].kind != CACAO_PRIM_PLANE) prims[i].b[j] *= sc;
+                }
+                prims[i].r *= sc;
+            }
+            scene.prims = prims;
+            for (int j = 0; j < 3; ++j) scene.camera.eye[j] *= sc, scene.camera.target[j] *= sc;
+            scene.camera.near_z *= sc;
+            scene.camera.far_z *= sc;
+            scene_buffers bs;
+            scene_buffers_render(&scene, &bs);
+            cacao_settings ss = s;
+            ss.radius = (float)(base.ao_radius_world * sc);
+            ss.fade_out_from = (float)(1e6 * sc), ss.fade_out_to = (float)(2e6 * sc);
+            vkdev_frame fs = scene_frame(&bs, false, true);
+            if (run(dev, &ss, &fs, ao)) {
+                const double m = mean_abs_diff(ref, ao, n);
+                printf("%s world scale x%g vs x1: mean |diff| %.6f\n", e == CACAO_ESTIMATOR_GTAO ? "gtao" : "bitmask",
+                       sc, m);
+                CHECK(m <= 1.0 / 255.0);
+            }
+            scene_buffers_free(&bs);
+        }
+    }
+    free(ref);
+    free(ao);
+}
+
+/* NaN, +Inf and -Inf depth are background, exactly: the output equals that of the same frame with
+ * those pixels at the far plane (depth 1), and stays in [0,1]. Reconstructed normals, so the bad
+ * block also reaches the normals of its neighbours. */
+static void test_invalid_depth(vkdev *dev) {
+    scene_buffers b;
+    const float radius = scene_buffers_default(256, 144, &b);
+    const size_t n = (size_t)b.width * b.height;
+    float *dirty_depth = malloc(sizeof(float) * n), *far_depth = malloc(sizeof(float) * n);
+    float *dirty = malloc(sizeof(float) * n), *far = malloc(sizeof(float) * n);
+    memcpy(dirty_depth, b.depth, sizeof(float) * n);
+    memcpy(far_depth, b.depth, sizeof(float) * n);
+    for (uint32_t y = 60; y < 76; ++y)
+        for (uint32_t x = 100; x < 130; ++x) {
+            const size_t i = (size_t)y * b.width + x;
+            dirty_depth[i] = x % 3 == 0 ? NAN : (x % 3 == 1 ? INFINITY : -INFINITY);
+            far_depth[i] = 1.0f;
+        }
+    for (int e = CACAO_ESTIMATOR_GTAO; e <= CACAO_ESTIMATOR_BITMASK; ++e) {
+        cacao_settings s = slice_settings(e, CACAO_VISIBILITY_FALLOFF, 0, 0, radius);
+        s.generate_normals = true;
+        s.blur_pass_count = 2;
+        vkdev_frame f = scene_frame(&b, false, false);
+        f.depth = dirty_depth;
+        if (!run(dev, &s, &f, dirty)) continue;
+        f.depth = far_depth;
+        if (!run(dev, &s, &f, far)) continue;
+        size_t differ = 0;
+        for (size_t i = 0; i < n; ++i) differ += dirty[i] != far[i];
+        printf("%s NaN/Inf block vs the same block at the far plane: %zu pixels differ\n",
+               e == CACAO_ESTIMATOR_GTAO ? "gtao" : "bitmask", differ);
+        CHECK(all_finite_unit(dirty, n));
+        CHECK(differ == 0);
+    }
+    free(dirty_depth);
+    free(far_depth);
+    free(dirty);
+    free(far);
+    scene_buffers_free(&b);
+}
+
+/* cacao_inputs.frame_index: frames differ, the pattern repeats after 64 frames, and the mean of 16
+ * frames at 4x8 lies closer to the 8x16 result (4x the reads) than one frame does. */
+static void test_frames(vkdev *dev) {
+    scene_buffers b;
+    const float radius = scene_buffers_default(320, 180, &b);
+    const size_t n = (size_t)b.width * b.height;
+    float *ref = malloc(sizeof(float) * n), *ao = malloc(sizeof(float) * n), *first = malloc(sizeof(float) * n);
+    double *sum = calloc(n, sizeof(double));
+    cacao_settings s = slice_settings(CACAO_ESTIMATOR_BITMASK, CACAO_VISIBILITY_FALLOFF, 8, 16, radius);
+    vkdev_frame f = scene_frame(&b, false, true);
+    run(dev, &s, &f, ref);
+    s.horizon_slices = 4;
+    s.horizon_steps = 8;
+    double rmse[3] = {0}; /* mean of 1, 4 and 16 frames against the 8x16 result */
+    for (uint32_t frame = 0; frame < 16; ++frame) {
+        f.frame_index = frame;
+        if (!run(dev, &s, &f, frame == 0 ? first : ao)) continue;
+        const float *out = frame == 0 ? first : ao;
+        if (frame == 1) CHECK(mean_abs_diff(first, ao, n) > 0.001); /* another sample pattern */
+        for (size_t i = 0; i < n; ++i) sum[i] += out[i];
+        if (frame == 0 || frame == 3 || frame == 15) {
+            double se = 0;
+            for (size_t i = 0; i < n; ++i) se += (sum[i] / (frame + 1) - ref[i]) * (sum[i] / (frame + 1) - ref[i]);
+            rmse[frame == 0 ? 0 : frame == 3 ? 1 : 2] = sqrt(se / (double)n);
+        }
+    }
+    f.frame_index = 64;
+    if (run(dev, &s, &f, ao)) CHECK(memcmp(ao, first, sizeof(float) * n) == 0); /* period 64 */
+    printf("frames: RMSE vs 8x16 of the mean of 1, 4, 16 frames at 4x8: %.5f, %.5f, %.5f\n", rmse[0], rmse[1],
+           rmse[2]);
+    /* measured 0.0147, -, 0.0098: the noise averages out, the 4x8-vs-8x16 bias stays */
+    CHECK(rmse[2] < rmse[1] && rmse[1] < rmse[0] && rmse[2] < 0.75 * rmse[0]);
+    free(ref);
+    free(ao);
+    free(first);
+    free(sum);
+    scene_buffers_free(&b);
+}
+
+/* Issue 13's targets on the shared scenes (the spec prototype's figures): native, fp32, the
+ * scenes' normals, one parameter set, RMSE over non-background pixels. */
+static void test_shared_scenes(vkdev *dev, const char *shared) {
+    static const char *const scenes[] = {"interior_fzkhaus", "statues_scanned", "street_track"};
+    static const struct {
+        const char *what;
+        cacao_estimator estimator;
+        cacao_visibility visibility;
+        cacao_quality quality;
+        const char *truth;
+        double bound[3];
+    } cases[] = {
+        {"bitmask falloff, 64 reads", CACAO_ESTIMATOR_BITMASK, CACAO_VISIBILITY_FALLOFF, CACAO_QUALITY_HIGHEST,
+         "ao_gt_falloff", {0.076, 0.024, 0.056}},
+        {"bitmask binary, 64 reads", CACAO_ESTIMATOR_BITMASK, CACAO_VISIBILITY_BINARY, CACAO_QUALITY_HIGHEST, "ao_gt",
+         {0.097, 0.031, 0.072}},
+        {"gtao falloff, 18 reads", CACAO_ESTIMATOR_GTAO, CACAO_VISIBILITY_FALLOFF, CACAO_QUALITY_MEDIUM,
+         "ao_gt_falloff", {0.090, 0.035, 0.070}},
+    };
+    for (int k = 0; k < 3; ++k) {
+        char path[4096], err[512];
+        cacao_img depth = {0}, normals = {0}, gt = {0}, gt_falloff = {0};
+        cacao_camera_file cam;
+        if (!load_shared_scene(shared, scenes[k], &depth, &gt_falloff, &cam)) continue;
+        snprintf(path, sizeof path, "%s/scenes/%s/normals.pfm", shared, scenes[k]);
+        bool ok = cacao_pfm_read(path, &normals, err, sizeof err);
+        snprintf(path, sizeof path, "%s/scenes/%s/ao_gt.pfm", shared, scenes[k]);
+        ok = ok && cacao_pfm_read(path, &gt, err, sizeof err);
+        CHECK(ok);
+        const size_t n = (size_t)depth.width * depth.height;
+        float *ao = malloc(sizeof(float) * n);
+        for (size_t c = 0; ok && c < sizeof cases / sizeof cases[0]; ++c) {
+            cacao_settings s = slice_settings(cases[c].estimator, cases[c].visibility, 0, 0, (float)cam.ao_radius_world);
+            s.quality = cases[c].quality;
+            s.blur_pass_count = 0; /* default: one denoise pass */
+            vkdev_frame f = {.width = depth.width, .height = depth.height, .depth = depth.data};
+            memcpy(f.projection, cam.projection, sizeof f.projection);
+            vkdev_frame_set_view_normals(&f, normals.data);
+            if (!run(dev, &s, &f, ao)) continue;
+            const float *truth = strcmp(cases[c].truth, "ao_gt") == 0 ? gt.data : gt_falloff.data;
+            double se = 0;
+            size_t counted = 0;
+            for (size_t i = 0; i < n; ++i) {
+                if (depth.data[i] >= 1.0f || !isfinite(truth[i])) continue;
+                const double d = (double)ao[i] - truth[i];
+                se += d * d;
+                ++counted;
+            }
+            const double rmse = sqrt(se / (double)counted);
+            printf("%-17s %-26s vs %-13s RMSE %.4f (target <= %.3f)\n", scenes[k], cases[c].what, cases[c].truth, rmse,
+                   cases[c].bound[k]);
+            CHECK(rmse <= cases[c].bound[k]);
+        }
+        free(ao);
+        free(depth.data);
+        free(normals.data);
+        free(gt.data);
+        free(gt_falloff.data);
+    }
+}
+
+int main(int argc, char **argv) {
+    vkdev dev;
+    open_device(&dev);
+    if (argc > 1 && strcmp(argv[1], "--shared") == 0) {
+        const char *shared = require_shared_dir(argc - 1, argv + 1);
+        test_shared_scenes(&dev, shared);
+    } else {
+        test_crease(&dev);
+        test_unoccluded(&dev);
+        test_groove(&dev);
+        test_invariance(&dev);
+        test_invalid_depth(&dev);
+        test_frames(&dev);
+    }
+    CHECK(dev.validation_messages == 0);
+    vkdev_destroy(&dev);
+    return test_report("test_estimators");
+}
