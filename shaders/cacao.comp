@@ -1263,12 +1263,11 @@ void main()
             if ((i == 0 && j == 0) || !in_rect(q, size)) continue;
             float zq = fetch_view_z(q);
             if (!(zq > 0.0)) continue;
-            vec3 pq = slice_pos(q, zq);
-            vec3 nq = fetch_normal(q, slice_to_camera(pq));
-            float plane = dot(nrm, pq - pos) * inv_scale;
-            float agree = sat(dot(nrm, nq));
+            /* the stored normal as it is: unit to 8 bits, and one that is zero only weighs 0 */
+            float plane = dot(nrm, slice_pos(q, zq) - pos) * inv_scale;
+            float agree = sat(dot(nrm, texelFetch(view_normals, q, 0).xyz));
             agree *= agree;
-            float w = exp(-plane * plane) * agree * agree;
+            float w = exp2(-1.44269504 * plane * plane) * agree * agree; /* exp(-plane^2) */
             sum += w * texelFetch(ao_in, q, 0).r;
             weight_sum += w;
         }
