@@ -203,8 +203,7 @@ static cacao_result check_format(cacao_context *ctx, VkFormat format, bool linea
 static cacao_result create_image(cacao_context *ctx, const cacao_plan_image *pi) {
     cacao_intermediate *im = &ctx->images[pi->resource];
     const bool linear = pi->resource == CACAO_RES_SSAO_PING || pi->resource == CACAO_RES_SSAO_PONG ||
-                        pi->resource == CACAO_RES_IMPORTANCE || pi->resource == CACAO_RES_IMPORTANCE_PONG ||
-                        pi->resource == CACAO_RES_AO_RAW || pi->resource == CACAO_RES_AO_PONG;
+                        pi->resource == CACAO_RES_IMPORTANCE || pi->resource == CACAO_RES_IMPORTANCE_PONG;
     cacao_result r = check_format(ctx, pi->format, linear, cacao_resource_name(pi->resource));
     if (r != CACAO_SUCCESS) return r;
     const VkImageCreateInfo info = {

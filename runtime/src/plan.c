@@ -126,8 +126,8 @@ static void build_slice_plan(cacao_plan *plan, unsigned blur) {
                       (uint8_t)((gtao ? CACAO_SLICE_GTAO : CACAO_SLICE_BITMASK) + (blur == 0 ? CACAO_SLICE_GTAO_DIRECT : 0)),
                       0, 0, 0};
     st = add_step(&b, &key, gx, gy, 1);
-    bind(st, CACAO_BINDING_DEPTHS, CACAO_RES_VIEW_DEPTH, 0, false);
-    bind(st, CACAO_BINDING_NORMALS, CACAO_RES_VIEW_NORMALS, 0, false);
+    bind(st, CACAO_BINDING_DEPTHS_OUT0, CACAO_RES_VIEW_DEPTH, 0, false);
+    bind(st, CACAO_BINDING_NORMALS_OUT, CACAO_RES_VIEW_NORMALS, 0, false);
     if (blur == 0) bind(st, CACAO_BINDING_OUTPUT, CACAO_RES_OUTPUT, 0, true);
     else bind(st, CACAO_BINDING_SSAO_OUT, CACAO_RES_AO_RAW, 0, true);
     finish_step(&b, st);
@@ -137,9 +137,9 @@ static void build_slice_plan(cacao_plan *plan, unsigned blur) {
         const bool last = pass == blur;
         key = (cacao_key){CACAO_PASS_SLICE_DENOISE, last ? CACAO_DENOISE_FINAL : CACAO_DENOISE_INTERMEDIATE, 0, 0, 0};
         st = add_step(&b, &key, gx, gy, 1);
-        bind(st, CACAO_BINDING_SSAO_IN, ao, 0, false);
-        bind(st, CACAO_BINDING_DEPTHS, CACAO_RES_VIEW_DEPTH, 0, false);
-        bind(st, CACAO_BINDING_NORMALS, CACAO_RES_VIEW_NORMALS, 0, false);
+        bind(st, CACAO_BINDING_DEPTHS_OUT1, ao, 0, false);
+        bind(st, CACAO_BINDING_DEPTHS_OUT0, CACAO_RES_VIEW_DEPTH, 0, false);
+        bind(st, CACAO_BINDING_NORMALS_OUT, CACAO_RES_VIEW_NORMALS, 0, false);
         const cacao_resource next = ao == CACAO_RES_AO_RAW ? CACAO_RES_AO_PONG : CACAO_RES_AO_RAW;
         if (last) bind(st, CACAO_BINDING_OUTPUT, CACAO_RES_OUTPUT, 0, true);
         else bind(st, CACAO_BINDING_SSAO_OUT, next, 0, true);
