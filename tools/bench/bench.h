@@ -20,7 +20,8 @@ extern const char *const bench_truth_names[BENCH_TRUTHS]; /* "ao_gt_falloff", "a
 
 /* One configuration: what differs between the rows of a sweep. blur is literal (0 = none). */
 typedef struct bench_config {
-    char name[64]; /* <quality>_<native|downsampled>[_blurN][_fp16][_gennormals] */
+    char name[64]; /* [gtao_|bitmask_]<quality>_<native|downsampled>[_blurN][_fp16][_gennormals] */
+    cacao_estimator estimator;
     cacao_quality quality;
     bool downsample;
     int blur;

@@ -57,7 +57,8 @@ static const char *const help_text =
     "  --configs LIST     comma list of configuration names or globs (e.g. high_native,*_downsampled);\n"
     "                     default: the sweep\n"
     "  --sweep default|full  default: every quality x native/downsampled at the default blur, fp32;\n"
-    "                     full adds blur 0..8, fp16 and reconstructed normals (_blurN, _fp16, _gennormals)\n"
+    "                     full adds blur 0..8, fp16 and reconstructed normals (_blurN, _fp16, _gennormals);\n"
+    "                     gtao_* and bitmask_* are the horizon-slice estimators (native, fp32; blur = denoise passes)\n"
     "  --list-configs     print the configurations the flags select and exit\n"
     "  --warmup N         untimed frames first (default 2: lavapipe compiles shader variants then)\n"
     "  --repeat N         timed frames (default 7)\n"
@@ -167,8 +168,10 @@ static bool parse_flags(int argc, char **argv, bench_options *o) {
 
 /* ---- Configurations --------------------------------------------------------------------------- */
 
-/* The full sweep in its order: quality, resolution, then blur, precision, normals. The default
- * sweep is its subset at blur 2, fp32, normals as given. */
+/* The full sweep in its order: CACAO's configurations by quality, resolution, then blur,
+ * precision, normals; then the horizon-slice estimators (native, fp32 only) by estimator, quality,
+ * normals and denoise passes. The default sweep is the subset at the default blur (CACAO 2, the
+ * slice estimators 1), fp32, normals as given. */
 static uint32_t full_sweep(bench_config *out) {
     uint32_t n = 0;
     for (int q = 0; q < 5; ++q)
@@ -179,7 +182,8 @@ static uint32_t full_sweep(bench_config *out) {
                         static const int blurs[] = {2, 0, 1, 3, 4, 5, 6, 7, 8}; /* the default first */
                         const int b = blurs[k];
                         bench_config *c = &out[n++];
-                        *c = (bench_config){.quality = (cacao_quality)(CACAO_QUALITY_LOWEST + q),
+                        *c = (bench_config){.estimator = CACAO_ESTIMATOR_CACAO,
+                                            .quality = (cacao_quality)(CACAO_QUALITY_LOWEST + q),
                                             .downsample = ds,
                                             .blur = b,
                                             .fp16 = fp16,
@@ -190,12 +194,31 @@ static uint32_t full_sweep(bench_config *out) {
                                  ds ? "downsampled" : "native", blur_part, fp16 ? "_fp16" : "",
                                  gen ? "_gennormals" : "");
                     }
+    static const char *const estimator_words[] = {"gtao", "bitmask"};
+    for (int e = 0; e < 2; ++e)
+        for (int q = 0; q < 5; ++q)
+            for (int gen = 0; gen < 2; ++gen)
+                for (int k = 0; k <= 8; ++k) {
+                    static const int blurs[] = {1, 0, 2, 3, 4, 5, 6, 7, 8}; /* the default first */
+                    const int b = blurs[k];
+                    bench_config *c = &out[n++];
+                    *c = (bench_config){.estimator = (cacao_estimator)(CACAO_ESTIMATOR_GTAO + e),
+                                        .quality = (cacao_quality)(CACAO_QUALITY_LOWEST + q),
+                                        .blur = b,
+                                        .reconstruct_normals = gen};
+                    char blur_part[16] = "";
+                    if (b != 1) snprintf(blur_part, sizeof blur_part, "_blur%d", b);
+                    snprintf(c->name, sizeof c->name, "%s_%s_native%s%s", estimator_words[e], quality_words[q],
+                             blur_part, gen ? "_gennormals" : "");
+                }
     return n;
 }
 
-static bool is_default_config(const bench_config *c) { return c->blur == 2 && !c->fp16 && !c->reconstruct_normals; }
+static bool is_default_config(const bench_config *c) {
+    return c->blur == (c->estimator == CACAO_ESTIMATOR_CACAO ? 2 : 1) && !c->fp16 && !c->reconstruct_normals;
+}
 
-#define FULL_SWEEP_SIZE (5 * 2 * 2 * 2 * 9)
+#define FULL_SWEEP_SIZE (5 * 2 * 2 * 2 * 9 + 2 * 5 * 2 * 9)
 
 /* The configurations the options select, in sweep order (each once). */
 static bool select_configs(const bench_options *o, bench_config *out, uint32_t *count) {
@@ -434,6 +457,7 @@ static double seconds_now(void) {
 static cacao_settings config_settings(const bench_options *o, const bench_config *c, const bench_scene *s) {
     cacao_settings set = o->cli.settings;
     if (!o->cli.radius_given && s->inputs.ao_radius_world > 0) set.radius = (float)s->inputs.ao_radius_world;
+    set.estimator = c->estimator;
     set.quality = c->quality;
     set.downsample = c->downsample;
     set.blur_pass_count = c->blur == 0 ? CACAO_BLUR_NONE : c->blur;
