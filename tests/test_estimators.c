@@ -55,27 +55,53 @@ typedef struct crease_config {
     double prototype[CREASE_ROWS];
 } crease_config;
 static const crease_config crease_configs[] = {
-    {"gtao-f 3x3", CACAO_ESTIMATOR_GTAO, CACAO_VISIBILITY_FALLOFF, 3, 3,
+    {"gtao-f 3x3",
+     CACAO_ESTIMATOR_GTAO,
+     CACAO_VISIBILITY_FALLOFF,
+     3,
+     3,
      {0.9999, 0.9700, 0.9252, 0.8166, 0.6325, 0.6105, 0.8650, 0.9533, 0.9850, 0.9957}},
-    {"gtao-f 4x8", CACAO_ESTIMATOR_GTAO, CACAO_VISIBILITY_FALLOFF, 4, 8,
+    {"gtao-f 4x8",
+     CACAO_ESTIMATOR_GTAO,
+     CACAO_VISIBILITY_FALLOFF,
+     4,
+     8,
      {0.9997, 0.9359, 0.8610, 0.7166, 0.5454, 0.5776, 0.8254, 0.9346, 0.9746, 0.9907}},
-    {"gtao-f 8x16", CACAO_ESTIMATOR_GTAO, CACAO_VISIBILITY_FALLOFF, 8, 16,
+    {"gtao-f 8x16",
+     CACAO_ESTIMATOR_GTAO,
+     CACAO_VISIBILITY_FALLOFF,
+     8,
+     16,
      {0.9996, 0.9275, 0.8421, 0.6931, 0.5374, 0.5707, 0.8185, 0.9281, 0.9693, 0.9860}},
-    {"bitmask-f 4x8", CACAO_ESTIMATOR_BITMASK, CACAO_VISIBILITY_FALLOFF, 4, 8,
+    {"bitmask-f 4x8",
+     CACAO_ESTIMATOR_BITMASK,
+     CACAO_VISIBILITY_FALLOFF,
+     4,
+     8,
      {1.0000, 0.9426, 0.8628, 0.7255, 0.5719, 0.5743, 0.8182, 0.9427, 0.9914, 0.9986}},
-    {"bitmask-f 8x16", CACAO_ESTIMATOR_BITMASK, CACAO_VISIBILITY_FALLOFF, 8, 16,
+    {"bitmask-f 8x16",
+     CACAO_ESTIMATOR_BITMASK,
+     CACAO_VISIBILITY_FALLOFF,
+     8,
+     16,
      {1.0000, 0.9290, 0.8415, 0.7020, 0.5495, 0.5640, 0.8071, 0.9331, 0.9874, 0.9979}},
-    {"bitmask-b 4x8", CACAO_ESTIMATOR_BITMASK, CACAO_VISIBILITY_BINARY, 4, 8,
+    {"bitmask-b 4x8",
+     CACAO_ESTIMATOR_BITMASK,
+     CACAO_VISIBILITY_BINARY,
+     4,
+     8,
      {1.0000, 0.8510, 0.7450, 0.6313, 0.5402, 0.5352, 0.7025, 0.8491, 0.9510, 0.9986}},
-    {"bitmask-b 8x16", CACAO_ESTIMATOR_BITMASK, CACAO_VISIBILITY_BINARY, 8, 16,
+    {"bitmask-b 8x16",
+     CACAO_ESTIMATOR_BITMASK,
+     CACAO_VISIBILITY_BINARY,
+     8,
+     16,
      {1.0000, 0.8313, 0.7326, 0.6212, 0.5296, 0.5272, 0.6920, 0.8305, 0.9401, 0.9979}},
 };
 
 /* Closed forms of section 9.1: a floor point at distance c R from an infinite wall. */
 static double v_bin(double c) { return c >= 1 ? 1 : 1 - (acos(c) - c * sqrt(1 - c * c)) / pi; }
-static double v_fall(double c) {
-    return c >= 1 ? 1 : 1 - ((1 + 2 * c * c) * acos(c) - 3 * c * sqrt(1 - c * c)) / pi;
-}
+static double v_fall(double c) { return c >= 1 ? 1 : 1 - ((1 + 2 * c * c) * acos(c) - 3 * c * sqrt(1 - c * c)) / pi; }
 
 /* c = d / R of a crease row in the 960x540 frame (section 9.3). */
 static double crease_c(int row) {
@@ -209,7 +235,8 @@ static void test_groove(vkdev *dev) {
         const uint32_t mid = h / 2;
         for (uint32_t x = 0; x < w; ++x) {
             float *n = &b.normals[3 * ((size_t)mid * w + x)];
-            const float *up = &b.normals[3 * ((size_t)(mid - 1) * w + x)], *dn = &b.normals[3 * ((size_t)(mid + 1) * w + x)];
+            const float *up = &b.normals[3 * ((size_t)(mid - 1) * w + x)],
+                        *dn = &b.normals[3 * ((size_t)(mid + 1) * w + x)];
             double s[3], len = 0;
             for (int j = 0; j < 3; ++j) s[j] = (double)up[j] + dn[j], len += s[j] * s[j];
             for (int j = 0; j < 3; ++j) n[j] = (float)(s[j] / sqrt(len));
@@ -222,8 +249,8 @@ static void test_groove(vkdev *dev) {
                 if (!run(dev, &s, &f, ao)) continue;
                 const double m = row_mean(ao, w, (int)mid, 40, w - 41);
                 printf("V-groove %.0f deg, %s %s 8x16: bottom row %.4f, closed form sin(alpha/2) %.4f\n", openings[k],
-                       e == CACAO_ESTIMATOR_GTAO ? "gtao" : "bitmask", v == CACAO_VISIBILITY_BINARY ? "binary" : "falloff",
-                       m, truth);
+                       e == CACAO_ESTIMATOR_GTAO ? "gtao" : "bitmask",
+                       v == CACAO_VISIBILITY_BINARY ? "binary" : "falloff", m, truth);
                 /* measured 0.023-0.052 below: the groove runs along a pixel row, so samples snapped
                  * to the next row sit on a wall at a steeper elevation than the slice's own (spec
                  * pitfall 6); both estimators share it. Bound: 1.25 x the worst. */
@@ -363,8 +390,7 @@ static void test_frames(vkdev *dev) {
     }
     f.frame_index = 64;
     if (run(dev, &s, &f, ao)) CHECK(memcmp(ao, first, sizeof(float) * n) == 0); /* period 64 */
-    printf("frames: RMSE vs 8x16 of the mean of 1, 4, 16 frames at 4x8: %.5f, %.5f, %.5f\n", rmse[0], rmse[1],
-           rmse[2]);
+    printf("frames: RMSE vs 8x16 of the mean of 1, 4, 16 frames at 4x8: %.5f, %.5f, %.5f\n", rmse[0], rmse[1], rmse[2]);
     /* measured 0.0147, -, 0.0098: the noise averages out, the 4x8-vs-8x16 bias stays */
     CHECK(rmse[2] < rmse[1] && rmse[1] < rmse[0] && rmse[2] < 0.75 * rmse[0]);
     free(ref);
@@ -386,12 +412,24 @@ static void test_shared_scenes(vkdev *dev, const char *shared) {
         const char *truth;
         double bound[3];
     } cases[] = {
-        {"bitmask falloff, 64 reads", CACAO_ESTIMATOR_BITMASK, CACAO_VISIBILITY_FALLOFF, CACAO_QUALITY_HIGHEST,
-         "ao_gt_falloff", {0.076, 0.024, 0.056}},
-        {"bitmask binary, 64 reads", CACAO_ESTIMATOR_BITMASK, CACAO_VISIBILITY_BINARY, CACAO_QUALITY_HIGHEST, "ao_gt",
+        {"bitmask falloff, 64 reads",
+         CACAO_ESTIMATOR_BITMASK,
+         CACAO_VISIBILITY_FALLOFF,
+         CACAO_QUALITY_HIGHEST,
+         "ao_gt_falloff",
+         {0.076, 0.024, 0.056}},
+        {"bitmask binary, 64 reads",
+         CACAO_ESTIMATOR_BITMASK,
+         CACAO_VISIBILITY_BINARY,
+         CACAO_QUALITY_HIGHEST,
+         "ao_gt",
          {0.097, 0.031, 0.072}},
-        {"gtao falloff, 18 reads", CACAO_ESTIMATOR_GTAO, CACAO_VISIBILITY_FALLOFF, CACAO_QUALITY_MEDIUM,
-         "ao_gt_falloff", {0.090, 0.035, 0.070}},
+        {"gtao falloff, 18 reads",
+         CACAO_ESTIMATOR_GTAO,
+         CACAO_VISIBILITY_FALLOFF,
+         CACAO_QUALITY_MEDIUM,
+         "ao_gt_falloff",
+         {0.090, 0.035, 0.070}},
     };
     for (int k = 0; k < 3; ++k) {
         char path[4096], err[512];
@@ -406,7 +444,8 @@ static void test_shared_scenes(vkdev *dev, const char *shared) {
         const size_t n = (size_t)depth.width * depth.height;
         float *ao = malloc(sizeof(float) * n);
         for (size_t c = 0; ok && c < sizeof cases / sizeof cases[0]; ++c) {
-            cacao_settings s = slice_settings(cases[c].estimator, cases[c].visibility, 0, 0, (float)cam.ao_radius_world);
+            cacao_settings s =
+                slice_settings(cases[c].estimator, cases[c].visibility, 0, 0, (float)cam.ao_radius_world);
             s.quality = cases[c].quality;
             s.blur_pass_count = 0; /* default: one denoise pass */
             vkdev_frame f = {.width = depth.width, .height = depth.height, .depth = depth.data};
