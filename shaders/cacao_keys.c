@@ -5,8 +5,9 @@
 #include <string.h>
 
 static const char *const pass_names[CACAO_PASS_COUNT] = {
-    "prepare_depths", "prepare_normals", "generate", "importance",    "importance_a", "importance_b",
-    "blur",           "apply",           "upsample", "slice_prepare", "slice_main",   "slice_denoise",
+    "prepare_depths", "prepare_normals", "generate", "importance", "importance_a",
+    "importance_b",   "blur",            "apply",    "upsample",   "slice_prepare",
+    "slice_main",     "slice_denoise",
 };
 static const char *const depths_names[] = {"half", "full", "mips"};
 static const char *const normals_names[] = {"depth", "input"};
@@ -40,14 +41,17 @@ static const pass_axes axes[CACAO_PASS_COUNT] = {
     [CACAO_PASS_SLICE_DENOISE] = {2, false, false, false},
 };
 
-const char *cacaoi_pass_name(unsigned pass) { return pass < CACAO_PASS_COUNT ? pass_names[pass] : NULL; }
+const char *cacaoi_pass_name(unsigned pass) {
+    return pass < CACAO_PASS_COUNT ? pass_names[pass] : NULL;
+}
 
 bool cacaoi_key_is_valid(const cacao_key *key) {
     if (!key || key->pass >= CACAO_PASS_COUNT) return false;
     const pass_axes *a = &axes[key->pass];
     if (key->variant >= a->variants) return false;
     if (key->downsampled > (a->has_resolution ? 1 : 0)) return false;
-    if (a->has_blur ? (key->blur_passes < 1 || key->blur_passes > CACAO_KEY_MAX_BLUR_PASSES) : key->blur_passes != 0)
+    if (a->has_blur ? (key->blur_passes < 1 || key->blur_passes > CACAO_KEY_MAX_BLUR_PASSES)
+                    : key->blur_passes != 0)
         return false;
     return key->fp16 <= (a->has_precision ? 1 : 0);
 }
@@ -58,11 +62,12 @@ size_t cacaoi_key_list(cacao_key *out, size_t cap) {
         const pass_axes *a = &axes[pass];
         for (unsigned v = 0; v < a->variants; ++v)
             for (unsigned ds = 0; ds <= (a->has_resolution ? 1u : 0u); ++ds)
-                for (unsigned b = a->has_blur ? 1u : 0u; b <= (a->has_blur ? (unsigned)CACAO_KEY_MAX_BLUR_PASSES : 0u);
-                     ++b)
+                for (unsigned b = a->has_blur ? 1u : 0u;
+                     b <= (a->has_blur ? (unsigned)CACAO_KEY_MAX_BLUR_PASSES : 0u); ++b)
                     for (unsigned fp = 0; fp <= (a->has_precision ? 1u : 0u); ++fp) {
                         if (n < cap)
-                            out[n] = (cacao_key){(uint8_t)pass, (uint8_t)v, (uint8_t)ds, (uint8_t)b, (uint8_t)fp};
+                            out[n] = (cacao_key){(uint8_t)pass, (uint8_t)v, (uint8_t)ds,
+                                                 (uint8_t)b, (uint8_t)fp};
                         ++n;
                     }
     }
@@ -79,22 +84,15 @@ int cacaoi_key_compare(const cacao_key *a, const cacao_key *b) {
 
 static const char *variant_name(const cacao_key *key) {
     switch (key->pass) {
-    case CACAO_PASS_PREPARE_DEPTHS:
-        return depths_names[key->variant];
+    case CACAO_PASS_PREPARE_DEPTHS: return depths_names[key->variant];
     case CACAO_PASS_PREPARE_NORMALS:
-    case CACAO_PASS_SLICE_PREPARE:
-        return normals_names[key->variant];
-    case CACAO_PASS_SLICE_MAIN:
-        return slice_main_names[key->variant];
-    case CACAO_PASS_SLICE_DENOISE:
-        return denoise_names[key->variant];
-    case CACAO_PASS_GENERATE:
-        return generate_names[key->variant];
+    case CACAO_PASS_SLICE_PREPARE: return normals_names[key->variant];
+    case CACAO_PASS_SLICE_MAIN: return slice_main_names[key->variant];
+    case CACAO_PASS_SLICE_DENOISE: return denoise_names[key->variant];
+    case CACAO_PASS_GENERATE: return generate_names[key->variant];
     case CACAO_PASS_APPLY:
-    case CACAO_PASS_UPSAMPLE:
-        return output_names[key->variant];
-    default:
-        return NULL;
+    case CACAO_PASS_UPSAMPLE: return output_names[key->variant];
+    default: return NULL;
     }
 }
 
@@ -108,7 +106,8 @@ size_t cacaoi_key_name(const cacao_key *key, char *buf, size_t buf_size) {
     if (a->has_blur) len += snprintf(tmp + len, sizeof tmp - (size_t)len, ".%u", key->blur_passes);
     if (a->has_resolution)
         len += snprintf(tmp + len, sizeof tmp - (size_t)len, ".%s", resolution_names[key->downsampled]);
-    if (a->has_precision) len += snprintf(tmp + len, sizeof tmp - (size_t)len, ".%s", precision_names[key->fp16]);
+    if (a->has_precision)
+        len += snprintf(tmp + len, sizeof tmp - (size_t)len, ".%s", precision_names[key->fp16]);
     if ((size_t)len + 1 > buf_size) return 0;
     memcpy(buf, tmp, (size_t)len + 1);
     return (size_t)len;
@@ -153,11 +152,14 @@ unsigned cacaoi_generate_variant_for_quality(unsigned quality) {
 unsigned cacaoi_output_variant_for_quality(unsigned quality, bool downsampled) {
     if (quality == CACAO_KEY_QUALITY_LOWEST) return CACAO_OUTPUT_HALF;
     if (quality == CACAO_KEY_QUALITY_LOW) return CACAO_OUTPUT_NON_SMART;
-    if (quality == CACAO_KEY_QUALITY_MEDIUM) return downsampled ? CACAO_OUTPUT_NON_SMART : CACAO_OUTPUT_SMART;
+    if (quality == CACAO_KEY_QUALITY_MEDIUM)
+        return downsampled ? CACAO_OUTPUT_NON_SMART : CACAO_OUTPUT_SMART;
     return CACAO_OUTPUT_SMART;
 }
 
-unsigned cacaoi_slice_count_for_quality(unsigned quality) { return quality == CACAO_KEY_QUALITY_LOWEST ? 2 : 4; }
+unsigned cacaoi_slice_count_for_quality(unsigned quality) {
+    return quality == CACAO_KEY_QUALITY_LOWEST ? 2 : 4;
+}
 
 /* The horizon-slice estimators: full resolution, fp32, normals prepared once, denoise passes. */
 static size_t slice_keys_for_config(const cacao_key_config *c, cacao_key out[CACAO_KEY_CONFIG_MAX]) {
@@ -187,7 +189,8 @@ size_t cacaoi_keys_for_config(const cacao_key_config *c, cacao_key out[CACAO_KEY
         out[n++] = (cacao_key){CACAO_PASS_IMPORTANCE_B, 0, 0, 0, 0};
     }
     out[n++] = (cacao_key){CACAO_PASS_GENERATE, (uint8_t)cacaoi_generate_variant_for_quality(c->quality), 0, 0, 0};
-    if (c->blur_passes > 0) out[n++] = (cacao_key){CACAO_PASS_BLUR, 0, 0, (uint8_t)c->blur_passes, fp};
+    if (c->blur_passes > 0)
+        out[n++] = (cacao_key){CACAO_PASS_BLUR, 0, 0, (uint8_t)c->blur_passes, fp};
     out[n++] = (cacao_key){c->downsampled ? CACAO_PASS_UPSAMPLE : CACAO_PASS_APPLY,
                            (uint8_t)cacaoi_output_variant_for_quality(c->quality, c->downsampled), 0, 0, fp};
     return n;
@@ -238,22 +241,17 @@ static bool parse_mask(const char *list, const char *const *words, unsigned coun
 const char *const cacaoi_quality_names[CACAO_KEY_QUALITY_COUNT] = {"lowest", "low", "medium", "high", "highest"};
 
 bool cacaoi_key_subset_parse(const char *qualities, const char *downsample, const char *precision,
-                             cacao_key_subset *subset) {
+                            cacao_key_subset *subset) {
     cacao_key_subset s = CACAO_KEY_SUBSET_ALL;
     if (qualities && *qualities && strcmp(qualities, "all") != 0 &&
         !parse_mask(qualities, cacaoi_quality_names, CACAO_KEY_QUALITY_COUNT, &s.quality_mask))
         return false;
     if (downsample && *downsample) {
-        if (strcmp(downsample, "OFF") == 0 || strcmp(downsample, "native") == 0)
-            s.resolution_mask = 1;
-        else if (strcmp(downsample, "ONLY") == 0)
-            s.resolution_mask = 2;
-        else if (strcmp(downsample, "downsampled") == 0)
-            s.resolution_mask = 2;
-        else if (strcmp(downsample, "ON") == 0 || strcmp(downsample, "all") == 0)
-            s.resolution_mask = 3;
-        else
-            return false;
+        if (strcmp(downsample, "OFF") == 0 || strcmp(downsample, "native") == 0) s.resolution_mask = 1;
+        else if (strcmp(downsample, "ONLY") == 0) s.resolution_mask = 2;
+        else if (strcmp(downsample, "downsampled") == 0) s.resolution_mask = 2;
+        else if (strcmp(downsample, "ON") == 0 || strcmp(downsample, "all") == 0) s.resolution_mask = 3;
+        else return false;
     }
     if (precision && *precision && strcmp(precision, "all") != 0 &&
         !parse_mask(precision, precision_names, 2, &s.precision_mask))

@@ -95,21 +95,21 @@ cacao_result cacaoi_check_projection(const cacao_inputs *in, char *error, size_t
 #define P(r, c) mat_at(in->projection, rm, r, c)
     if (!(P(0, 0) > 0.0f) || !(P(1, 1) > 0.0f)) {
         cacaoi_set_error(error, error_size,
-                         "inputs.projection: P(0,0) and P(1,1) must be positive (clip y up; check matrices_row_major)");
+                        "inputs.projection: P(0,0) and P(1,1) must be positive (clip y up; check matrices_row_major)");
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     if (P(0, 1) != 0.0f || P(1, 0) != 0.0f || P(2, 0) != 0.0f || P(2, 1) != 0.0f || P(3, 0) != 0.0f ||
         P(3, 1) != 0.0f) {
         cacaoi_set_error(error, error_size,
-                         "inputs.projection: P(0,1), P(1,0), P(2,0), P(2,1), P(3,0) and P(3,1) must be 0 (a skewed or "
-                         "rotated projection is not supported; check matrices_row_major)");
+                        "inputs.projection: P(0,1), P(1,0), P(2,0), P(2,1), P(3,0) and P(3,1) must be 0 (a skewed or "
+                        "rotated projection is not supported; check matrices_row_major)");
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     const bool ortho = P(3, 2) == 0.0f;
     if (!ortho) {
         if (P(3, 3) != 0.0f || P(0, 3) != 0.0f || P(1, 3) != 0.0f) {
             cacaoi_set_error(error, error_size,
-                             "inputs.projection: P(3,2) != 0 (perspective) needs P(3,3), P(0,3) and P(1,3) to be 0");
+                            "inputs.projection: P(3,2) != 0 (perspective) needs P(3,3), P(0,3) and P(1,3) to be 0");
             return CACAO_ERROR_INVALID_ARGUMENT;
         }
         if (P(2, 3) == 0.0f) {
@@ -121,13 +121,13 @@ cacao_result cacaoi_check_projection(const cacao_inputs *in, char *error, size_t
     } else {
         if (!(P(3, 3) > 0.0f) || P(2, 2) == 0.0f) {
             cacaoi_set_error(error, error_size,
-                             "inputs.projection: P(3,2) is 0 (orthographic), which needs P(3,3) > 0 and P(2,2) != 0");
+                            "inputs.projection: P(3,2) is 0 (orthographic), which needs P(3,3) > 0 and P(2,2) != 0");
             return CACAO_ERROR_INVALID_ARGUMENT;
         }
         if (P(0, 2) != 0.0f || P(1, 2) != 0.0f) {
             cacaoi_set_error(error, error_size,
-                             "inputs.projection: orthographic with P(0,2) or P(1,2) != 0 (oblique) is not supported; "
-                             "offset an orthographic frustum with P(0,3), P(1,3)");
+                            "inputs.projection: orthographic with P(0,2) or P(1,2) != 0 (oblique) is not supported; "
+                            "offset an orthographic frustum with P(0,3), P(1,3)");
             return CACAO_ERROR_INVALID_ARGUMENT;
         }
     }
@@ -138,9 +138,8 @@ cacao_result cacaoi_check_projection(const cacao_inputs *in, char *error, size_t
                          v.z_num[0],  v.z_num[1],  v.z_den[0],  v.z_den[1]};
     for (size_t i = 0; i < sizeof all / sizeof all[0]; ++i)
         if (!isfinite(all[i])) {
-            cacaoi_set_error(
-                error, error_size,
-                "inputs.projection: too extreme for single precision (derived unprojection is not finite)");
+            cacaoi_set_error(error, error_size,
+                            "inputs.projection: too extreme for single precision (derived unprojection is not finite)");
             return CACAO_ERROR_INVALID_ARGUMENT;
         }
     if (!isfinite(in->normals_unpack_mul) || !isfinite(in->normals_unpack_add)) {
@@ -194,8 +193,7 @@ static void fill_slice_constants(const cacao_settings *s, const projection_view 
     const bool gtao = s->estimator == CACAO_ESTIMATOR_GTAO, binary = s->visibility == CACAO_VISIBILITY_BINARY;
     const float radius = k * s->radius;
     c->slice_radius = gtao ? radius * (float)CACAO_SLICE_GTAO_RADIUS_FACTOR : radius;
-    const float falloff_range =
-        (float)(binary ? CACAO_SLICE_GTAO_BINARY_FALLOFF_RANGE : CACAO_SLICE_GTAO_FALLOFF_RANGE);
+    const float falloff_range = (float)(binary ? CACAO_SLICE_GTAO_BINARY_FALLOFF_RANGE : CACAO_SLICE_GTAO_FALLOFF_RANGE);
     c->slice_falloff_mul = 1.0f / (falloff_range * c->slice_radius);
     const float thickness_factor = (float)(binary ? CACAO_SLICE_THICKNESS_BINARY : CACAO_SLICE_THICKNESS_FALLOFF);
     c->slice_thickness = s->thickness > 0.0f ? k * s->thickness : thickness_factor * radius;

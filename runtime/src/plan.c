@@ -7,8 +7,9 @@
 #include "internal.h"
 
 static const char *const resource_names[CACAO_RES_COUNT] = {
-    "depth_input", "normals_input", "output",          "constants",  "load_counter", "depths", "normals", "ssao_ping",
-    "ssao_pong",   "importance",    "importance_pong", "view_depth", "view_normals", "ao_raw", "ao_pong",
+    "depth_input", "normals_input", "output",    "constants",  "load_counter",   "depths",
+    "normals",     "ssao_ping",     "ssao_pong", "importance", "importance_pong", "view_depth",
+    "view_normals", "ao_raw",       "ao_pong",
 };
 
 const char *cacao_resource_name(cacao_resource resource) {
@@ -53,13 +54,10 @@ static void finish_step(plan_builder *b, cacao_plan_step *s) {
     uint32_t reads = 0, writes = 0;
     for (uint32_t i = 0; i < s->binding_count; ++i) {
         uint32_t bit = 1u << s->bindings[i].resource;
-        if (s->bindings[i].write)
-            writes |= bit;
-        else
-            reads |= bit;
+        if (s->bindings[i].write) writes |= bit;
+        else reads |= bit;
     }
-    uint32_t hazards =
-        (reads & b->written_since_barrier) | (writes & (b->read_since_barrier | b->written_since_barrier));
+    uint32_t hazards = (reads & b->written_since_barrier) | (writes & (b->read_since_barrier | b->written_since_barrier));
     hazards &= ~(1u << CACAO_RES_CONSTANTS);
     if (hazards) {
         s->barrier_before = true;
@@ -77,11 +75,11 @@ static const struct {
     const char *format_name;
     uint32_t texel_bytes;
 } intermediates[CACAO_RES_COUNT] = {
-    INTERMEDIATE(CACAO_RES_DEPTHS, R16_SFLOAT, 2),     INTERMEDIATE(CACAO_RES_NORMALS, R8G8B8A8_SNORM, 4),
-    INTERMEDIATE(CACAO_RES_SSAO_PING, R8G8_UNORM, 2),  INTERMEDIATE(CACAO_RES_SSAO_PONG, R8G8_UNORM, 2),
-    INTERMEDIATE(CACAO_RES_IMPORTANCE, R8_UNORM, 1),   INTERMEDIATE(CACAO_RES_IMPORTANCE_PONG, R8_UNORM, 1),
-    INTERMEDIATE(CACAO_RES_VIEW_DEPTH, R32_SFLOAT, 4), INTERMEDIATE(CACAO_RES_VIEW_NORMALS, R8G8B8A8_SNORM, 4),
-    INTERMEDIATE(CACAO_RES_AO_RAW, R16_SFLOAT, 2),     INTERMEDIATE(CACAO_RES_AO_PONG, R16_SFLOAT, 2),
+    INTERMEDIATE(CACAO_RES_DEPTHS, R16_SFLOAT, 2),    INTERMEDIATE(CACAO_RES_NORMALS, R8G8B8A8_SNORM, 4),
+    INTERMEDIATE(CACAO_RES_SSAO_PING, R8G8_UNORM, 2), INTERMEDIATE(CACAO_RES_SSAO_PONG, R8G8_UNORM, 2),
+    INTERMEDIATE(CACAO_RES_IMPORTANCE, R8_UNORM, 1),  INTERMEDIATE(CACAO_RES_IMPORTANCE_PONG, R8_UNORM, 1),
+    INTERMEDIATE(CACAO_RES_VIEW_DEPTH, R32_SFLOAT, 4),  INTERMEDIATE(CACAO_RES_VIEW_NORMALS, R8G8B8A8_SNORM, 4),
+    INTERMEDIATE(CACAO_RES_AO_RAW, R16_SFLOAT, 2),    INTERMEDIATE(CACAO_RES_AO_PONG, R16_SFLOAT, 2),
 };
 #undef INTERMEDIATE
 
@@ -124,17 +122,14 @@ static void build_slice_plan(cacao_plan *plan, unsigned blur) {
     finish_step(&b, st);
 
     const bool gtao = s->estimator == CACAO_ESTIMATOR_GTAO;
-    key = (cacao_key){
-        CACAO_PASS_SLICE_MAIN,
-        (uint8_t)((gtao ? CACAO_SLICE_GTAO : CACAO_SLICE_BITMASK) + (blur == 0 ? CACAO_SLICE_GTAO_DIRECT : 0)), 0, 0,
-        0};
+    key = (cacao_key){CACAO_PASS_SLICE_MAIN,
+                      (uint8_t)((gtao ? CACAO_SLICE_GTAO : CACAO_SLICE_BITMASK) + (blur == 0 ? CACAO_SLICE_GTAO_DIRECT : 0)),
+                      0, 0, 0};
     st = add_step(&b, &key, gx, gy, 1);
     bind(st, CACAO_BINDING_DEPTHS_OUT0, CACAO_RES_VIEW_DEPTH, 0, false);
     bind(st, CACAO_BINDING_NORMALS_OUT, CACAO_RES_VIEW_NORMALS, 0, false);
-    if (blur == 0)
-        bind(st, CACAO_BINDING_OUTPUT, CACAO_RES_OUTPUT, 0, true);
-    else
-        bind(st, CACAO_BINDING_SSAO_OUT, CACAO_RES_AO_RAW, 0, true);
+    if (blur == 0) bind(st, CACAO_BINDING_OUTPUT, CACAO_RES_OUTPUT, 0, true);
+    else bind(st, CACAO_BINDING_SSAO_OUT, CACAO_RES_AO_RAW, 0, true);
     finish_step(&b, st);
 
     cacao_resource ao = CACAO_RES_AO_RAW;
@@ -146,17 +141,15 @@ static void build_slice_plan(cacao_plan *plan, unsigned blur) {
         bind(st, CACAO_BINDING_DEPTHS_OUT0, CACAO_RES_VIEW_DEPTH, 0, false);
         bind(st, CACAO_BINDING_NORMALS_OUT, CACAO_RES_VIEW_NORMALS, 0, false);
         const cacao_resource next = ao == CACAO_RES_AO_RAW ? CACAO_RES_AO_PONG : CACAO_RES_AO_RAW;
-        if (last)
-            bind(st, CACAO_BINDING_OUTPUT, CACAO_RES_OUTPUT, 0, true);
-        else
-            bind(st, CACAO_BINDING_SSAO_OUT, next, 0, true);
+        if (last) bind(st, CACAO_BINDING_OUTPUT, CACAO_RES_OUTPUT, 0, true);
+        else bind(st, CACAO_BINDING_SSAO_OUT, next, 0, true);
         finish_step(&b, st);
         ao = next;
     }
 }
 
-cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, uint32_t height, cacao_plan *plan,
-                              char *error, size_t error_size) {
+cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, uint32_t height,
+                              cacao_plan *plan, char *error, size_t error_size) {
     if (!plan) {
         cacaoi_set_error(error, error_size, "plan: NULL pointer");
         return CACAO_ERROR_INVALID_ARGUMENT;
@@ -166,7 +159,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     if (r != CACAO_SUCCESS) return r;
     if (width < CACAO_MIN_SIZE || height < CACAO_MIN_SIZE || width > CACAO_MAX_SIZE || height > CACAO_MAX_SIZE) {
         cacaoi_set_error(error, error_size, "size %ux%u: width and height must be in %d..%d", width, height,
-                         CACAO_MIN_SIZE, CACAO_MAX_SIZE);
+                        CACAO_MIN_SIZE, CACAO_MAX_SIZE);
         return CACAO_ERROR_INVALID_SIZE;
     }
     memset(plan, 0, sizeof *plan);
@@ -216,10 +209,8 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
 
     key = (cacao_key){CACAO_PASS_PREPARE_NORMALS, s.generate_normals ? 0 : 1, ds, 0, 0};
     st = add_step(&b, &key, pgx, pgy, 1);
-    if (s.generate_normals)
-        bind(st, CACAO_BINDING_SRC_DEPTH, CACAO_RES_DEPTH_INPUT, 0, false);
-    else
-        bind(st, CACAO_BINDING_SRC_NORMALS, CACAO_RES_NORMALS_INPUT, 0, false);
+    if (s.generate_normals) bind(st, CACAO_BINDING_SRC_DEPTH, CACAO_RES_DEPTH_INPUT, 0, false);
+    else bind(st, CACAO_BINDING_SRC_NORMALS, CACAO_RES_NORMALS_INPUT, 0, false);
     bind(st, CACAO_BINDING_NORMALS_OUT, CACAO_RES_NORMALS, 0, true);
     finish_step(&b, st);
 

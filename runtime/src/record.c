@@ -15,9 +15,9 @@ static const VkFormat depth_formats[] = {
 static const VkFormat normal_formats[] = {CACAO_NORMALS_FORMATS};
 static const VkFormat output_formats[] = {VK_FORMAT_R32_SFLOAT, VK_FORMAT_R16_SFLOAT, VK_FORMAT_R8_UNORM,
                                           VK_FORMAT_R16_UNORM};
-static const VkImageLayout read_layouts[] = {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                                             VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
-                                             VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL};
+static const VkImageLayout read_layouts[] = {
+    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
+    VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL};
 
 static bool layout_readable(VkImageLayout layout) {
     for (size_t i = 0; i < sizeof read_layouts / sizeof read_layouts[0]; ++i)
@@ -29,13 +29,10 @@ static VkImageAspectFlags aspect_of(VkFormat f) {
     switch (f) {
     case VK_FORMAT_D32_SFLOAT:
     case VK_FORMAT_D16_UNORM:
-    case VK_FORMAT_X8_D24_UNORM_PACK32:
-        return VK_IMAGE_ASPECT_DEPTH_BIT;
+    case VK_FORMAT_X8_D24_UNORM_PACK32: return VK_IMAGE_ASPECT_DEPTH_BIT;
     case VK_FORMAT_D24_UNORM_S8_UINT:
-    case VK_FORMAT_D32_SFLOAT_S8_UINT:
-        return VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
-    default:
-        return VK_IMAGE_ASPECT_COLOR_BIT;
+    case VK_FORMAT_D32_SFLOAT_S8_UINT: return VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
+    default: return VK_IMAGE_ASPECT_COLOR_BIT;
     }
 }
 
@@ -45,37 +42,37 @@ static cacao_result check_image(cacao_context *ctx, const cacao_image *im, const
         return cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "inputs.%s: image and view are required", field);
     if (!format_in(im->format, formats, format_count))
         return cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_FORMAT, "inputs.%s.format %d is not supported", field,
-                           (int)im->format);
+                          (int)im->format);
     if (read && !layout_readable(im->layout))
-        return cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "inputs.%s.layout %d is not a shader-readable layout",
-                           field, (int)im->layout);
+        return cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT,
+                          "inputs.%s.layout %d is not a shader-readable layout", field, (int)im->layout);
     if (!read && (im->layout == VK_IMAGE_LAYOUT_UNDEFINED || im->layout == VK_IMAGE_LAYOUT_PREINITIALIZED))
         return cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "inputs.%s.layout must be a defined layout", field);
     return CACAO_SUCCESS;
 }
 
 static cacao_result check_inputs(cacao_context *ctx, const cacao_inputs *in) {
-    cacao_result r =
-        check_image(ctx, &in->depth, "depth", depth_formats, sizeof depth_formats / sizeof depth_formats[0], true);
+    cacao_result r = check_image(ctx, &in->depth, "depth", depth_formats,
+                                 sizeof depth_formats / sizeof depth_formats[0], true);
     if (r == CACAO_SUCCESS && !ctx->plan.settings.generate_normals)
-        r = check_image(ctx, &in->normals, "normals", normal_formats, sizeof normal_formats / sizeof normal_formats[0],
-                        true);
+        r = check_image(ctx, &in->normals, "normals", normal_formats,
+                        sizeof normal_formats / sizeof normal_formats[0], true);
     if (r == CACAO_SUCCESS)
-        r = check_image(ctx, &in->output, "output", output_formats, sizeof output_formats / sizeof output_formats[0],
-                        false);
+        r = check_image(ctx, &in->output, "output", output_formats,
+                        sizeof output_formats / sizeof output_formats[0], false);
     if (r == CACAO_SUCCESS && in->depth.layout == VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL &&
         !ctx->separate_depth_layouts)
         r = cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT,
-                        "inputs.depth.layout DEPTH_READ_ONLY_OPTIMAL needs separateDepthStencilLayouts enabled on the "
-                        "device and cacao_context_desc.separate_depth_stencil_layouts_enabled; use "
-                        "DEPTH_STENCIL_READ_ONLY_OPTIMAL");
+                       "inputs.depth.layout DEPTH_READ_ONLY_OPTIMAL needs separateDepthStencilLayouts enabled on the "
+                       "device and cacao_context_desc.separate_depth_stencil_layouts_enabled; use "
+                       "DEPTH_STENCIL_READ_ONLY_OPTIMAL");
     const uint64_t queries_needed = (uint64_t)in->timestamp_first_query + ctx->plan.step_count + 1;
     if (r == CACAO_SUCCESS && in->timestamp_query_pool && in->timestamp_query_count < queries_needed)
         r = cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT,
-                        "inputs.timestamp_query_count %u is too small: from timestamp_first_query %u, %u timestamps "
-                        "need %llu queries",
-                        in->timestamp_query_count, in->timestamp_first_query, ctx->plan.step_count + 1,
-                        (unsigned long long)queries_needed);
+                       "inputs.timestamp_query_count %u is too small: from timestamp_first_query %u, %u timestamps "
+                       "need %llu queries",
+                       in->timestamp_query_count, in->timestamp_first_query, ctx->plan.step_count + 1,
+                       (unsigned long long)queries_needed);
     if (r == CACAO_SUCCESS) r = cacaoi_check_projection(in, ctx->last_error, sizeof ctx->last_error);
     return r;
 }
@@ -128,10 +125,10 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
     vkCmdUpdateBuffer(cmd, ctx->buffers[CACAO_BUFFER_CONSTANTS], 0, sizeof constants, &constants);
     if (ctx->plan.uses_load_counter)
         vkCmdFillBuffer(cmd, ctx->buffers[CACAO_BUFFER_LOAD_COUNTER], 0, sizeof(uint32_t), 0);
-    const VkMemoryBarrier memory = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
-                                    .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
-                                    .dstAccessMask = VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT |
-                                                     VK_ACCESS_SHADER_WRITE_BIT};
+    const VkMemoryBarrier memory = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+        .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
+        .dstAccessMask = VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &memory, 0,
                          NULL, 0, NULL);
 }
@@ -151,15 +148,11 @@ static void describe(const cacao_context *ctx, const cacao_inputs *in, const cac
     case CACAO_RES_LOAD_COUNTER:
         info->buffer = (VkDescriptorBufferInfo){ctx->buffers[CACAO_BUFFER_LOAD_COUNTER], 0, sizeof(uint32_t)};
         return;
-    case CACAO_RES_DEPTH_INPUT:
-        info->image = (VkDescriptorImageInfo){0, in->depth.view, in->depth.layout};
-        return;
+    case CACAO_RES_DEPTH_INPUT: info->image = (VkDescriptorImageInfo){0, in->depth.view, in->depth.layout}; return;
     case CACAO_RES_NORMALS_INPUT:
         info->image = (VkDescriptorImageInfo){0, in->normals.view, in->normals.layout};
         return;
-    case CACAO_RES_OUTPUT:
-        info->image = (VkDescriptorImageInfo){0, in->output.view, VK_IMAGE_LAYOUT_GENERAL};
-        return;
+    case CACAO_RES_OUTPUT: info->image = (VkDescriptorImageInfo){0, in->output.view, VK_IMAGE_LAYOUT_GENERAL}; return;
     default: {
         const cacao_intermediate *im = &ctx->images[b->resource];
         const bool storage = cacaoi_binding_type(b->binding) == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
@@ -211,7 +204,8 @@ cacao_result cacao_record(cacao_context *ctx, VkCommandBuffer cmd, const cacao_i
     record_frame_start(ctx, cmd, in);
     record_constants(ctx, cmd, in);
     const VkQueryPool timer = in->timestamp_query_pool;
-    if (timer) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timer, in->timestamp_first_query);
+    if (timer)
+        vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timer, in->timestamp_first_query);
     for (uint32_t i = 0; i < ctx->plan.step_count; ++i) {
         record_step(ctx, cmd, in, i);
         if (timer)

@@ -15,24 +15,15 @@ void cacaoi_set_error(char *error, size_t error_size, const char *fmt, ...) {
 
 const char *cacao_result_string(cacao_result result) {
     switch (result) {
-    case CACAO_SUCCESS:
-        return "success";
-    case CACAO_ERROR_INVALID_ARGUMENT:
-        return "invalid argument";
-    case CACAO_ERROR_INVALID_SIZE:
-        return "invalid size";
-    case CACAO_ERROR_UNSUPPORTED_FORMAT:
-        return "unsupported format";
-    case CACAO_ERROR_PERMUTATION_MISSING:
-        return "shader permutation not embedded in this build";
-    case CACAO_ERROR_UNSUPPORTED_DEVICE:
-        return "unsupported device";
-    case CACAO_ERROR_NOT_READY:
-        return "context not ready (call cacao_context_resize first)";
-    case CACAO_ERROR_OUT_OF_MEMORY:
-        return "out of memory";
-    case CACAO_ERROR_VULKAN:
-        return "Vulkan error";
+    case CACAO_SUCCESS: return "success";
+    case CACAO_ERROR_INVALID_ARGUMENT: return "invalid argument";
+    case CACAO_ERROR_INVALID_SIZE: return "invalid size";
+    case CACAO_ERROR_UNSUPPORTED_FORMAT: return "unsupported format";
+    case CACAO_ERROR_PERMUTATION_MISSING: return "shader permutation not embedded in this build";
+    case CACAO_ERROR_UNSUPPORTED_DEVICE: return "unsupported device";
+    case CACAO_ERROR_NOT_READY: return "context not ready (call cacao_context_resize first)";
+    case CACAO_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case CACAO_ERROR_VULKAN: return "Vulkan error";
     }
     return "unknown result";
 }
@@ -41,14 +32,14 @@ const char *cacao_result_string(cacao_result result) {
 typedef struct float_rule {
     const char *name;
     size_t offset;
-    float fallback;    /* value used for 0 */
-    bool zero_allowed; /* CACAO_ZERO selects a literal 0 */
-    float min, max;    /* accepted literal range (after defaults) */
+    float fallback;      /* value used for 0 */
+    bool zero_allowed;   /* CACAO_ZERO selects a literal 0 */
+    float min, max;      /* accepted literal range (after defaults) */
     bool min_exclusive;
 } float_rule;
 
-#define RULE(field, fallback, zero_ok, lo, hi, lo_excl)                                                                \
-    { #field, offsetof(cacao_settings, field), fallback, zero_ok, lo, hi, lo_excl }
+#define RULE(field, fallback, zero_ok, lo, hi, lo_excl) \
+    {#field, offsetof(cacao_settings, field), fallback, zero_ok, lo, hi, lo_excl}
 
 static const float_rule float_rules[] = {
     RULE(radius, 1.2f, false, 0.0f, 100000.0f, true),
@@ -70,7 +61,8 @@ static const float_rule float_rules[] = {
  * side; 2 depth reads per step (spec: estimators.md section 6). */
 static const int slice_budget[CACAO_KEY_QUALITY_COUNT][2] = {{2, 2}, {3, 2}, {3, 3}, {3, 6}, {4, 8}};
 
-cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *out, char *error, size_t error_size) {
+cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *out, char *error,
+                                    size_t error_size) {
     if (!in || !out) {
         cacaoi_set_error(error, error_size, "settings: NULL pointer");
         return CACAO_ERROR_INVALID_ARGUMENT;
@@ -89,15 +81,15 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
         bool low_ok = r->min_exclusive ? literal > r->min : literal >= r->min;
         if (!low_ok || literal > r->max) {
             cacaoi_set_error(error, error_size, "settings.%s = %g is outside %s%g, %g]%s", r->name, (double)*v,
-                             r->min_exclusive ? "(" : "[", (double)r->min, (double)r->max,
-                             r->zero_allowed ? " (use CACAO_ZERO for 0)" : "");
+                            r->min_exclusive ? "(" : "[", (double)r->min, (double)r->max,
+                            r->zero_allowed ? " (use CACAO_ZERO for 0)" : "");
             return CACAO_ERROR_INVALID_ARGUMENT;
         }
     }
     const float fade_from = s.fade_out_from == CACAO_ZERO ? 0.0f : s.fade_out_from;
     if (!(s.fade_out_to > fade_from)) {
         cacaoi_set_error(error, error_size, "settings.fade_out_to (%g) must be greater than fade_out_from (%g)",
-                         (double)s.fade_out_to, (double)fade_from);
+                        (double)s.fade_out_to, (double)fade_from);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     if (s.estimator == CACAO_ESTIMATOR_DEFAULT) s.estimator = CACAO_ESTIMATOR_CACAO;
@@ -113,28 +105,27 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
     const bool slice = s.estimator != CACAO_ESTIMATOR_CACAO;
     if (slice && s.downsample) {
         cacaoi_set_error(error, error_size,
-                         "settings.downsample: the %s estimator runs at full resolution only (use quality for a "
-                         "cheaper budget)",
-                         s.estimator == CACAO_ESTIMATOR_GTAO ? "gtao" : "bitmask");
+                        "settings.downsample: the %s estimator runs at full resolution only (use quality for a "
+                        "cheaper budget)",
+                        s.estimator == CACAO_ESTIMATOR_GTAO ? "gtao" : "bitmask");
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     if (s.horizon_slices < 0 || s.horizon_slices > CACAO_SLICE_MAX_DIRECTIONS) {
         cacaoi_set_error(error, error_size, "settings.horizon_slices = %d is outside 1..%d (0 = by quality)",
-                         s.horizon_slices, CACAO_SLICE_MAX_DIRECTIONS);
+                        s.horizon_slices, CACAO_SLICE_MAX_DIRECTIONS);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     if (s.horizon_steps < 0 || s.horizon_steps > CACAO_SLICE_MAX_STEPS) {
         cacaoi_set_error(error, error_size, "settings.horizon_steps = %d is outside 1..%d (0 = by quality)",
-                         s.horizon_steps, CACAO_SLICE_MAX_STEPS);
+                        s.horizon_steps, CACAO_SLICE_MAX_STEPS);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
-    if (s.blur_pass_count == 0)
-        s.blur_pass_count = slice ? 1 : 2;
+    if (s.blur_pass_count == 0) s.blur_pass_count = slice ? 1 : 2;
     else if (s.blur_pass_count == CACAO_BLUR_NONE) {
         /* stays CACAO_BLUR_NONE (see cacaoi_settings_literal) */
     } else if (s.blur_pass_count < 1 || s.blur_pass_count > 8) {
         cacaoi_set_error(error, error_size, "settings.blur_pass_count = %d is outside 1..8 (0 = default, %d = none)",
-                         s.blur_pass_count, CACAO_BLUR_NONE);
+                        s.blur_pass_count, CACAO_BLUR_NONE);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     if (s.quality == CACAO_QUALITY_DEFAULT) s.quality = CACAO_QUALITY_HIGHEST;

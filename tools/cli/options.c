@@ -225,8 +225,7 @@ static bool runtime_accepts_zero(size_t offset) {
  * settings), so that a literal 0 is simply that default. */
 static bool runtime_default_is_zero(size_t offset) {
     cacao_settings probe = {0}, resolved;
-    return cacao_settings_resolve(&probe, &resolved, NULL, 0) == CACAO_SUCCESS &&
-           *float_field(&resolved, offset) == 0.0f;
+    return cacao_settings_resolve(&probe, &resolved, NULL, 0) == CACAO_SUCCESS && *float_field(&resolved, offset) == 0.0f;
 }
 
 /* Stores a literal float: finite, not negative, 0 as CACAO_ZERO where the runtime allows 0. */
@@ -260,7 +259,8 @@ static bool store_blur(double literal, cacao_settings *s, const char *label, cha
     return true;
 }
 
-static bool store_int(const flag_def *def, double literal, cacao_settings *s, const char *label, char *err, size_t n) {
+static bool store_int(const flag_def *def, double literal, cacao_settings *s, const char *label, char *err,
+                      size_t n) {
     if (!(literal >= 0 && literal <= def->int_max) || literal != floor(literal)) {
         set_err(err, n, "%s: must be a whole number, 0 (default) to %d", label, def->int_max);
         return false;
@@ -396,9 +396,7 @@ static bool apply_option_flag(const flag_def *def, const char *value, cli_option
                         (bits ? (number == 8 || number == 16) : (number >= low && number <= 100000));
         if (!ok) {
             set_err(err, n, "%s %s: must be %s", def->name, value,
-                    bits  ? "8 or 16"
-                    : low ? "a whole number from 1 to 100000"
-                          : "a whole number from 0 to 100000");
+                    bits ? "8 or 16" : low ? "a whole number from 1 to 100000" : "a whole number from 0 to 100000");
             return false;
         }
         *(uint32_t *)field = (uint32_t)number;
@@ -566,9 +564,7 @@ cJSON *cli_settings_to_json(const cacao_settings *resolved) {
             cJSON_AddNumberToObject(root, def->json, literal_float(*float_field(&s, def->offset)));
             cJSON_AddNumberToObject(root, def->json2, literal_float(*float_field(&s, def->offset2)));
             break;
-        case SET_FLOAT:
-            cJSON_AddNumberToObject(root, def->json, literal_float(*float_field(&s, def->offset)));
-            break;
+        case SET_FLOAT: cJSON_AddNumberToObject(root, def->json, literal_float(*float_field(&s, def->offset))); break;
         case SET_BLUR:
             cJSON_AddNumberToObject(root, def->json, s.blur_pass_count == CACAO_BLUR_NONE ? 0 : s.blur_pass_count);
             break;
@@ -580,9 +576,7 @@ cJSON *cli_settings_to_json(const cacao_settings *resolved) {
         case SET_BOOL:
             cJSON_AddBoolToObject(root, def->json, *bool_field(&s, def->offset));
             break;
-        case SET_INT:
-            cJSON_AddNumberToObject(root, def->json, *int_field(&s, def->offset));
-            break;
+        case SET_INT: cJSON_AddNumberToObject(root, def->json, *int_field(&s, def->offset)); break;
         default:
             break;
         }

@@ -121,16 +121,12 @@ static int cmd_list(int argc, char **argv) {
     int quality = -1;
     bool json = false;
     for (int i = 0; i < argc; ++i) {
-        if (strcmp(argv[i], "--json") == 0)
-            json = true;
-        else if (strcmp(argv[i], "--costs") == 0 && i + 1 < argc)
-            costs_path = argv[++i];
-        else if (strcmp(argv[i], "--pass") == 0 && i + 1 < argc)
-            pass = argv[++i];
+        if (strcmp(argv[i], "--json") == 0) json = true;
+        else if (strcmp(argv[i], "--costs") == 0 && i + 1 < argc) costs_path = argv[++i];
+        else if (strcmp(argv[i], "--pass") == 0 && i + 1 < argc) pass = argv[++i];
         else if (strcmp(argv[i], "--quality") == 0 && i + 1 < argc) {
             if ((quality = quality_from_word(argv[++i])) < 0) return fail("--quality: unknown level '%s'", argv[i]);
-        } else
-            return fail("list: unknown argument '%s'", argv[i]);
+        } else return fail("list: unknown argument '%s'", argv[i]);
     }
     perm_cost *costs = costs_path ? calloc(table->permutation_count, sizeof *costs) : NULL;
     if (costs_path && (!costs || load_costs(costs_path, costs) != 0)) {
@@ -180,8 +176,7 @@ static int cmd_list(int argc, char **argv) {
             if (costs[i].runs)
                 printf("%-34s %9.3f %5u  %s\n", p->name, median_of(costs[i].ms, costs[i].runs), costs[i].runs,
                        costs[i].served);
-            else
-                printf("%-34s %9s %5u  %s\n", p->name, "-", 0u, "(not run by this bench)");
+            else printf("%-34s %9s %5u  %s\n", p->name, "-", 0u, "(not run by this bench)");
         } else {
             printf("%-34s %-8s %-5u %-10s %5s %-8u %9u  %s\n", p->name, table->entry_point, p->key.blur_passes,
                    p->key.fp16 ? "fp16" : "fp32", wg, p->module, bytes, group[0] ? group : "-");
@@ -297,8 +292,8 @@ static int cmd_plan(int argc, char **argv) {
     for (uint32_t i = 0; i < plan.step_count; ++i) {
         const cacao_key key = {plan.steps[i].key[0], plan.steps[i].key[1], plan.steps[i].key[2], plan.steps[i].key[3],
                                plan.steps[i].key[4]};
-        if (!cacaoi_table_find(table, &key))
-            missing += fprintf(stderr, "note: %s is not embedded in this build\n", plan.steps[i].key_name) > 0;
+        if (!cacaoi_table_find(table, &key)) missing += fprintf(stderr, "note: %s is not embedded in this build\n",
+                                                               plan.steps[i].key_name) > 0;
     }
     return missing ? 1 : 0;
 }
@@ -349,39 +344,37 @@ static int cmd_verify(void) {
     if (!table_subset(&subset)) return fail("cannot parse the table's subset '%s'", table->subset);
     unsigned configs = 0, missing = 0;
     for (int e = CACAO_ESTIMATOR_CACAO; e <= CACAO_ESTIMATOR_BITMASK; ++e)
-        for (unsigned q = 0; q < 5; ++q)
-            for (unsigned ds = 0; ds < 2; ++ds)
-                for (unsigned fp = 0; fp < 2; ++fp)
-                    for (unsigned gen = 0; gen < 2; ++gen)
-                        for (int blur = 0; blur <= 8; ++blur) {
-                            if (!(subset.quality_mask >> q & 1) || !(subset.resolution_mask >> ds & 1) ||
-                                !(subset.precision_mask >> fp & 1))
-                                continue;
-                            if (e != CACAO_ESTIMATOR_CACAO && (ds || fp)) continue; /* native fp32 only */
-                            const cacao_settings s = {.estimator = (cacao_estimator)e,
-                                                      .quality = (cacao_quality)(q + 1),
-                                                      .downsample = ds,
-                                                      .precision = fp ? CACAO_PRECISION_FP16 : CACAO_PRECISION_FP32,
-                                                      .generate_normals = gen,
-                                                      .blur_pass_count = blur ? blur : CACAO_BLUR_NONE};
-                            cacao_plan plan;
-                            char err[256];
-                            if (cacao_plan_build(&s, 1920, 1080, &plan, err, sizeof err) != CACAO_SUCCESS) {
-                                fprintf(stderr, "plan failed: %s\n", err);
-                                ++errors;
-                                continue;
-                            }
-                            ++configs;
-                            for (uint32_t i = 0; i < plan.step_count; ++i) {
-                                const cacao_key key = {plan.steps[i].key[0], plan.steps[i].key[1], plan.steps[i].key[2],
-                                                       plan.steps[i].key[3], plan.steps[i].key[4]};
-                                if (!cacaoi_table_find(table, &key)) {
-                                    fprintf(stderr, "missing: %s (quality %s)\n", plan.steps[i].key_name,
-                                            cacaoi_quality_names[q]);
-                                    ++missing;
-                                }
+    for (unsigned q = 0; q < 5; ++q)
+        for (unsigned ds = 0; ds < 2; ++ds)
+            for (unsigned fp = 0; fp < 2; ++fp)
+                for (unsigned gen = 0; gen < 2; ++gen)
+                    for (int blur = 0; blur <= 8; ++blur) {
+                        if (!(subset.quality_mask >> q & 1) || !(subset.resolution_mask >> ds & 1) ||
+                            !(subset.precision_mask >> fp & 1))
+                            continue;
+                        if (e != CACAO_ESTIMATOR_CACAO && (ds || fp)) continue; /* native fp32 only */
+                        const cacao_settings s = {.estimator = (cacao_estimator)e,
+                                                  .quality = (cacao_quality)(q + 1), .downsample = ds,
+                                                  .precision = fp ? CACAO_PRECISION_FP16 : CACAO_PRECISION_FP32,
+                                                  .generate_normals = gen,
+                                                  .blur_pass_count = blur ? blur : CACAO_BLUR_NONE};
+                        cacao_plan plan;
+                        char err[256];
+                        if (cacao_plan_build(&s, 1920, 1080, &plan, err, sizeof err) != CACAO_SUCCESS) {
+                            fprintf(stderr, "plan failed: %s\n", err);
+                            ++errors;
+                            continue;
+                        }
+                        ++configs;
+                        for (uint32_t i = 0; i < plan.step_count; ++i) {
+                            const cacao_key key = {plan.steps[i].key[0], plan.steps[i].key[1], plan.steps[i].key[2],
+                                                   plan.steps[i].key[3], plan.steps[i].key[4]};
+                            if (!cacaoi_table_find(table, &key)) {
+                                fprintf(stderr, "missing: %s (quality %s)\n", plan.steps[i].key_name, cacaoi_quality_names[q]);
+                                ++missing;
                             }
                         }
+                    }
     printf("%u configurations of subset '%s' planned: %s\n", configs, table->subset,
            missing ? "some keys are NOT embedded" : "every key they dispatch is embedded");
     return errors || missing ? 1 : 0;
