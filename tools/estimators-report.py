@@ -1,0 +1,247 @@
+#!/usr/bin/python3
+"""Regenerates docs/estimators.md, docs/estimators-pareto.png and docs/estimators-error.png: what the
+horizon-slice estimators (GTAO, visibility bitmask) buy against ray-traced truth, and what they cost
+beside cacao's own CACAO levels and AMD FidelityFX CACAO v1.2's best level, timed in one run.
+
+usage: tools/estimators-report.py [--build build] [--shared ../shared] [--out docs] [--reps 3]
+                                  [--warmup 2] [--repeat 7] [--scenes A,B] [--no-amd]
+
+For each repetition and scene, interleaved (alternating which goes first): one cacao-bench process
+running the estimators at every quality level (falloff visibility against ao_gt_falloff, the scene's
+normals and, as a second set, normals reconstructed from depth), one running binary visibility
+against ao_gt, one running cacao's CACAO levels with AMD's reference settings (as docs/accuracy.md),
+and amd_cacao (../shared/amd-cacao) at each native quality level with AMD's reference settings.
+Times are medians over --reps processes of each process's median frame; AMD's best level is the one
+with the lowest RMSE against ao_gt_falloff. One parameter set for every scene: the estimators run
+with the scene's radius (camera.json ao_radius_world) and no fade-out (the truths have none).
+
+Needs /usr/bin/python3 with numpy, gnuplot and a build. Time it on a quiet machine (`uptime` is
+recorded)."""
+import argparse
+import datetime
+import importlib.util
+import json
+import os
+import struct
+import sys
+import tempfile
+import zlib
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+spec = importlib.util.spec_from_file_location('accuracy_report', os.path.join(ROOT, 'tools', 'accuracy-report.py'))
+acc = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(acc)
+
+QUALITIES = acc.QUALITIES
+ESTIMATORS = ['gtao', 'bitmask']
+READS = {'lowest': 8, 'low': 12, 'medium': 18, 'high': 36, 'highest': 64}
+NO_FADE = ['--fade-out', '1000000,2000000']
+CACAO_CONFIGS = ['medium_native', 'high_native']
+DEVICE = ['?']  # the bench's device and driver, as its JSON reports them
+
+
+def est_configs(suffix=''):
+    return ['%s_%s_native%s' % (e, q, suffix) for e in ESTIMATORS for q in QUALITIES]
+
+
+def write_png_rgb(path, rgb):
+    """A minimal 8-bit RGB PNG (zlib + CRCs), so the report needs nothing beyond numpy."""
+    h, w, _ = rgb.shape
+    raw = b''.join(b'\x00' + rgb[y].astype(np.uint8).tobytes() for y in range(h))
+
+    def chunk(kind, data):
+        return struct.pack('>I', len(data)) + kind + data + struct.pack('>I', zlib.crc32(kind + data) & 0xffffffff)
+    with open(path, 'wb') as f:
+        f.write(b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', w, h, 8, 2, 0, 0, 0)) +
+                chunk(b'IDAT', zlib.compress(raw, 9)) + chunk(b'IEND', b''))
+
+
+def signed_error_png(path, ao, truth, mask):
+    """Blue where the estimate is lighter than the truth (missed occlusion), red where darker;
+    full colour at |error| 0.25; background grey."""
+    e = np.clip((ao - truth) / 0.25, -1, 1)
+    rgb = np.empty(ao.shape + (3,))
+    rgb[..., 0] = 255 * (1 - np.clip(e, 0, 1))
+    rgb[..., 2] = 255 * (1 - np.clip(-e, 0, 1))
+    rgb[..., 1] = 255 * (1 - np.abs(e))
+    rgb[~mask] = 96
+    write_png_rgb(path, rgb)
+
+
+def bench_json(bench, scene_dir, configs, flags, a, path, save_dir=None):
+    cmd = [bench, '--scene', scene_dir, '--configs', ','.join(configs), '--warmup', str(a.warmup),
+           '--repeat', str(a.repeat), '--json', path] + flags
+    if save_dir:
+        cmd += ['--save-ao', save_dir]
+    return cmd
+
+
+def measure(a, bench, scenes, work):
+    ours, amd = {}, {}
+    for rep in range(a.reps):
+        for k, scene in enumerate(scenes):
+            scene_dir = os.path.join(a.shared, 'scenes', scene)
+            save = work if rep == 0 else None
+            cmds = []
+            falloff = os.path.join(work, 'f-%s-%d.json' % (scene, rep))
+            cmds.append(('est', falloff, bench_json(bench, scene_dir, est_configs() + est_configs('_gennormals'),
+                                                    NO_FADE, a, falloff, save)))
+            binary_dir = os.path.join(work, 'binary')
+            os.makedirs(binary_dir, exist_ok=True)
+            binary = os.path.join(work, 'b-%s-%d.json' % (scene, rep))
+            cmds.append(('bin', binary, bench_json(bench, scene_dir, est_configs(), NO_FADE + ['--visibility', 'binary'],
+                                                   a, binary, binary_dir if rep == 0 else None)))
+            for config in CACAO_CONFIGS:
+                flags, _, _ = acc.amd_settings_flags(a.shared, scene, config)
+                path = os.path.join(work, 'c-%s-%s-%d.json' % (scene, config, rep))
+                cmds.append(('cacao', path, bench_json(bench, scene_dir, [config], flags, a, path)))
+            if not a.no_amd:
+                for q in QUALITIES:
+                    config = '%s_native' % q
+                    _, settings, amd_config = acc.amd_settings_flags(a.shared, scene, config)
+                    path = os.path.join(work, 'amd-%s-%s-%d.json' % (scene, config, rep))
+                    out = os.path.join(work, 'amd-%s-%s.pfm' % (scene, config))
+                    cmds.append(('amd', path, [os.path.join(a.shared, 'amd-cacao', 'amd_cacao'), '--depth',
+                                               os.path.join(scene_dir, 'depth.pfm')] +
+                                 acc.amd_args(a.shared, settings, amd_config, scene_dir) +
+                                 ['--warmup', str(a.warmup), '--repeat', str(a.repeat), '--json', path, '--out', out],
+                                 ))
+            if (rep + k) % 2:
+                cmds.reverse()
+            for kind, path, cmd in cmds:
+                acc.run(cmd)
+                if kind == 'amd':
+                    j = json.load(open(path))
+                    config = os.path.basename(path).split('-')[2]
+                    e = amd.setdefault((scene, config), {'total': []})
+                    e['total'].append(j['median']['total_ms'])
+                    if 'errors' not in e:
+                        e['errors'] = acc.errors_of(acc.read_pfm(cmd[cmd.index('--out') + 1]), scene_dir)
+                else:
+                    j = json.load(open(path))
+                    DEVICE[0] = '%s (%s)' % (j.get('device', '?'), j.get('driver', '?'))
+                    for r in j['results']:
+                        key = (scene, ('binary:' if kind == 'bin' else '') + r['config'])
+                        ours.setdefault(key, []).append(r)
+            print('[%d/%d] %s' % (rep * len(scenes) + k + 1, a.reps * len(scenes), scene), file=sys.stderr, flush=True)
+    return ours, amd
+
+
+def med(rs, field='total_ms'):
+    return float(np.median([r[field] for r in rs]))
+
+
+def rmse(r, truth):
+    return r['errors'][truth]['rmse']
+
+
+def report(a, scenes, ours, amd, up_before, up_after, work, device):
+    lines = ['# The horizon-slice estimators: accuracy and time', '',
+             '*Generated by `tools/estimators-report.py --reps %d` on %s, %s. `uptime` before: `%s`; after: `%s`. '
+             'Every time below is from this one run: cacao-bench and AMD\'s own code interleaved, median over %d '
+             'processes of each process\'s median of %d frames after %d warm-up frames.*' % (
+                 a.reps, datetime.date.today().isoformat(), device, up_before, up_after, a.reps, a.repeat, a.warmup),
+             '',
+             '`--estimator gtao` and `--estimator bitmask` (cacao.h `cacao_estimator`; design in '
+             '[estimators-design](#design)) estimate the cosine-weighted visibility the ray-traced truths measure. '
+             'One parameter set for every scene: the scene\'s radius, no fade-out, the constants of '
+             '`shared/spec/estimators.md`; nothing was fitted to these scenes. RMSE over non-background pixels; '
+             '"given" = the scene\'s normals (the spec\'s protocol), "reconstructed" = normals from depth (AMD\'s '
+             'reference settings reconstruct them too). AMD\'s best = its native level with the lowest RMSE against '
+             '`ao_gt_falloff` under its reference settings.', '']
+    for scene in scenes:
+        lines += ['## %s' % scene, '',
+                  '| estimator | quality | depth reads / px | RMSE vs ao_gt_falloff (given / reconstructed normals) | '
+                  'RMSE vs ao_gt, binary visibility | total ms | slice_main ms |',
+                  '|---|---|---|---|---|---|---|']
+        for e in ESTIMATORS:
+            for q in QUALITIES:
+                c = '%s_%s_native' % (e, q)
+                rs, rg, rb = ours[(scene, c)], ours[(scene, c + '_gennormals')], ours[(scene, 'binary:' + c)]
+                main = float(np.median([p['time_ms'] for r in rs for p in r['passes'] if p['name'].startswith('slice_main')]))
+                lines.append('| %s | %s | %d | %.4f / %.4f | %.4f | %.1f | %.1f |' % (
+                    e, q, READS[q], rmse(rs[0], 'ao_gt_falloff'), rmse(rg[0], 'ao_gt_falloff'),
+                    rmse(rb[0], 'ao_gt'), med(rs), main))
+        for c in CACAO_CONFIGS:
+            rs = ours[(scene, c)]
+            lines.append('| cacao (CACAO, AMD\'s settings) | %s | - | %.4f (reconstructed) | %.4f | %.1f | - |' % (
+                c.split('_')[0], rmse(rs[0], 'ao_gt_falloff'), rmse(rs[0], 'ao_gt'), med(rs)))
+        if amd:
+            best = min((k for k in amd if k[0] == scene), key=lambda k: amd[k]['errors']['ao_gt_falloff']['rmse'])
+            b = amd[best]
+            lines.append('| **AMD CACAO v1.2, best level** | %s | - | %.4f (reconstructed) | %.4f | %.1f | - |' % (
+                best[1].split('_')[0], b['errors']['ao_gt_falloff']['rmse'], b['errors']['ao_gt']['rmse'],
+                float(np.median(b['total']))))
+            lines += ['', 'AMD per native level (RMSE vs ao_gt_falloff, ms): ' + ', '.join(
+                '%s %.4f / %.1f' % (q, amd[(scene, q + '_native')]['errors']['ao_gt_falloff']['rmse'],
+                                    float(np.median(amd[(scene, q + '_native')]['total']))) for q in QUALITIES) + '.']
+        lines.append('')
+    # worst case: the highest RMSE of the default mode (bitmask, highest, given normals)
+    worst = max(scenes, key=lambda s: rmse(ours[(s, 'bitmask_highest_native')][0], 'ao_gt_falloff'))
+    ao = acc.read_pfm(os.path.join(work, '%s.bitmask_highest_native.pfm' % worst))
+    scene_dir = os.path.join(a.shared, 'scenes', worst)
+    truth = acc.read_pfm(os.path.join(scene_dir, 'ao_gt_falloff.pfm'))
+    depth = acc.read_pfm(os.path.join(scene_dir, 'depth.pfm'))
+    mask = np.isfinite(depth) & (depth < 1.0) & np.isfinite(truth)
+    signed_error_png(os.path.join(a.out, 'estimators-error.png'), ao, truth, mask)
+    d = (ao - truth)[mask]
+    lines += ['## Where the error sits', '',
+              '![signed error](estimators-error.png)', '',
+              '*bitmask, highest, given normals, on %s (the scene where its RMSE is highest), minus `ao_gt_falloff`: '
+              'blue = lighter than the truth (occlusion missed), red = darker; full colour at 0.25. Mean signed error '
+              '%+.4f; %.1f%% of pixels more than 0.1 too light, %.1f%% more than 0.1 too dark.*' % (
+                  worst, float(np.mean(d)), 100 * float(np.mean(d > 0.1)), 100 * float(np.mean(d < -0.1))), '',
+              '![error against time](estimators-pareto.png)', '',
+              '*RMSE against `ao_gt_falloff` against total GPU time, every configuration of this run (cacao-bench '
+              '`--plot-from`), AMD\'s native levels as reference points.*', '']
+    with open(os.path.join(ROOT, 'docs', 'estimators-design.md')) as f:
+        lines += [f.read().rstrip(), '']
+    with open(os.path.join(a.out, 'estimators.md'), 'w') as f:
+        f.write('\n'.join(lines))
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    p.add_argument('--build', default=os.path.join(ROOT, 'build'))
+    p.add_argument('--shared', default=os.path.join(ROOT, '..', 'shared'))
+    p.add_argument('--out', default=os.path.join(ROOT, 'docs'))
+    p.add_argument('--reps', type=int, default=3)
+    p.add_argument('--warmup', type=int, default=2)
+    p.add_argument('--repeat', type=int, default=7)
+    p.add_argument('--scenes', default='interior_fzkhaus,statues_scanned,street_track')
+    p.add_argument('--no-amd', action='store_true')
+    a = p.parse_args()
+    bench = os.path.join(a.build, 'tools', 'bench', 'cacao-bench')
+    scenes = a.scenes.split(',')
+    up_before = acc.uptime()
+    with tempfile.TemporaryDirectory() as work:
+        ours, amd = measure(a, bench, scenes, work)
+        up_after = acc.uptime()
+        device = DEVICE[0]
+        merged = os.path.join(work, 'merged.json')
+        configs = est_configs() + CACAO_CONFIGS
+        results = []
+        for c in configs:
+            for s in scenes:
+                rs = ours[(s, c)]
+                results.append(dict(rs[0], total_ms=med(rs)))
+        with open(merged, 'w') as f:
+            json.dump({'tool': 'tools/estimators-report.py', 'scenes': [{'name': s, 'truths': acc.TRUTHS} for s in scenes],
+                       'configurations': [{'name': c} for c in configs], 'results': results}, f)
+        plot_cmd = [bench, '--plot-from', merged, '--plot', os.path.join(a.out, 'estimators-pareto.png')]
+        if amd:
+            ref = os.path.join(work, 'amd.json')
+            with open(ref, 'w') as f:
+                json.dump({'name': 'AMD FidelityFX CACAO v1.2', 'points': [{'scene': s, 'config': 'AMD ' + c.split('_')[0], 'total_ms': float(np.median(v['total'])),
+                                       'rmse_ao_gt_falloff': v['errors']['ao_gt_falloff']['rmse'],
+                                       'rmse_ao_gt': v['errors']['ao_gt']['rmse']} for (s, c), v in amd.items()]}, f)
+            plot_cmd += ['--reference', ref]
+        acc.run(plot_cmd)
+        report(a, scenes, ours, amd, up_before, up_after, work, device)
+    print('wrote %s' % os.path.join(a.out, 'estimators.md'))
+
+
+if __name__ == '__main__':
+    main()
