@@ -18,7 +18,9 @@ static bool settings_equal(const cacao_settings *a, const cacao_settings *b) {
            a->bilateral_sigma_squared == b->bilateral_sigma_squared &&
            a->bilateral_similarity_distance_sigma == b->bilateral_similarity_distance_sigma &&
            a->blur_pass_count == b->blur_pass_count && a->quality == b->quality && a->precision == b->precision &&
-           a->generate_normals == b->generate_normals && a->downsample == b->downsample;
+           a->generate_normals == b->generate_normals && a->downsample == b->downsample &&
+           a->estimator == b->estimator && a->visibility == b->visibility && a->thickness == b->thickness &&
+           a->horizon_slices == b->horizon_slices && a->horizon_steps == b->horizon_steps;
 }
 
 static bool plans_equal(const cacao_plan *a, const cacao_plan *b) {
@@ -48,7 +50,8 @@ static bool plans_equal(const cacao_plan *a, const cacao_plan *b) {
 
 static unsigned blur_steps(const cacao_plan *p) {
     unsigned n = 0;
-    for (uint32_t i = 0; i < p->step_count; ++i) n += strncmp(p->steps[i].key_name, "blur.", 5) == 0;
+    for (uint32_t i = 0; i < p->step_count; ++i)
+        n += strncmp(p->steps[i].key_name, "blur.", 5) == 0 || strncmp(p->steps[i].key_name, "slice_denoise.", 14) == 0;
     return n;
 }
 
@@ -82,11 +85,20 @@ static void check_one(const cacao_settings *in, uint32_t w, uint32_t h) {
     CHECK(plans_equal(&p1, &p2));
     CHECK(settings_equal(&p1.settings, &r1));
 
-    /* The blur count the caller asked for, in both plans. */
+    /* The blur count the caller asked for, in both plans (CACAO: one step of N iterations, default
+     * 2; the slice estimators: N denoise steps, default 1). */
+    const bool slice = in->estimator == CACAO_ESTIMATOR_GTAO || in->estimator == CACAO_ESTIMATOR_BITMASK;
     const unsigned want_blur = in->blur_pass_count == CACAO_BLUR_NONE ? 0
-                               : in->blur_pass_count == 0             ? 2
+                               : in->blur_pass_count == 0             ? (slice ? 1 : 2)
                                                                       : (unsigned)in->blur_pass_count;
-    CHECK(blur_steps(&p2) == (want_blur > 0));
+    CHECK(blur_steps(&p2) == (slice ? want_blur : want_blur > 0));
+    if (slice) { /* the budget: the quality level's unless given */
+        static const int budget[5][2] = {{2, 2}, {3, 2}, {3, 3}, {3, 6}, {4, 8}};
+        const int q = in->quality ? (int)in->quality - 1 : 4;
+        CHECK(p2.settings.horizon_slices == (in->horizon_slices ? in->horizon_slices : budget[q][0]));
+        CHECK(p2.settings.horizon_steps == (in->horizon_steps ? in->horizon_steps : budget[q][1]));
+        CHECK(p2.settings.precision == CACAO_PRECISION_FP32);
+    }
     for (uint32_t i = 0; i < p2.step_count; ++i)
         if (strncmp(p2.steps[i].key_name, "blur.", 5) == 0) CHECK(p2.steps[i].key[3] == want_blur);
 
@@ -105,13 +117,17 @@ static void check_one(const cacao_settings *in, uint32_t w, uint32_t h) {
 
 int main(void) {
     const int blurs[] = {0, CACAO_BLUR_NONE, 1, 2, 3, 4, 5, 6, 7, 8};
+    for (int e = 0; e <= CACAO_ESTIMATOR_BITMASK; ++e)
     for (int q = 0; q <= CACAO_QUALITY_HIGHEST; ++q)
         for (int ds = 0; ds < 2; ++ds)
             for (size_t b = 0; b < sizeof blurs / sizeof blurs[0]; ++b)
                 for (int prec = 0; prec <= CACAO_PRECISION_FP16; ++prec)
                     for (int gn = 0; gn < 2; ++gn) /* zero mask: none, each field alone, all of them */
                         for (unsigned m = 0; m <= ZERO_FIELDS + 1; ++m) {
-                            cacao_settings s = {.quality = (cacao_quality)q,
+                            cacao_settings s = {.estimator = (cacao_estimator)e,
+                                                .horizon_slices = m == 1 ? 5 : 0, /* an explicit budget */
+                                                .horizon_steps = m == 1 ? 7 : 0,
+                                                .quality = (cacao_quality)q,
                                                 .downsample = ds,
                                                 .blur_pass_count = blurs[b],
                                                 .precision = (cacao_precision)prec,
@@ -120,6 +136,11 @@ int main(void) {
                             for (size_t f = 0; f < ZERO_FIELDS; ++f)
                                 if (m == ZERO_FIELDS + 1 || m == f + 1)
                                     *(float *)((char *)&s + zero_fields[f]) = CACAO_ZERO;
+                            if (e >= CACAO_ESTIMATOR_GTAO && ds) { /* full resolution only */
+                                cacao_settings r;
+                                CHECK(cacao_settings_resolve(&s, &r, NULL, 0) == CACAO_ERROR_INVALID_ARGUMENT);
+                                continue;
+                            }
                             check_one(&s, 97 + 13 * (uint32_t)m, 61 + 7 * (uint32_t)b);
                         }
     /* The cases the issue names: resolved once, blur none stays none and horizon 0 stays 0. */
