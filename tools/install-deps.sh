@@ -6,6 +6,7 @@ packages=(cmake ninja-build gcc pkg-config
           libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
           libpng-dev libcjson-dev libopenexr-dev
           gnuplot-nox   # cacao-bench's plots
+          python3-numpy # tools/accuracy-report.py, tools/estimators-report.py
           clang-14 libclang-rt-14-dev) # clang: the libFuzzer harnesses of the sanitizer build
 sudo_cmd=()
 if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
