@@ -1129,7 +1129,7 @@ float slice_visibility(ivec2 p, float z, ivec2 size)
     vec3 pos = slice_pos(p, z);
     vec3 v = slice_to_camera(pos);
     vec3 nrm = fetch_normal(p, v);
-    const float radius = cb.slice_radius;
+    const float radius = cb.slice_radius, radius2 = radius * radius, inv_radius2 = 1.0 / radius2;
     float rpx = radius / (cb.slice_pixel_size * view_xy_scale(z)); /* radius in pixels */
     float min_s = CACAO_SLICE_MIN_OFFSET_PX / rpx;
     uint h = hilbert_index(uint(p.x) & 63u, uint(p.y) & 63u) + uint(cb.slice_noise_offset);
@@ -1179,8 +1179,7 @@ float slice_visibility(ivec2 p, float z, ivec2 size)
                 float dist2 = dot(delta3, delta3);
                 float x = dot(delta3, v), y = dot(delta3, f.t);
 #if SLICE_BITMASK
-                float w = cb.slice_binary != 0 ? (dist2 <= radius * radius ? 1.0 : 0.0)
-                                               : max(0.0, 1.0 - dist2 / (radius * radius));
+                float w = cb.slice_binary != 0 ? (dist2 <= radius2 ? 1.0 : 0.0) : max(0.0, 1.0 - dist2 * inv_radius2);
                 if (!(w > 0.0)) continue;
                 /* back point: T further along the sample's own view ray (y: S . t = delta . t) */
                 float xb = x, yb = y;
@@ -1207,6 +1206,9 @@ float slice_visibility(ivec2 p, float z, ivec2 size)
                 else c_neg = max(c_neg, low_neg + (cs - low_neg) * w);
 #endif
             }
+#if SLICE_BITMASK
+            if (bits == 0xFFFFFFFFu) break; /* every sector is taken: later samples change nothing */
+#endif
         }
 #if SLICE_BITMASK
         sum_vis += f.pl * f.full * occluded * (1.0 / 32.0); /* occluded share, summed as O_i */
