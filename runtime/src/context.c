@@ -126,13 +126,16 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
     return CACAO_SUCCESS;
 }
 
-/* Frees everything resize created (not the layouts). */
-static void release_frame_resources(cacao_context *ctx) {
-    VkDevice d = ctx->device;
+static void release_pipelines(cacao_context *ctx) {
     for (uint32_t i = 0; i < CACAO_PLAN_MAX_STEPS; ++i) {
-        if (ctx->pipelines[i]) vkDestroyPipeline(d, ctx->pipelines[i], ctx->alloc);
+        if (ctx->pipelines[i]) vkDestroyPipeline(ctx->device, ctx->pipelines[i], ctx->alloc);
         ctx->pipelines[i] = VK_NULL_HANDLE;
     }
+}
+
+/* Frees the intermediates and buffers resize created, not the pipelines or the layouts. */
+static void release_images_and_buffers(cacao_context *ctx) {
+    VkDevice d = ctx->device;
     for (unsigned r = 0; r < CACAO_RES_COUNT; ++r) {
         cacao_intermediate *im = &ctx->images[r];
         for (unsigned m = 0; m < CACAO_DEPTH_MIP_COUNT; ++m)
@@ -150,6 +153,21 @@ static void release_frame_resources(cacao_context *ctx) {
     }
     ctx->ready = false;
     ctx->memory = (cacao_memory_info){0};
+}
+
+/* Frees everything resize created (not the layouts). */
+static void release_frame_resources(cacao_context *ctx) {
+    release_pipelines(ctx);
+    release_images_and_buffers(ctx);
+}
+
+/* A pipeline depends on its step's key only, never on the size: a resize whose plan has the same
+ * keys in the same order (same settings, new size: dynamic resolution) keeps the pipelines. */
+static bool pipelines_fit(const cacao_context *ctx, const cacao_plan *plan) {
+    if (!ctx->pipelines[0] || ctx->plan.step_count != plan->step_count) return false;
+    for (uint32_t i = 0; i < plan->step_count; ++i)
+        if (memcmp(ctx->plan.steps[i].key, plan->steps[i].key, sizeof plan->steps[i].key) != 0) return false;
+    return true;
 }
 
 void cacao_context_destroy(cacao_context *ctx) {
@@ -332,14 +350,17 @@ cacao_result cacao_context_resize(cacao_context *ctx, uint32_t width, uint32_t h
                               "permutation '%s' is not embedded in this build (subset %s)", plan.steps[i].key_name,
                               cacaoi_embedded_table.subset);
     }
-    release_frame_resources(ctx);
+    const bool keep_pipelines = pipelines_fit(ctx, &plan);
+    if (!keep_pipelines) release_pipelines(ctx);
+    release_images_and_buffers(ctx);
     ctx->plan = plan;
     for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan.image_count; ++i) r = create_image(ctx, &plan.images[i]);
     if (r == CACAO_SUCCESS)
         r = create_buffer(ctx, CACAO_BUFFER_CONSTANTS, sizeof(cacao_constants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     if (r == CACAO_SUCCESS && plan.uses_load_counter)
         r = create_buffer(ctx, CACAO_BUFFER_LOAD_COUNTER, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan.step_count; ++i) r = create_pipeline(ctx, i);
+    if (keep_pipelines) ctx->memory.pipeline_count = plan.step_count;
+    for (uint32_t i = 0; r == CACAO_SUCCESS && !keep_pipelines && i < plan.step_count; ++i) r = create_pipeline(ctx, i);
     if (r != CACAO_SUCCESS) {
         release_frame_resources(ctx);
         return r;

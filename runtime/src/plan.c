@@ -17,6 +17,9 @@ const char *cacao_resource_name(cacao_resource resource) {
 
 static uint32_t div_up(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
 
+_Static_assert(CACAO_DEPTH_MIP_COUNT == 4 && CACAO_DEPTH_MIP_LEVELS(8) == 4 && CACAO_DEPTH_MIP_LEVELS(7) == 3,
+               "CACAO_DEPTH_MIP_LEVELS is written for a chain of 4 levels");
+
 cacao_key cacaoi_plan_step_key(const cacao_plan_step *step) {
     return (cacao_key){step->key[0], step->key[1], step->key[2], step->key[3], step->key[4]};
 }
@@ -101,9 +104,9 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     cacao_settings s;
     cacao_result r = cacao_settings_resolve(settings, &s, error, error_size);
     if (r != CACAO_SUCCESS) return r;
-    if (width < CACAO_MIN_SIZE || height < CACAO_MIN_SIZE || width > CACAO_MAX_SIZE || height > CACAO_MAX_SIZE) {
-        cacaoi_set_error(error, error_size, "size %ux%u: width and height must be in %d..%d", width, height,
-                        CACAO_MIN_SIZE, CACAO_MAX_SIZE);
+    if (width < 1 || height < 1 || width > CACAO_MAX_SIZE || height > CACAO_MAX_SIZE) {
+        cacaoi_set_error(error, error_size, "size %ux%u: width and height must be in 1..%d", width, height,
+                        CACAO_MAX_SIZE);
         return CACAO_ERROR_INVALID_SIZE;
     }
     memset(plan, 0, sizeof *plan);
@@ -118,7 +121,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     const uint32_t iw = div_up(sw, 2), ih = div_up(sh, 2);
     const uint32_t slices = cacaoi_slice_count_for_quality(quality);
     const unsigned depths_variant = cacaoi_depths_variant_for_quality(quality);
-    const uint32_t mips = depths_variant == CACAO_DEPTHS_MIPS ? CACAO_DEPTH_MIP_COUNT : 1;
+    const uint32_t mips = depths_variant == CACAO_DEPTHS_MIPS ? CACAO_DEPTH_MIP_LEVELS(sw > sh ? sw : sh) : 1;
     const unsigned blur = s.blur_pass_count == CACAO_BLUR_NONE ? 0 : (unsigned)s.blur_pass_count;
     plan->slice_width = sw;
     plan->slice_height = sh;
@@ -144,7 +147,11 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     cacao_key key = {CACAO_PASS_PREPARE_DEPTHS, (uint8_t)depths_variant, ds, 0, 0};
     cacao_plan_step *st = add_step(&b, &key, pgx, pgy, 1);
     bind(st, CACAO_BINDING_SRC_DEPTH, CACAO_RES_DEPTH_INPUT, 0, false);
-    for (uint32_t m = 0; m < mips; ++m) bind(st, CACAO_BINDING_DEPTHS_OUT0 + m, CACAO_RES_DEPTHS, m, true);
+    /* The MIPS variant writes every level's binding; a small slice's missing levels alias its last
+     * level, which the shader leaves alone there (CACAO_DEPTH_MIP_LEVELS). */
+    const uint32_t outputs = depths_variant == CACAO_DEPTHS_MIPS ? CACAO_DEPTH_MIP_COUNT : 1;
+    for (uint32_t m = 0; m < outputs; ++m)
+        bind(st, CACAO_BINDING_DEPTHS_OUT0 + m, CACAO_RES_DEPTHS, m < mips ? m : mips - 1, true);
     finish_step(&b, st);
 
     key = (cacao_key){CACAO_PASS_PREPARE_NORMALS, s.generate_normals ? 0 : 1, ds, 0, 0};
