@@ -9,9 +9,7 @@ uint32_t cacao_embedded_permutation_count(void) { return cacaoi_embedded_table.p
 
 const char *cacao_context_last_error(const cacao_context *ctx) { return ctx ? ctx->last_error : ""; }
 
-const cacao_plan *cacao_context_plan(const cacao_context *ctx) {
-    return ctx && ctx->ready ? &ctx->plan : NULL;
-}
+const cacao_plan *cacao_context_plan(const cacao_context *ctx) { return ctx && ctx->ready ? &ctx->plan : NULL; }
 
 cacao_precision cacao_context_precision(const cacao_context *ctx) {
     return ctx && ctx->ready ? ctx->plan.settings.precision : CACAO_PRECISION_DEFAULT;
@@ -102,12 +100,11 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
     ctx->alloc = desc->allocation_callbacks;
     ctx->pipeline_cache = desc->pipeline_cache;
 
-    ctx->push_descriptor =
-        (PFN_vkCmdPushDescriptorSetKHR)vkGetDeviceProcAddr(ctx->device, "vkCmdPushDescriptorSetKHR");
+    ctx->push_descriptor = (PFN_vkCmdPushDescriptorSetKHR)vkGetDeviceProcAddr(ctx->device, "vkCmdPushDescriptorSetKHR");
     cacao_result r = CACAO_SUCCESS;
     if (!ctx->push_descriptor)
         r = cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
-                       "context_desc.device: VK_KHR_push_descriptor is not enabled on this device");
+                        "context_desc.device: VK_KHR_push_descriptor is not enabled on this device");
     VkPhysicalDeviceShaderFloat16Int8Features f16 = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES};
     VkPhysicalDeviceFeatures2 features = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f16};
@@ -116,7 +113,7 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
     ctx->separate_depth_layouts = desc->separate_depth_stencil_layouts_enabled;
     if (r == CACAO_SUCCESS && !features.features.shaderStorageImageWriteWithoutFormat)
         r = cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
-                       "context_desc.physical_device lacks shaderStorageImageWriteWithoutFormat");
+                        "context_desc.physical_device lacks shaderStorageImageWriteWithoutFormat");
     if (r == CACAO_SUCCESS) r = create_layouts(ctx);
     if (r != CACAO_SUCCESS) {
         cacao_context_destroy(ctx);
@@ -214,7 +211,7 @@ static cacao_result check_format(cacao_context *ctx, VkFormat format, bool linea
     if (linear) need |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
     if ((props.optimalTilingFeatures & need) != need)
         return cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
-                          "the device cannot use format %d for %s as a storage and sampled image", (int)format, what);
+                           "the device cannot use format %d for %s as a storage and sampled image", (int)format, what);
     return CACAO_SUCCESS;
 }
 
@@ -233,7 +230,8 @@ static cacao_result create_image(cacao_context *ctx, const cacao_plan_image *pi)
         .arrayLayers = pi->layers,
         .samples = VK_SAMPLE_COUNT_1_BIT,
         .tiling = VK_IMAGE_TILING_OPTIMAL,
-        .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, /* copyable for inspection */
+        .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                 VK_IMAGE_USAGE_TRANSFER_SRC_BIT, /* copyable for inspection */
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
         .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
     };
@@ -298,15 +296,15 @@ static cacao_result create_pipeline(cacao_context *ctx, uint32_t index) {
     const cacao_permutation *perm = cacaoi_table_find(&cacaoi_embedded_table, &key);
     if (!perm)
         return cacaoi_fail(ctx, CACAO_ERROR_PERMUTATION_MISSING,
-                          "permutation '%s' is not embedded in this build (subset %s); rebuild with it in "
-                          "CACAO_QUALITIES / CACAO_DOWNSAMPLE / CACAO_PRECISION",
-                          step->key_name, cacaoi_embedded_table.subset);
+                           "permutation '%s' is not embedded in this build (subset %s); rebuild with it in "
+                           "CACAO_QUALITIES / CACAO_DOWNSAMPLE / CACAO_PRECISION",
+                           step->key_name, cacaoi_embedded_table.subset);
     /* The plan and the generated table must agree (our invariant, not a user error). */
     assert(step_matches_module(step, perm));
     assert(step->dispatch[2] >= 1 && perm->workgroup_size[2] == 1);
     if (!step_matches_module(step, perm))
         return cacaoi_fail(ctx, CACAO_ERROR_VULKAN, "internal: plan step '%s' does not match its module's bindings",
-                          step->key_name);
+                           step->key_name);
     const cacao_module *module = &cacaoi_embedded_table.modules[perm->module];
     const VkShaderModuleCreateInfo module_info = {
         .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
@@ -347,8 +345,8 @@ cacao_result cacao_context_resize(cacao_context *ctx, uint32_t width, uint32_t h
         const cacao_key key = cacaoi_plan_step_key(&plan.steps[i]);
         if (!cacaoi_table_find(&cacaoi_embedded_table, &key))
             return cacaoi_fail(ctx, CACAO_ERROR_PERMUTATION_MISSING,
-                              "permutation '%s' is not embedded in this build (subset %s)", plan.steps[i].key_name,
-                              cacaoi_embedded_table.subset);
+                               "permutation '%s' is not embedded in this build (subset %s)", plan.steps[i].key_name,
+                               cacaoi_embedded_table.subset);
     }
     const bool keep_pipelines = pipelines_fit(ctx, &plan);
     if (!keep_pipelines) release_pipelines(ctx);
@@ -376,8 +374,11 @@ cacao_result cacao_context_intermediate(const cacao_context *ctx, cacao_resource
     if (!ctx || !ctx->ready || !image || !buffer) return CACAO_ERROR_INVALID_ARGUMENT;
     *image = VK_NULL_HANDLE;
     *buffer = VK_NULL_HANDLE;
-    if (resource == CACAO_RES_CONSTANTS) *buffer = ctx->buffers[CACAO_BUFFER_CONSTANTS];
-    else if (resource == CACAO_RES_LOAD_COUNTER) *buffer = ctx->buffers[CACAO_BUFFER_LOAD_COUNTER];
-    else if ((unsigned)resource < CACAO_RES_COUNT) *image = ctx->images[resource].image;
+    if (resource == CACAO_RES_CONSTANTS)
+        *buffer = ctx->buffers[CACAO_BUFFER_CONSTANTS];
+    else if (resource == CACAO_RES_LOAD_COUNTER)
+        *buffer = ctx->buffers[CACAO_BUFFER_LOAD_COUNTER];
+    else if ((unsigned)resource < CACAO_RES_COUNT)
+        *image = ctx->images[resource].image;
     return (*image || *buffer) ? CACAO_SUCCESS : CACAO_ERROR_INVALID_ARGUMENT;
 }

@@ -7,7 +7,7 @@
 #include "internal.h"
 
 static const char *const resource_names[CACAO_RES_COUNT] = {
-    "depth_input", "normals_input", "output",    "constants",  "load_counter",   "depths",
+    "depth_input", "normals_input", "output",    "constants",  "load_counter",    "depths",
     "normals",     "ssao_ping",     "ssao_pong", "importance", "importance_pong",
 };
 
@@ -56,10 +56,13 @@ static void finish_step(plan_builder *b, cacao_plan_step *s) {
     uint32_t reads = 0, writes = 0;
     for (uint32_t i = 0; i < s->binding_count; ++i) {
         uint32_t bit = 1u << s->bindings[i].resource;
-        if (s->bindings[i].write) writes |= bit;
-        else reads |= bit;
+        if (s->bindings[i].write)
+            writes |= bit;
+        else
+            reads |= bit;
     }
-    uint32_t hazards = (reads & b->written_since_barrier) | (writes & (b->read_since_barrier | b->written_since_barrier));
+    uint32_t hazards =
+        (reads & b->written_since_barrier) | (writes & (b->read_since_barrier | b->written_since_barrier));
     hazards &= ~(1u << CACAO_RES_CONSTANTS);
     if (hazards) {
         s->barrier_before = true;
@@ -95,8 +98,8 @@ static void add_image(cacao_plan *p, cacao_resource res, uint32_t w, uint32_t h,
     p->total_bytes += bytes;
 }
 
-cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, uint32_t height,
-                              cacao_plan *plan, char *error, size_t error_size) {
+cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, uint32_t height, cacao_plan *plan,
+                              char *error, size_t error_size) {
     if (!plan) {
         cacaoi_set_error(error, error_size, "plan: NULL pointer");
         return CACAO_ERROR_INVALID_ARGUMENT;
@@ -106,7 +109,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     if (r != CACAO_SUCCESS) return r;
     if (width < 1 || height < 1 || width > CACAO_MAX_SIZE || height > CACAO_MAX_SIZE) {
         cacaoi_set_error(error, error_size, "size %ux%u: width and height must be in 1..%d", width, height,
-                        CACAO_MAX_SIZE);
+                         CACAO_MAX_SIZE);
         return CACAO_ERROR_INVALID_SIZE;
     }
     memset(plan, 0, sizeof *plan);
@@ -156,8 +159,10 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
 
     key = (cacao_key){CACAO_PASS_PREPARE_NORMALS, s.generate_normals ? 0 : 1, ds, 0, 0};
     st = add_step(&b, &key, pgx, pgy, 1);
-    if (s.generate_normals) bind(st, CACAO_BINDING_SRC_DEPTH, CACAO_RES_DEPTH_INPUT, 0, false);
-    else bind(st, CACAO_BINDING_SRC_NORMALS, CACAO_RES_NORMALS_INPUT, 0, false);
+    if (s.generate_normals)
+        bind(st, CACAO_BINDING_SRC_DEPTH, CACAO_RES_DEPTH_INPUT, 0, false);
+    else
+        bind(st, CACAO_BINDING_SRC_NORMALS, CACAO_RES_NORMALS_INPUT, 0, false);
     bind(st, CACAO_BINDING_NORMALS_OUT, CACAO_RES_NORMALS, 0, true);
     finish_step(&b, st);
 
@@ -233,8 +238,9 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
 void cacao_plan_print(const cacao_plan *p, FILE *out) {
     const int blur = p->settings.blur_pass_count == CACAO_BLUR_NONE ? 0 : p->settings.blur_pass_count;
     fprintf(out, "plan: %ux%u, quality %s, %s, blur %d, %s, normals %s\n", p->width, p->height,
-            cacaoi_quality_names[cacaoi_key_quality(p->settings.quality)], p->settings.downsample ? "downsampled" : "native",
-            blur, p->settings.precision == CACAO_PRECISION_FP16 ? "fp16" : "fp32",
+            cacaoi_quality_names[cacaoi_key_quality(p->settings.quality)],
+            p->settings.downsample ? "downsampled" : "native", blur,
+            p->settings.precision == CACAO_PRECISION_FP16 ? "fp16" : "fp32",
             p->settings.generate_normals ? "from depth" : "from input");
     fprintf(out, "slices: %u of %ux%u", p->slice_count, p->slice_width, p->slice_height);
     if (p->uses_load_counter) fprintf(out, "; importance map %ux%u", p->importance_width, p->importance_height);
