@@ -193,6 +193,10 @@ typedef struct cacao_context_desc {
     bool shader_float16_enabled;                    /* the device was created with shaderFloat16 on */
     bool separate_depth_stencil_layouts_enabled;    /* ... with separateDepthStencilLayouts on (Vulkan
                                                        1.2 or VK_KHR_separate_depth_stencil_layouts) */
+    uint32_t required_subgroup_size;                /* 0: the driver's choice; else every pipeline runs
+                                                       with it: a power of two in the device's
+                                                       VK_EXT_subgroup_size_control range, with
+                                                       subgroupSizeControl enabled on the device */
 } cacao_context_desc;
 
 /* Creates a context. Creates no pipelines and allocates no images yet. */

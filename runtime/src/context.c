@@ -89,6 +89,35 @@ static cacao_result create_layouts(cacao_context *ctx) {
     return vr == VK_SUCCESS ? CACAO_SUCCESS : vk_fail(ctx, vr, "vkCreatePipelineLayout");
 }
 
+static bool has_extension(VkPhysicalDevice physical_device, const char *name) {
+    uint32_t n = 0;
+    if (vkEnumerateDeviceExtensionProperties(physical_device, NULL, &n, NULL) != VK_SUCCESS || n == 0) return false;
+    VkExtensionProperties *ext = malloc(n * sizeof *ext);
+    bool found = false;
+    if (ext && vkEnumerateDeviceExtensionProperties(physical_device, NULL, &n, ext) == VK_SUCCESS)
+        for (uint32_t i = 0; i < n && !found; ++i) found = strcmp(ext[i].extensionName, name) == 0;
+    free(ext);
+    return found;
+}
+
+/* context_desc.required_subgroup_size must be a size the device can run compute pipelines with. */
+static cacao_result check_subgroup_size(cacao_context *ctx) {
+    const uint32_t size = ctx->required_subgroup_size;
+    VkPhysicalDeviceSubgroupSizeControlPropertiesEXT range = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_PROPERTIES_EXT};
+    if (has_extension(ctx->physical_device, VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME)) {
+        VkPhysicalDeviceProperties2 props = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &range};
+        vkGetPhysicalDeviceProperties2(ctx->physical_device, &props);
+    }
+    if ((size & (size - 1)) != 0 || size < range.minSubgroupSize || size > range.maxSubgroupSize ||
+        !(range.requiredSubgroupSizeStages & VK_SHADER_STAGE_COMPUTE_BIT))
+        return cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
+                           "context_desc.required_subgroup_size %u: the device's compute range is %u..%u "
+                           "(VK_EXT_subgroup_size_control; 0..0: not offered)",
+                           size, range.minSubgroupSize, range.maxSubgroupSize);
+    return CACAO_SUCCESS;
+}
+
 cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context **out) {
     if (!out) return CACAO_ERROR_INVALID_ARGUMENT;
     *out = NULL;
@@ -99,6 +128,7 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
     ctx->device = desc->device;
     ctx->alloc = desc->allocation_callbacks;
     ctx->pipeline_cache = desc->pipeline_cache;
+    ctx->required_subgroup_size = desc->required_subgroup_size;
 
     ctx->push_descriptor = (PFN_vkCmdPushDescriptorSetKHR)vkGetDeviceProcAddr(ctx->device, "vkCmdPushDescriptorSetKHR");
     cacao_result r = CACAO_SUCCESS;
@@ -114,6 +144,7 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
     if (r == CACAO_SUCCESS && !features.features.shaderStorageImageWriteWithoutFormat)
         r = cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
                         "context_desc.physical_device lacks shaderStorageImageWriteWithoutFormat");
+    if (r == CACAO_SUCCESS && ctx->required_subgroup_size) r = check_subgroup_size(ctx);
     if (r == CACAO_SUCCESS) r = create_layouts(ctx);
     if (r != CACAO_SUCCESS) {
         cacao_context_destroy(ctx);
@@ -314,9 +345,13 @@ static cacao_result create_pipeline(cacao_context *ctx, uint32_t index) {
     VkShaderModule shader;
     VkResult vr = vkCreateShaderModule(ctx->device, &module_info, ctx->alloc, &shader);
     if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateShaderModule");
+    const VkPipelineShaderStageRequiredSubgroupSizeCreateInfoEXT subgroup = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_REQUIRED_SUBGROUP_SIZE_CREATE_INFO_EXT,
+        .requiredSubgroupSize = ctx->required_subgroup_size};
     const VkComputePipelineCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
         .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                  .pNext = ctx->required_subgroup_size ? &subgroup : NULL,
                   .stage = VK_SHADER_STAGE_COMPUTE_BIT,
                   .module = shader,
                   .pName = cacaoi_embedded_table.entry_point},

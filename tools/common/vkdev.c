@@ -142,7 +142,7 @@ static bool has_device_extension(VkPhysicalDevice pd, const char *name) {
     return found;
 }
 
-static bool create_device(vkdev *dev, char *err, size_t n) {
+static bool create_device(vkdev *dev, bool subgroup_size_control, char *err, size_t n) {
     uint32_t families = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(dev->physical_device, &families, NULL);
     VkQueueFamilyProperties props[16];
@@ -166,8 +166,32 @@ static bool create_device(vkdev *dev, char *err, size_t n) {
     dev->fp16 = f16.shaderFloat16 && has_device_extension(dev->physical_device, "VK_KHR_shader_float16_int8");
     VkPhysicalDeviceShaderFloat16Int8Features f16_on = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES, .shaderFloat16 = dev->fp16};
+    /* Subgroup size control (asked for by the subgroup test): the feature, and the compute range. */
+    VkPhysicalDeviceSubgroupSizeControlFeaturesEXT sizes_on = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_FEATURES_EXT,
+        .pNext = dev->fp16 ? &f16_on : NULL};
+    const bool sizes = subgroup_size_control &&
+                       has_device_extension(dev->physical_device, VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME);
+    if (sizes) {
+        VkPhysicalDeviceSubgroupSizeControlFeaturesEXT sizes_supported = {
+            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_FEATURES_EXT};
+        VkPhysicalDeviceFeatures2 features = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
+                                              .pNext = &sizes_supported};
+        vkGetPhysicalDeviceFeatures2(dev->physical_device, &features);
+        VkPhysicalDeviceSubgroupSizeControlPropertiesEXT range = {
+            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_PROPERTIES_EXT};
+        VkPhysicalDeviceProperties2 props = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &range};
+        vkGetPhysicalDeviceProperties2(dev->physical_device, &props);
+        sizes_on.subgroupSizeControl = sizes_supported.subgroupSizeControl;
+        if (sizes_supported.subgroupSizeControl && (range.requiredSubgroupSizeStages & VK_SHADER_STAGE_COMPUTE_BIT)) {
+            dev->subgroup_size_min = range.minSubgroupSize;
+            dev->subgroup_size_max = range.maxSubgroupSize;
+        }
+    }
     VkPhysicalDeviceFeatures2 enabled = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
-                                         .pNext = dev->fp16 ? &f16_on : NULL};
+                                         .pNext = sizes       ? (void *)&sizes_on
+                                                  : dev->fp16 ? (void *)&f16_on
+                                                              : NULL};
     enabled.features.shaderStorageImageWriteWithoutFormat = supported.features.shaderStorageImageWriteWithoutFormat;
     enabled.features.shaderStorageImageExtendedFormats = supported.features.shaderStorageImageExtendedFormats;
     const float priority = 1.0f;
@@ -175,13 +199,16 @@ static bool create_device(vkdev *dev, char *err, size_t n) {
                                            .queueFamilyIndex = dev->queue_family,
                                            .queueCount = 1,
                                            .pQueuePriorities = &priority};
-    const char *extensions[2] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME, "VK_KHR_shader_float16_int8"};
+    const char *extensions[3] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    uint32_t extension_count = 1;
+    if (dev->fp16) extensions[extension_count++] = "VK_KHR_shader_float16_int8";
+    if (sizes) extensions[extension_count++] = VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME;
     const VkDeviceCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
         .pNext = &enabled,
         .queueCreateInfoCount = 1,
         .pQueueCreateInfos = &queue,
-        .enabledExtensionCount = dev->fp16 ? 2 : 1,
+        .enabledExtensionCount = extension_count,
         .ppEnabledExtensionNames = extensions,
     };
     VkResult vr = vkCreateDevice(dev->physical_device, &info, NULL, &dev->device);
@@ -218,7 +245,7 @@ bool vkdev_create(const vkdev_options *options, vkdev *dev, char *err, size_t n)
     memset(dev, 0, sizeof *dev);
     dev->validation = options->validation;
     if (!create_instance(dev, options->validation, err, n) || !pick_device(dev, options->device, err, n) ||
-        !create_device(dev, err, n)) {
+        !create_device(dev, options->subgroup_size_control, err, n)) {
         vkdev_destroy(dev);
         return false;
     }
@@ -420,8 +447,10 @@ static double now_ms(void) {
 }
 
 cacao_result vkdev_context_create(vkdev *dev, cacao_context **ctx) {
-    const cacao_context_desc desc = {
-        .physical_device = dev->physical_device, .device = dev->device, .shader_float16_enabled = dev->fp16};
+    const cacao_context_desc desc = {.physical_device = dev->physical_device,
+                                     .device = dev->device,
+                                     .shader_float16_enabled = dev->fp16,
+                                     .required_subgroup_size = dev->required_subgroup_size};
     return cacao_context_create(&desc, ctx);
 }
 
