@@ -253,8 +253,11 @@ float smart_average(float d0, float d1, float d2, float d3)
     return dot(w, d) / dot(w, vec4(1.0));
 }
 
+/* Levels above the slice's chain (CACAO_DEPTH_MIP_LEVELS) are bound to its last level: skip them. */
 void store_mip(int level, ivec2 p, int layer, float z)
 {
+    ivec2 s0 = imageSize(depths_out0).xy;
+    if (level >= CACAO_DEPTH_MIP_LEVELS(max(s0.x, s0.y))) return;
     if (level == 1) { if (in_rect(p, imageSize(depths_out1).xy)) imageStore(depths_out1, ivec3(p, layer), vec4(z)); }
     else if (level == 2) { if (in_rect(p, imageSize(depths_out2).xy)) imageStore(depths_out2, ivec3(p, layer), vec4(z)); }
     else { if (in_rect(p, imageSize(depths_out3).xy)) imageStore(depths_out3, ivec3(p, layer), vec4(z)); }

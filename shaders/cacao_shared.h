@@ -107,6 +107,11 @@
 #define CACAO_FORMAT_SSAO 16             /* VK_FORMAT_R8G8_UNORM      (GLSL rg8) */
 #define CACAO_FORMAT_IMPORTANCE 9        /* VK_FORMAT_R8_UNORM        (GLSL r8) */
 #define CACAO_DEPTH_MIP_COUNT 4
+/* Depth mip levels for a slice whose larger side is n: the full chain, at most
+ * CACAO_DEPTH_MIP_COUNT (Vulkan allows floor(log2(n)) + 1 levels; slices narrower than 8 texels,
+ * i.e. images below 15 pixels native or 29 downsampled, get fewer). The plan binds the missing
+ * levels' outputs to the last level, which the prepare pass then does not write. */
+#define CACAO_DEPTH_MIP_LEVELS(n) ((n) >= 8 ? 4 : (n) >= 4 ? 3 : (n) >= 2 ? 2 : 1)
 
 /* ---- Algorithm constants (spec: constants.md section 2 and 3) ---- */
 #define CACAO_MAX_TAPS 32

@@ -50,9 +50,9 @@ static void test_settings_errors(void) {
     CHECK(cacao_settings_resolve(&(cacao_settings){0}, &out, err, sizeof err) == CACAO_SUCCESS);
     CHECK(out.radius == 1.2f && out.blur_pass_count == 2 && out.quality == CACAO_QUALITY_HIGHEST &&
           out.precision == CACAO_PRECISION_FP32 && out.horizon_angle_threshold == 0.06f);
-    CHECK(cacao_settings_resolve(&(cacao_settings){.horizon_angle_threshold = CACAO_ZERO,
-                                                   .blur_pass_count = CACAO_BLUR_NONE},
-                                 &out, err, sizeof err) == CACAO_SUCCESS);
+    CHECK(cacao_settings_resolve(
+              &(cacao_settings){.horizon_angle_threshold = CACAO_ZERO, .blur_pass_count = CACAO_BLUR_NONE}, &out, err,
+              sizeof err) == CACAO_SUCCESS);
     CHECK(out.horizon_angle_threshold == CACAO_ZERO && out.blur_pass_count == CACAO_BLUR_NONE);
     CHECK(cacao_settings_resolve(NULL, &out, err, sizeof err) == CACAO_ERROR_INVALID_ARGUMENT);
 }
@@ -80,11 +80,12 @@ static cacao_context *test_context_errors(vkdev *dev) {
     cacao_inputs in = {0};
     CHECK_RESULT(cacao_record(ctx, dev->cmd, &in), CACAO_ERROR_NOT_READY, ctx, "resize");
 
-    /* Sizes: zero, too large (65536 and beyond the 16384 limit), too small. */
+    /* Sizes: zero, too large (65536 and beyond the 16384 limit); 1x1 is the smallest that works. */
     CHECK_RESULT(cacao_context_resize(ctx, 0, 0, NULL), CACAO_ERROR_INVALID_SIZE, ctx, "size 0x0");
     CHECK_RESULT(cacao_context_resize(ctx, 65536, 64, NULL), CACAO_ERROR_INVALID_SIZE, ctx, "65536");
     CHECK_RESULT(cacao_context_resize(ctx, 64, 16385, NULL), CACAO_ERROR_INVALID_SIZE, ctx, "16385");
-    CHECK_RESULT(cacao_context_resize(ctx, 8, 8, NULL), CACAO_ERROR_INVALID_SIZE, ctx, "8x8");
+    CHECK_RESULT(cacao_context_resize(ctx, 5, 0, NULL), CACAO_ERROR_INVALID_SIZE, ctx, "size 5x0");
+    CHECK_RESULT(cacao_context_resize(ctx, 1, 1, NULL), CACAO_SUCCESS, ctx, NULL);
 
     /* Bad settings are refused and the previous (default) settings stay in force. */
     CHECK_RESULT(cacao_context_set_settings(ctx, &(cacao_settings){.radius = NAN}), CACAO_ERROR_INVALID_ARGUMENT, ctx,

@@ -27,8 +27,10 @@ static void test_steps_per_quality(void) {
         {"prepare_depths.half.native", "prepare_normals.depth.native", "generate.q0", "blur.2.fp32", "apply.half.fp32"},
         {"prepare_depths.full.native", "prepare_normals.depth.native", "generate.q0", "blur.2.fp32",
          "apply.nonsmart.fp32"},
-        {"prepare_depths.full.native", "prepare_normals.depth.native", "generate.q1", "blur.2.fp32", "apply.smart.fp32"},
-        {"prepare_depths.mips.native", "prepare_normals.depth.native", "generate.q2", "blur.2.fp32", "apply.smart.fp32"},
+        {"prepare_depths.full.native", "prepare_normals.depth.native", "generate.q1", "blur.2.fp32",
+         "apply.smart.fp32"},
+        {"prepare_depths.mips.native", "prepare_normals.depth.native", "generate.q2", "blur.2.fp32",
+         "apply.smart.fp32"},
         {"prepare_depths.mips.native", "prepare_normals.depth.native", "generate.q3base", "importance", "importance_a",
          "importance_b", "generate.q3", "blur.2.fp32", "apply.smart.fp32"},
     };
@@ -49,19 +51,21 @@ static void test_steps_per_quality(void) {
 }
 
 static void test_only_needed_resources(void) {
-    cacao_plan low = build((cacao_settings){.quality = CACAO_QUALITY_LOW, .blur_pass_count = CACAO_BLUR_NONE,
-                                            .generate_normals = true}, 1920, 1080);
-    CHECK(find_image(&low, CACAO_RES_SSAO_PONG) == NULL);   /* no blur, no Q3 base: no second AO buffer */
-    CHECK(find_image(&low, CACAO_RES_IMPORTANCE) == NULL);  /* importance only at HIGHEST */
+    cacao_plan low = build(
+        (cacao_settings){.quality = CACAO_QUALITY_LOW, .blur_pass_count = CACAO_BLUR_NONE, .generate_normals = true},
+        1920, 1080);
+    CHECK(find_image(&low, CACAO_RES_SSAO_PONG) == NULL);  /* no blur, no Q3 base: no second AO buffer */
+    CHECK(find_image(&low, CACAO_RES_IMPORTANCE) == NULL); /* importance only at HIGHEST */
     CHECK(!low.uses_load_counter);
-    CHECK(find_image(&low, CACAO_RES_DEPTHS)->mips == 1);   /* LOW reads no mips */
-    CHECK(low.step_count == 4);                             /* no blur step */
+    CHECK(find_image(&low, CACAO_RES_DEPTHS)->mips == 1); /* LOW reads no mips */
+    CHECK(low.step_count == 4);                           /* no blur step */
     cacao_plan medium = build((cacao_settings){.quality = CACAO_QUALITY_MEDIUM, .generate_normals = true}, 1920, 1080);
     CHECK(find_image(&medium, CACAO_RES_DEPTHS)->mips == 1); /* MEDIUM never reads mips: none built */
     cacao_plan lowest = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true}, 1920, 1080);
     CHECK(lowest.slice_count == 2 && find_image(&lowest, CACAO_RES_DEPTHS)->layers == 2);
     CHECK(lowest.steps[2].dispatch[2] == 2); /* generate runs two slices */
-    cacao_plan highest = build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
+    cacao_plan highest =
+        build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
     const cacao_plan_image *depths = find_image(&highest, CACAO_RES_DEPTHS);
     CHECK(depths->mips == 4 && depths->layers == 4 && depths->width == 960 && depths->height == 540);
     /* 960x540 + 480x270 + 240x135 + 120x67 texels, 4 layers, 2 bytes. */
@@ -82,11 +86,32 @@ static void test_dispatch_sizes(void) {
     CHECK(p.steps[6].dispatch[2] == 4);                                    /* generate: 4 slices */
     CHECK(p.steps[7].dispatch[0] == 16 && p.steps[7].dispatch[1] == 20);   /* blur, N = 2: ceil(960/60), ceil(540/28) */
     CHECK(p.steps[8].dispatch[0] == 240 && p.steps[8].dispatch[1] == 135); /* apply: ceil(1920/8) */
-    cacao_plan d = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true,
-                                          .generate_normals = true}, 1001, 37);
+    cacao_plan d =
+        build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true, .generate_normals = true}, 1001, 37);
     CHECK(d.slice_width == 251 && d.slice_height == 10); /* ceil(ceil(1001/2)/2), ceil(ceil(37/2)/2) */
     CHECK(strcmp(d.steps[d.step_count - 1].key_name, "upsample.smart.fp32") == 0);
     CHECK(d.steps[d.step_count - 1].dispatch[0] == 63 && d.steps[d.step_count - 1].dispatch[1] == 3); /* /16 */
+}
+
+/* Small sizes: the depth mip chain is what Vulkan allows for the slice (floor(log2(max side)) + 1
+ * levels, at most 4), and the prepare pass's outputs for the missing levels alias the last one. */
+static void test_small_mip_chain(void) {
+    static const struct {
+        uint32_t w, h, slice_w, slice_h, mips;
+    } cases[] = {{1, 1, 1, 1, 1},  {3, 1, 2, 1, 2},  {1, 9, 1, 5, 3},
+                 {14, 5, 7, 3, 3}, {15, 2, 8, 1, 4}, {64, 64, 32, 32, 4}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+        cacao_plan p =
+            build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .generate_normals = true}, cases[c].w, cases[c].h);
+        CHECK(p.slice_width == cases[c].slice_w && p.slice_height == cases[c].slice_h);
+        const cacao_plan_image *depths = find_image(&p, CACAO_RES_DEPTHS);
+        CHECK(depths && depths->mips == cases[c].mips);
+        for (uint32_t m = 0; m < CACAO_DEPTH_MIP_COUNT; ++m) {
+            const cacao_plan_binding *b = &p.steps[0].bindings[2 + m]; /* constants, source depth, then mips */
+            CHECK(b->binding == CACAO_BINDING_DEPTHS_OUT0 + m && b->write);
+            CHECK(b->mip == (m < cases[c].mips ? m : cases[c].mips - 1));
+        }
+    }
 }
 
 static void test_invalid(void) {
@@ -103,6 +128,7 @@ int main(void) {
     test_steps_per_quality();
     test_only_needed_resources();
     test_dispatch_sizes();
+    test_small_mip_chain();
     test_invalid();
     cacao_plan p = build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
     cacao_plan_print(&p, stdout);

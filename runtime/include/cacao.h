@@ -46,7 +46,7 @@ extern "C" {
 typedef enum cacao_result {
     CACAO_SUCCESS = 0,
     CACAO_ERROR_INVALID_ARGUMENT,    /* NULL where a value is required, NaN/Inf or out-of-range field */
-    CACAO_ERROR_INVALID_SIZE,        /* width/height zero or above CACAO_MAX_SIZE */
+    CACAO_ERROR_INVALID_SIZE,        /* width/height 0 or above CACAO_MAX_SIZE (1..16384 all work) */
     CACAO_ERROR_UNSUPPORTED_FORMAT,  /* an image of a format cacao cannot read or write */
     CACAO_ERROR_PERMUTATION_MISSING, /* the settings need a shader this build did not embed */
     CACAO_ERROR_UNSUPPORTED_DEVICE,  /* a required extension or feature is missing */
@@ -228,6 +228,10 @@ typedef struct cacao_context_desc {
     bool shader_float16_enabled;                    /* the device was created with shaderFloat16 on */
     bool separate_depth_stencil_layouts_enabled;    /* ... with separateDepthStencilLayouts on (Vulkan
                                                        1.2 or VK_KHR_separate_depth_stencil_layouts) */
+    uint32_t required_subgroup_size;                /* 0: the driver's choice; else every pipeline runs
+                                                       with it: a power of two in the device's
+                                                       VK_EXT_subgroup_size_control range, with
+                                                       subgroupSizeControl enabled on the device */
 } cacao_context_desc;
 
 /* Creates a context. Creates no pipelines and allocates no images yet. */
@@ -248,9 +252,10 @@ typedef struct cacao_memory_info {
     uint32_t pipeline_count;    /* compute pipelines (one per distinct permutation of the plan) */
 } cacao_memory_info;
 
-/* (Re)builds the plan for width x height and the current settings, then creates exactly the
- * intermediates and pipelines it uses (nothing else). The GPU must be done with earlier frames.
- * out_info may be NULL. */
+/* (Re)builds the plan for width x height (each 1..CACAO_MAX_SIZE) and the current settings, then
+ * creates exactly the intermediates and pipelines it uses (nothing else); a resize that only
+ * changes the size keeps the pipelines. The GPU must be done with earlier frames. out_info may be
+ * NULL. */
 cacao_result cacao_context_resize(cacao_context *context, uint32_t width, uint32_t height,
                                   cacao_memory_info *out_info);
 

@@ -9,9 +9,7 @@ uint32_t cacao_embedded_permutation_count(void) { return cacaoi_embedded_table.p
 
 const char *cacao_context_last_error(const cacao_context *ctx) { return ctx ? ctx->last_error : ""; }
 
-const cacao_plan *cacao_context_plan(const cacao_context *ctx) {
-    return ctx && ctx->ready ? &ctx->plan : NULL;
-}
+const cacao_plan *cacao_context_plan(const cacao_context *ctx) { return ctx && ctx->ready ? &ctx->plan : NULL; }
 
 cacao_precision cacao_context_precision(const cacao_context *ctx) {
     return ctx && ctx->ready ? ctx->plan.settings.precision : CACAO_PRECISION_DEFAULT;
@@ -91,6 +89,35 @@ static cacao_result create_layouts(cacao_context *ctx) {
     return vr == VK_SUCCESS ? CACAO_SUCCESS : vk_fail(ctx, vr, "vkCreatePipelineLayout");
 }
 
+static bool has_extension(VkPhysicalDevice physical_device, const char *name) {
+    uint32_t n = 0;
+    if (vkEnumerateDeviceExtensionProperties(physical_device, NULL, &n, NULL) != VK_SUCCESS || n == 0) return false;
+    VkExtensionProperties *ext = malloc(n * sizeof *ext);
+    bool found = false;
+    if (ext && vkEnumerateDeviceExtensionProperties(physical_device, NULL, &n, ext) == VK_SUCCESS)
+        for (uint32_t i = 0; i < n && !found; ++i) found = strcmp(ext[i].extensionName, name) == 0;
+    free(ext);
+    return found;
+}
+
+/* context_desc.required_subgroup_size must be a size the device can run compute pipelines with. */
+static cacao_result check_subgroup_size(cacao_context *ctx) {
+    const uint32_t size = ctx->required_subgroup_size;
+    VkPhysicalDeviceSubgroupSizeControlPropertiesEXT range = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_PROPERTIES_EXT};
+    if (has_extension(ctx->physical_device, VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME)) {
+        VkPhysicalDeviceProperties2 props = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &range};
+        vkGetPhysicalDeviceProperties2(ctx->physical_device, &props);
+    }
+    if ((size & (size - 1)) != 0 || size < range.minSubgroupSize || size > range.maxSubgroupSize ||
+        !(range.requiredSubgroupSizeStages & VK_SHADER_STAGE_COMPUTE_BIT))
+        return cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
+                           "context_desc.required_subgroup_size %u: the device's compute range is %u..%u "
+                           "(VK_EXT_subgroup_size_control; 0..0: not offered)",
+                           size, range.minSubgroupSize, range.maxSubgroupSize);
+    return CACAO_SUCCESS;
+}
+
 cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context **out) {
     if (!out) return CACAO_ERROR_INVALID_ARGUMENT;
     *out = NULL;
@@ -101,13 +128,13 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
     ctx->device = desc->device;
     ctx->alloc = desc->allocation_callbacks;
     ctx->pipeline_cache = desc->pipeline_cache;
+    ctx->required_subgroup_size = desc->required_subgroup_size;
 
-    ctx->push_descriptor =
-        (PFN_vkCmdPushDescriptorSetKHR)vkGetDeviceProcAddr(ctx->device, "vkCmdPushDescriptorSetKHR");
+    ctx->push_descriptor = (PFN_vkCmdPushDescriptorSetKHR)vkGetDeviceProcAddr(ctx->device, "vkCmdPushDescriptorSetKHR");
     cacao_result r = CACAO_SUCCESS;
     if (!ctx->push_descriptor)
         r = cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
-                       "context_desc.device: VK_KHR_push_descriptor is not enabled on this device");
+                        "context_desc.device: VK_KHR_push_descriptor is not enabled on this device");
     VkPhysicalDeviceShaderFloat16Int8Features f16 = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES};
     VkPhysicalDeviceFeatures2 features = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f16};
@@ -116,7 +143,8 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
     ctx->separate_depth_layouts = desc->separate_depth_stencil_layouts_enabled;
     if (r == CACAO_SUCCESS && !features.features.shaderStorageImageWriteWithoutFormat)
         r = cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
-                       "context_desc.physical_device lacks shaderStorageImageWriteWithoutFormat");
+                        "context_desc.physical_device lacks shaderStorageImageWriteWithoutFormat");
+    if (r == CACAO_SUCCESS && ctx->required_subgroup_size) r = check_subgroup_size(ctx);
     if (r == CACAO_SUCCESS) r = create_layouts(ctx);
     if (r != CACAO_SUCCESS) {
         cacao_context_destroy(ctx);
@@ -126,13 +154,16 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
     return CACAO_SUCCESS;
 }
 
-/* Frees everything resize created (not the layouts). */
-static void release_frame_resources(cacao_context *ctx) {
-    VkDevice d = ctx->device;
+static void release_pipelines(cacao_context *ctx) {
     for (uint32_t i = 0; i < CACAO_PLAN_MAX_STEPS; ++i) {
-        if (ctx->pipelines[i]) vkDestroyPipeline(d, ctx->pipelines[i], ctx->alloc);
+        if (ctx->pipelines[i]) vkDestroyPipeline(ctx->device, ctx->pipelines[i], ctx->alloc);
         ctx->pipelines[i] = VK_NULL_HANDLE;
     }
+}
+
+/* Frees the intermediates and buffers resize created, not the pipelines or the layouts. */
+static void release_images_and_buffers(cacao_context *ctx) {
+    VkDevice d = ctx->device;
     for (unsigned r = 0; r < CACAO_RES_COUNT; ++r) {
         cacao_intermediate *im = &ctx->images[r];
         for (unsigned m = 0; m < CACAO_DEPTH_MIP_COUNT; ++m)
@@ -150,6 +181,21 @@ static void release_frame_resources(cacao_context *ctx) {
     }
     ctx->ready = false;
     ctx->memory = (cacao_memory_info){0};
+}
+
+/* Frees everything resize created (not the layouts). */
+static void release_frame_resources(cacao_context *ctx) {
+    release_pipelines(ctx);
+    release_images_and_buffers(ctx);
+}
+
+/* A pipeline depends on its step's key only, never on the size: a resize whose plan has the same
+ * keys in the same order (same settings, new size: dynamic resolution) keeps the pipelines. */
+static bool pipelines_fit(const cacao_context *ctx, const cacao_plan *plan) {
+    if (!ctx->pipelines[0] || ctx->plan.step_count != plan->step_count) return false;
+    for (uint32_t i = 0; i < plan->step_count; ++i)
+        if (memcmp(ctx->plan.steps[i].key, plan->steps[i].key, sizeof plan->steps[i].key) != 0) return false;
+    return true;
 }
 
 void cacao_context_destroy(cacao_context *ctx) {
@@ -196,7 +242,7 @@ static cacao_result check_format(cacao_context *ctx, VkFormat format, bool linea
     if (linear) need |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
     if ((props.optimalTilingFeatures & need) != need)
         return cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
-                          "the device cannot use format %d for %s as a storage and sampled image", (int)format, what);
+                           "the device cannot use format %d for %s as a storage and sampled image", (int)format, what);
     return CACAO_SUCCESS;
 }
 
@@ -215,7 +261,8 @@ static cacao_result create_image(cacao_context *ctx, const cacao_plan_image *pi)
         .arrayLayers = pi->layers,
         .samples = VK_SAMPLE_COUNT_1_BIT,
         .tiling = VK_IMAGE_TILING_OPTIMAL,
-        .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, /* copyable for inspection */
+        .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                 VK_IMAGE_USAGE_TRANSFER_SRC_BIT, /* copyable for inspection */
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
         .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
     };
@@ -282,15 +329,15 @@ static cacao_result create_pipeline(cacao_context *ctx, uint32_t index) {
     const cacao_permutation *perm = cacaoi_table_find(&cacaoi_embedded_table, &key);
     if (!perm)
         return cacaoi_fail(ctx, CACAO_ERROR_PERMUTATION_MISSING,
-                          "permutation '%s' is not embedded in this build (subset %s); rebuild with it in "
-                          "CACAO_QUALITIES / CACAO_DOWNSAMPLE / CACAO_PRECISION",
-                          step->key_name, cacaoi_embedded_table.subset);
+                           "permutation '%s' is not embedded in this build (subset %s); rebuild with it in "
+                           "CACAO_QUALITIES / CACAO_DOWNSAMPLE / CACAO_PRECISION",
+                           step->key_name, cacaoi_embedded_table.subset);
     /* The plan and the generated table must agree (our invariant, not a user error). */
     assert(step_matches_module(step, perm));
     assert(step->dispatch[2] >= 1 && perm->workgroup_size[2] == 1);
     if (!step_matches_module(step, perm))
         return cacaoi_fail(ctx, CACAO_ERROR_VULKAN, "internal: plan step '%s' does not match its module's bindings",
-                          step->key_name);
+                           step->key_name);
     const cacao_module *module = &cacaoi_embedded_table.modules[perm->module];
     const VkShaderModuleCreateInfo module_info = {
         .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
@@ -300,9 +347,13 @@ static cacao_result create_pipeline(cacao_context *ctx, uint32_t index) {
     VkShaderModule shader;
     VkResult vr = vkCreateShaderModule(ctx->device, &module_info, ctx->alloc, &shader);
     if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateShaderModule");
+    const VkPipelineShaderStageRequiredSubgroupSizeCreateInfoEXT subgroup = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_REQUIRED_SUBGROUP_SIZE_CREATE_INFO_EXT,
+        .requiredSubgroupSize = ctx->required_subgroup_size};
     const VkComputePipelineCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
         .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                  .pNext = ctx->required_subgroup_size ? &subgroup : NULL,
                   .stage = VK_SHADER_STAGE_COMPUTE_BIT,
                   .module = shader,
                   .pName = cacaoi_embedded_table.entry_point},
@@ -331,17 +382,20 @@ cacao_result cacao_context_resize(cacao_context *ctx, uint32_t width, uint32_t h
         const cacao_key key = cacaoi_plan_step_key(&plan.steps[i]);
         if (!cacaoi_table_find(&cacaoi_embedded_table, &key))
             return cacaoi_fail(ctx, CACAO_ERROR_PERMUTATION_MISSING,
-                              "permutation '%s' is not embedded in this build (subset %s)", plan.steps[i].key_name,
-                              cacaoi_embedded_table.subset);
+                               "permutation '%s' is not embedded in this build (subset %s)", plan.steps[i].key_name,
+                               cacaoi_embedded_table.subset);
     }
-    release_frame_resources(ctx);
+    const bool keep_pipelines = pipelines_fit(ctx, &plan);
+    if (!keep_pipelines) release_pipelines(ctx);
+    release_images_and_buffers(ctx);
     ctx->plan = plan;
     for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan.image_count; ++i) r = create_image(ctx, &plan.images[i]);
     if (r == CACAO_SUCCESS)
         r = create_buffer(ctx, CACAO_BUFFER_CONSTANTS, sizeof(cacao_constants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     if (r == CACAO_SUCCESS && plan.uses_load_counter)
         r = create_buffer(ctx, CACAO_BUFFER_LOAD_COUNTER, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan.step_count; ++i) r = create_pipeline(ctx, i);
+    if (keep_pipelines) ctx->memory.pipeline_count = plan.step_count;
+    for (uint32_t i = 0; r == CACAO_SUCCESS && !keep_pipelines && i < plan.step_count; ++i) r = create_pipeline(ctx, i);
     if (r != CACAO_SUCCESS) {
         release_frame_resources(ctx);
         return r;
@@ -357,8 +411,11 @@ cacao_result cacao_context_intermediate(const cacao_context *ctx, cacao_resource
     if (!ctx || !ctx->ready || !image || !buffer) return CACAO_ERROR_INVALID_ARGUMENT;
     *image = VK_NULL_HANDLE;
     *buffer = VK_NULL_HANDLE;
-    if (resource == CACAO_RES_CONSTANTS) *buffer = ctx->buffers[CACAO_BUFFER_CONSTANTS];
-    else if (resource == CACAO_RES_LOAD_COUNTER) *buffer = ctx->buffers[CACAO_BUFFER_LOAD_COUNTER];
-    else if ((unsigned)resource < CACAO_RES_COUNT) *image = ctx->images[resource].image;
+    if (resource == CACAO_RES_CONSTANTS)
+        *buffer = ctx->buffers[CACAO_BUFFER_CONSTANTS];
+    else if (resource == CACAO_RES_LOAD_COUNTER)
+        *buffer = ctx->buffers[CACAO_BUFFER_LOAD_COUNTER];
+    else if ((unsigned)resource < CACAO_RES_COUNT)
+        *image = ctx->images[resource].image;
     return (*image || *buffer) ? CACAO_SUCCESS : CACAO_ERROR_INVALID_ARGUMENT;
 }

@@ -7,8 +7,6 @@
 #include "cacao_shared.h"
 #include "cacao_table.h"
 
-#define CACAO_MIN_SIZE 32
-
 /* printf-style error message into a caller buffer (NULL-safe). */
 void cacaoi_set_error(char *error, size_t error_size, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));

@@ -18,6 +18,9 @@ const char *cacao_resource_name(cacao_resource resource) {
 
 static uint32_t div_up(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
 
+_Static_assert(CACAO_DEPTH_MIP_COUNT == 4 && CACAO_DEPTH_MIP_LEVELS(8) == 4 && CACAO_DEPTH_MIP_LEVELS(7) == 3,
+               "CACAO_DEPTH_MIP_LEVELS is written for a chain of 4 levels");
+
 cacao_key cacaoi_plan_step_key(const cacao_plan_step *step) {
     return (cacao_key){step->key[0], step->key[1], step->key[2], step->key[3], step->key[4]};
 }
@@ -54,10 +57,13 @@ static void finish_step(plan_builder *b, cacao_plan_step *s) {
     uint32_t reads = 0, writes = 0;
     for (uint32_t i = 0; i < s->binding_count; ++i) {
         uint32_t bit = 1u << s->bindings[i].resource;
-        if (s->bindings[i].write) writes |= bit;
-        else reads |= bit;
+        if (s->bindings[i].write)
+            writes |= bit;
+        else
+            reads |= bit;
     }
-    uint32_t hazards = (reads & b->written_since_barrier) | (writes & (b->read_since_barrier | b->written_since_barrier));
+    uint32_t hazards =
+        (reads & b->written_since_barrier) | (writes & (b->read_since_barrier | b->written_since_barrier));
     hazards &= ~(1u << CACAO_RES_CONSTANTS);
     if (hazards) {
         s->barrier_before = true;
@@ -157,9 +163,9 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     cacao_settings s;
     cacao_result r = cacao_settings_resolve(settings, &s, error, error_size);
     if (r != CACAO_SUCCESS) return r;
-    if (width < CACAO_MIN_SIZE || height < CACAO_MIN_SIZE || width > CACAO_MAX_SIZE || height > CACAO_MAX_SIZE) {
-        cacaoi_set_error(error, error_size, "size %ux%u: width and height must be in %d..%d", width, height,
-                        CACAO_MIN_SIZE, CACAO_MAX_SIZE);
+    if (width < 1 || height < 1 || width > CACAO_MAX_SIZE || height > CACAO_MAX_SIZE) {
+        cacaoi_set_error(error, error_size, "size %ux%u: width and height must be in 1..%d", width, height,
+                         CACAO_MAX_SIZE);
         return CACAO_ERROR_INVALID_SIZE;
     }
     memset(plan, 0, sizeof *plan);
@@ -174,7 +180,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     const uint32_t iw = div_up(sw, 2), ih = div_up(sh, 2);
     const uint32_t slices = cacaoi_slice_count_for_quality(quality);
     const unsigned depths_variant = cacaoi_depths_variant_for_quality(quality);
-    const uint32_t mips = depths_variant == CACAO_DEPTHS_MIPS ? CACAO_DEPTH_MIP_COUNT : 1;
+    const uint32_t mips = depths_variant == CACAO_DEPTHS_MIPS ? CACAO_DEPTH_MIP_LEVELS(sw > sh ? sw : sh) : 1;
     const unsigned blur = s.blur_pass_count == CACAO_BLUR_NONE ? 0 : (unsigned)s.blur_pass_count;
     if (s.estimator != CACAO_ESTIMATOR_CACAO) {
         build_slice_plan(plan, blur);
@@ -204,13 +210,19 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     cacao_key key = {CACAO_PASS_PREPARE_DEPTHS, (uint8_t)depths_variant, ds, 0, 0};
     cacao_plan_step *st = add_step(&b, &key, pgx, pgy, 1);
     bind(st, CACAO_BINDING_SRC_DEPTH, CACAO_RES_DEPTH_INPUT, 0, false);
-    for (uint32_t m = 0; m < mips; ++m) bind(st, CACAO_BINDING_DEPTHS_OUT0 + m, CACAO_RES_DEPTHS, m, true);
+    /* The MIPS variant writes every level's binding; a small slice's missing levels alias its last
+     * level, which the shader leaves alone there (CACAO_DEPTH_MIP_LEVELS). */
+    const uint32_t outputs = depths_variant == CACAO_DEPTHS_MIPS ? CACAO_DEPTH_MIP_COUNT : 1;
+    for (uint32_t m = 0; m < outputs; ++m)
+        bind(st, CACAO_BINDING_DEPTHS_OUT0 + m, CACAO_RES_DEPTHS, m < mips ? m : mips - 1, true);
     finish_step(&b, st);
 
     key = (cacao_key){CACAO_PASS_PREPARE_NORMALS, s.generate_normals ? 0 : 1, ds, 0, 0};
     st = add_step(&b, &key, pgx, pgy, 1);
-    if (s.generate_normals) bind(st, CACAO_BINDING_SRC_DEPTH, CACAO_RES_DEPTH_INPUT, 0, false);
-    else bind(st, CACAO_BINDING_SRC_NORMALS, CACAO_RES_NORMALS_INPUT, 0, false);
+    if (s.generate_normals)
+        bind(st, CACAO_BINDING_SRC_DEPTH, CACAO_RES_DEPTH_INPUT, 0, false);
+    else
+        bind(st, CACAO_BINDING_SRC_NORMALS, CACAO_RES_NORMALS_INPUT, 0, false);
     bind(st, CACAO_BINDING_NORMALS_OUT, CACAO_RES_NORMALS, 0, true);
     finish_step(&b, st);
 

@@ -22,12 +22,13 @@ struct cacao_context {
     VkDevice device;
     const VkAllocationCallbacks *alloc;
     VkPipelineCache pipeline_cache;
+    uint32_t required_subgroup_size; /* 0: the driver's choice */
     PFN_vkCmdPushDescriptorSetKHR push_descriptor;
     bool fp16_available;
     bool separate_depth_layouts; /* DEPTH_READ_ONLY_OPTIMAL may be used (the caller enabled the feature) */
 
-    cacao_settings settings;  /* as given (zero = default) */
-    bool ready;               /* plan, intermediates and pipelines exist */
+    cacao_settings settings; /* as given (zero = default) */
+    bool ready;              /* plan, intermediates and pipelines exist */
     cacao_plan plan;
 
     VkSampler nearest_sampler, linear_sampler;

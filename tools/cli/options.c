@@ -69,7 +69,7 @@ static const flag_def flags[] = {
         "scene folder: depth.pfm (depth_reversed.pfm with --reverse-z), optional normals.pfm, camera.json"),
     OPT("--depth", NULL, "FILE", FLAG_PATH, depth_path,
         "depth image, raw [0,1] depth as the projection writes it: 1-channel .pfm, .exr (channel Z, R, Y or the "
-        "only one) or 16-bit grey .png (value/65535; 8-bit PNG is refused as too coarse); 32 to 16384 pixels per "
+        "only one) or 16-bit grey .png (value/65535; 8-bit PNG is refused as too coarse); 1 to 16384 pixels per "
         "side"),
     OPT("--normals", NULL, "FILE", FLAG_PATH, normals_path,
         "unit view-space normals, right-handed (+z towards the camera): 3-channel .pfm or .exr (R,G,B or X,Y,Z); "
@@ -396,7 +396,9 @@ static bool apply_option_flag(const flag_def *def, const char *value, cli_option
                         (bits ? (number == 8 || number == 16) : (number >= low && number <= 100000));
         if (!ok) {
             set_err(err, n, "%s %s: must be %s", def->name, value,
-                    bits ? "8 or 16" : low ? "a whole number from 1 to 100000" : "a whole number from 0 to 100000");
+                    bits  ? "8 or 16"
+                    : low ? "a whole number from 1 to 100000"
+                          : "a whole number from 0 to 100000");
             return false;
         }
         *(uint32_t *)field = (uint32_t)number;
@@ -564,7 +566,9 @@ cJSON *cli_settings_to_json(const cacao_settings *resolved) {
             cJSON_AddNumberToObject(root, def->json, literal_float(*float_field(&s, def->offset)));
             cJSON_AddNumberToObject(root, def->json2, literal_float(*float_field(&s, def->offset2)));
             break;
-        case SET_FLOAT: cJSON_AddNumberToObject(root, def->json, literal_float(*float_field(&s, def->offset))); break;
+        case SET_FLOAT:
+            cJSON_AddNumberToObject(root, def->json, literal_float(*float_field(&s, def->offset)));
+            break;
         case SET_BLUR:
             cJSON_AddNumberToObject(root, def->json, s.blur_pass_count == CACAO_BLUR_NONE ? 0 : s.blur_pass_count);
             break;

@@ -1,6 +1,7 @@
 /* vkdev.c - headless Vulkan device and one-shot cacao frames (see vkdev.h). */
 #include "vkdev.h"
 
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -54,16 +55,16 @@ static bool create_instance(vkdev *dev, bool validation, char *err, size_t n) {
     const VkDebugUtilsMessengerCreateInfoEXT messenger = {
         .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
         .pNext = &features,
-        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+        .messageSeverity =
+            VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
         .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                        VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
         .pfnUserCallback = on_message,
         .pUserData = dev,
     };
     const char *extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
-    const VkApplicationInfo app = {.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
-                                   .pApplicationName = "cacao",
-                                   .apiVersion = VK_API_VERSION_1_1};
+    const VkApplicationInfo app = {
+        .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO, .pApplicationName = "cacao", .apiVersion = VK_API_VERSION_1_1};
     const VkInstanceCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
         .pNext = validation ? &messenger : NULL,
@@ -141,7 +142,7 @@ static bool has_device_extension(VkPhysicalDevice pd, const char *name) {
     return found;
 }
 
-static bool create_device(vkdev *dev, char *err, size_t n) {
+static bool create_device(vkdev *dev, bool subgroup_size_control, char *err, size_t n) {
     uint32_t families = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(dev->physical_device, &families, NULL);
     VkQueueFamilyProperties props[16];
@@ -158,14 +159,39 @@ static bool create_device(vkdev *dev, char *err, size_t n) {
         set_err(err, n, "device '%s' lacks VK_KHR_push_descriptor, which cacao needs", dev->device_name);
         return false;
     }
-    VkPhysicalDeviceShaderFloat16Int8Features f16 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES};
+    VkPhysicalDeviceShaderFloat16Int8Features f16 = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES};
     VkPhysicalDeviceFeatures2 supported = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f16};
     vkGetPhysicalDeviceFeatures2(dev->physical_device, &supported);
     dev->fp16 = f16.shaderFloat16 && has_device_extension(dev->physical_device, "VK_KHR_shader_float16_int8");
     VkPhysicalDeviceShaderFloat16Int8Features f16_on = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES, .shaderFloat16 = dev->fp16};
+    /* Subgroup size control (asked for by the subgroup test): the feature, and the compute range. */
+    VkPhysicalDeviceSubgroupSizeControlFeaturesEXT sizes_on = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_FEATURES_EXT,
+        .pNext = dev->fp16 ? &f16_on : NULL};
+    const bool sizes = subgroup_size_control &&
+                       has_device_extension(dev->physical_device, VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME);
+    if (sizes) {
+        VkPhysicalDeviceSubgroupSizeControlFeaturesEXT sizes_supported = {
+            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_FEATURES_EXT};
+        VkPhysicalDeviceFeatures2 features = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
+                                              .pNext = &sizes_supported};
+        vkGetPhysicalDeviceFeatures2(dev->physical_device, &features);
+        VkPhysicalDeviceSubgroupSizeControlPropertiesEXT range = {
+            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_PROPERTIES_EXT};
+        VkPhysicalDeviceProperties2 props = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &range};
+        vkGetPhysicalDeviceProperties2(dev->physical_device, &props);
+        sizes_on.subgroupSizeControl = sizes_supported.subgroupSizeControl;
+        if (sizes_supported.subgroupSizeControl && (range.requiredSubgroupSizeStages & VK_SHADER_STAGE_COMPUTE_BIT)) {
+            dev->subgroup_size_min = range.minSubgroupSize;
+            dev->subgroup_size_max = range.maxSubgroupSize;
+        }
+    }
     VkPhysicalDeviceFeatures2 enabled = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
-                                         .pNext = dev->fp16 ? &f16_on : NULL};
+                                         .pNext = sizes       ? (void *)&sizes_on
+                                                  : dev->fp16 ? (void *)&f16_on
+                                                              : NULL};
     enabled.features.shaderStorageImageWriteWithoutFormat = supported.features.shaderStorageImageWriteWithoutFormat;
     enabled.features.shaderStorageImageExtendedFormats = supported.features.shaderStorageImageExtendedFormats;
     const float priority = 1.0f;
@@ -173,13 +199,16 @@ static bool create_device(vkdev *dev, char *err, size_t n) {
                                            .queueFamilyIndex = dev->queue_family,
                                            .queueCount = 1,
                                            .pQueuePriorities = &priority};
-    const char *extensions[2] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME, "VK_KHR_shader_float16_int8"};
+    const char *extensions[3] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    uint32_t extension_count = 1;
+    if (dev->fp16) extensions[extension_count++] = "VK_KHR_shader_float16_int8";
+    if (sizes) extensions[extension_count++] = VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME;
     const VkDeviceCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
         .pNext = &enabled,
         .queueCreateInfoCount = 1,
         .pQueueCreateInfos = &queue,
-        .enabledExtensionCount = dev->fp16 ? 2 : 1,
+        .enabledExtensionCount = extension_count,
         .ppEnabledExtensionNames = extensions,
     };
     VkResult vr = vkCreateDevice(dev->physical_device, &info, NULL, &dev->device);
@@ -216,7 +245,7 @@ bool vkdev_create(const vkdev_options *options, vkdev *dev, char *err, size_t n)
     memset(dev, 0, sizeof *dev);
     dev->validation = options->validation;
     if (!create_instance(dev, options->validation, err, n) || !pick_device(dev, options->device, err, n) ||
-        !create_device(dev, err, n)) {
+        !create_device(dev, options->subgroup_size_control, err, n)) {
         vkdev_destroy(dev);
         return false;
     }
@@ -232,8 +261,8 @@ void vkdev_destroy(vkdev *dev) {
         vkDestroyDevice(dev->device, NULL);
     }
     if (dev->messenger) {
-        PFN_vkDestroyDebugUtilsMessengerEXT destroy =
-            (PFN_vkDestroyDebugUtilsMessengerEXT)vkGetInstanceProcAddr(dev->instance, "vkDestroyDebugUtilsMessengerEXT");
+        PFN_vkDestroyDebugUtilsMessengerEXT destroy = (PFN_vkDestroyDebugUtilsMessengerEXT)vkGetInstanceProcAddr(
+            dev->instance, "vkDestroyDebugUtilsMessengerEXT");
         if (destroy) destroy(dev->instance, dev->messenger, NULL);
     }
     if (dev->instance) vkDestroyInstance(dev->instance, NULL);
@@ -312,9 +341,8 @@ static bool make_image(vkdev *dev, VkFormat format, uint32_t w, uint32_t h, VkIm
     vkGetImageMemoryRequirements(dev->device, im->image, &req);
     uint32_t type;
     if (!find_memory(dev, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, &type)) return false;
-    const VkMemoryAllocateInfo alloc = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
-                                        .allocationSize = req.size,
-                                        .memoryTypeIndex = type};
+    const VkMemoryAllocateInfo alloc = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size, .memoryTypeIndex = type};
     if (vkAllocateMemory(dev->device, &alloc, NULL, &im->memory) != VK_SUCCESS ||
         vkBindImageMemory(dev->device, im->image, im->memory, 0) != VK_SUCCESS)
         return false;
@@ -344,9 +372,8 @@ static bool make_buffer(vkdev *dev, VkDeviceSize size, gpu_buffer *b) {
     if (!find_memory(dev, req.memoryTypeBits,
                      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, &type))
         return false;
-    const VkMemoryAllocateInfo alloc = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
-                                        .allocationSize = req.size,
-                                        .memoryTypeIndex = type};
+    const VkMemoryAllocateInfo alloc = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size, .memoryTypeIndex = type};
     return vkAllocateMemory(dev->device, &alloc, NULL, &b->memory) == VK_SUCCESS &&
            vkBindBufferMemory(dev->device, b->buffer, b->memory, 0) == VK_SUCCESS &&
            vkMapMemory(dev->device, b->memory, 0, VK_WHOLE_SIZE, 0, &b->mapped) == VK_SUCCESS;
@@ -382,8 +409,8 @@ static void transition(VkCommandBuffer cmd, VkImage image, VkImageLayout from, V
 }
 
 static bool submit_and_wait(vkdev *dev) {
-    const VkSubmitInfo submit = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1,
-                                 .pCommandBuffers = &dev->cmd};
+    const VkSubmitInfo submit = {
+        .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &dev->cmd};
     if (vkEndCommandBuffer(dev->cmd) != VK_SUCCESS || vkQueueSubmit(dev->queue, 1, &submit, dev->fence) != VK_SUCCESS ||
         vkWaitForFences(dev->device, 1, &dev->fence, VK_TRUE, UINT64_MAX) != VK_SUCCESS)
         return false;
@@ -398,13 +425,11 @@ static bool begin(vkdev *dev) {
 }
 
 /* Copies host floats into an image and leaves it in SHADER_READ_ONLY_OPTIMAL. */
-static void record_upload(vkdev *dev, gpu_buffer *staging, VkDeviceSize offset, gpu_image *im, uint32_t w,
-                          uint32_t h) {
+static void record_upload(vkdev *dev, gpu_buffer *staging, VkDeviceSize offset, gpu_image *im, uint32_t w, uint32_t h) {
     transition(dev->cmd, im->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
-    const VkBufferImageCopy region = {.bufferOffset = offset,
-                                      .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-                                      .imageExtent = {w, h, 1}};
+    const VkBufferImageCopy region = {
+        .bufferOffset = offset, .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {w, h, 1}};
     vkCmdCopyBufferToImage(dev->cmd, staging->buffer, im->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     transition(dev->cmd, im->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                VK_ACCESS_TRANSFER_WRITE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
@@ -422,13 +447,15 @@ static double now_ms(void) {
 }
 
 cacao_result vkdev_context_create(vkdev *dev, cacao_context **ctx) {
-    const cacao_context_desc desc = {
-        .physical_device = dev->physical_device, .device = dev->device, .shader_float16_enabled = dev->fp16};
+    const cacao_context_desc desc = {.physical_device = dev->physical_device,
+                                     .device = dev->device,
+                                     .shader_float16_enabled = dev->fp16,
+                                     .required_subgroup_size = dev->required_subgroup_size};
     return cacao_context_create(&desc, ctx);
 }
 
-cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t repeat,
-                       float *ao, cacao_timings *timings, char *err, size_t n) {
+cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t repeat, float *ao,
+                       cacao_timings *timings, char *err, size_t n) {
     return vkdev_run_timed(dev, settings, frame, 0, repeat, ao, timings, err, n);
 }
 
@@ -445,8 +472,10 @@ cacao_result vkdev_run_timed(vkdev *dev, const cacao_settings *settings, const v
     const double setup_start = now_ms();
     if (r == CACAO_SUCCESS) r = cacao_context_resize(ctx, frame->width, frame->height, &memory);
     const double setup_ms = now_ms() - setup_start;
-    if (r != CACAO_SUCCESS) set_err(err, n, "%s", cacao_context_last_error(ctx));
-    else r = vkdev_run_context_timed(dev, ctx, frame, warmup, repeat, ao, timings, err, n);
+    if (r != CACAO_SUCCESS)
+        set_err(err, n, "%s", cacao_context_last_error(ctx));
+    else
+        r = vkdev_run_context_timed(dev, ctx, frame, warmup, repeat, ao, timings, err, n);
     if (r == CACAO_SUCCESS && timings) {
         timings->memory_bytes = memory.total_bytes;
         timings->pipeline_count = memory.pipeline_count;
@@ -485,10 +514,11 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
     if (!make_buffer(dev, bytes, &staging) ||
         !make_image(dev, VK_FORMAT_R32_SFLOAT, w, h, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                     &depth) ||
-        (frame->normals &&
-         !make_image(dev, VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
-                     VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, &normals)) ||
-        !make_image(dev, out_format, w, h, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &output)) {
+        (frame->normals && !make_image(dev, VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
+                                       VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, &normals)) ||
+        !make_image(dev, out_format, w, h,
+                    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                    &output)) {
         set_err(err, n, "cannot create the frame's images (%ux%u)", w, h);
         goto done;
     }
@@ -505,13 +535,18 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
     if (!begin(dev)) goto vk_failed;
     record_upload(dev, &staging, 0, &depth, w, h);
     if (frame->normals) record_upload(dev, &staging, normals_offset, &normals, w, h);
-    transition(dev->cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0, 0,
-               VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+    transition(dev->cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
+               VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+    /* NaN in every output pixel: a pixel cacao does not write reads back as NaN, never as AO. */
+    const VkClearColorValue nan_colour = {.float32 = {NAN, NAN, NAN, NAN}};
+    const VkImageSubresourceRange whole = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(dev->cmd, output.image, VK_IMAGE_LAYOUT_GENERAL, &nan_colour, 1, &whole);
     if (!submit_and_wait(dev)) goto vk_failed;
 
     cacao_inputs in = {
         .depth = {depth.image, depth.view, VK_FORMAT_R32_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-        .normals = {normals.image, normals.view, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+        .normals = {normals.image, normals.view, VK_FORMAT_R32G32B32A32_SFLOAT,
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
         .output = {output.image, output.view, out_format, VK_IMAGE_LAYOUT_GENERAL},
         .matrices_row_major = true,
         .depth_reversed = frame->depth_reversed,
@@ -562,7 +597,8 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
         if (vkGetQueryPoolResults(dev->device, dev->timestamps, 0, steps + 1, sizeof stamps, stamps, sizeof(uint64_t),
                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS)
             for (uint32_t s = 0; s < steps; ++s)
-                samples[(size_t)s * frames + rep] = (double)(stamps[s + 1] - stamps[s]) * dev->timestamp_period_ns * 1e-6;
+                samples[(size_t)s * frames + rep] =
+                    (double)(stamps[s + 1] - stamps[s]) * dev->timestamp_period_ns * 1e-6;
     }
     memcpy(ao, staging.mapped, pixels * 4);
     if (frame->after_wait) frame->after_wait(dev, ctx, frame->user);

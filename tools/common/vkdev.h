@@ -23,16 +23,19 @@ typedef struct vkdev {
     VkFence fence;
     VkQueryPool timestamps;
     double timestamp_period_ns;
-    bool fp16;                 /* shaderFloat16 enabled */
-    bool validation;           /* validation layer on */
+    bool fp16;                    /* shaderFloat16 enabled */
+    bool validation;              /* validation layer on */
     uint32_t validation_messages; /* warnings and errors reported by the layer */
     char device_name[256];
+    uint32_t subgroup_size_min, subgroup_size_max; /* compute, VK_EXT_subgroup_size_control enabled; 0: not */
+    uint32_t required_subgroup_size; /* passed to cacao_context_desc by vkdev_context_create; 0: default */
 } vkdev;
 
 typedef struct vkdev_options {
-    bool validation;           /* Khronos validation + synchronization validation; messages are counted and printed */
-    const char *device;        /* NULL: lavapipe (CPU) if present, else the first device; or an index or a name substring */
-    bool quiet;                /* do not print validation messages */
+    bool validation;    /* Khronos validation + synchronization validation; messages are counted and printed */
+    const char *device; /* NULL: lavapipe (CPU) if present, else the first device; or an index or a name substring */
+    bool quiet;         /* do not print validation messages */
+    bool subgroup_size_control; /* enable VK_EXT_subgroup_size_control where offered (tests) */
 } vkdev_options;
 
 /* Creates everything; on failure writes a message into err and returns false. The validation
@@ -86,8 +89,8 @@ cacao_result vkdev_run_timed(vkdev *dev, const cacao_settings *settings, const v
 cacao_result vkdev_context_create(vkdev *dev, cacao_context **ctx);
 
 /* vkdev_run_timed without warm-up frames. */
-cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t repeat,
-                       float *ao, cacao_timings *timings, char *err, size_t err_size);
+cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t repeat, float *ao,
+                       cacao_timings *timings, char *err, size_t err_size);
 
 /* The same frame on a context the caller created on this device and resized to the frame's size
  * (settings as it set them); the context stays the caller's, as an engine keeps its own. */
