@@ -78,11 +78,12 @@ static const struct {
 #define VARIANT_COUNT (sizeof variants / sizeof variants[0])
 
 /* One quality and scale over every size, both scenes; returns the smallest AO on the flat plane. */
-static double sweep_quality(vkdev *dev, int quality, bool downsample) {
+static double sweep_quality(vkdev *dev, cacao_estimator estimator, int quality, bool downsample) {
     cacao_context *ctx[VARIANT_COUNT] = {NULL};
     cacao_settings settings[VARIANT_COUNT];
     for (size_t v = 0; v < VARIANT_COUNT; ++v) {
-        settings[v] = (cacao_settings){.quality = quality,
+        settings[v] = (cacao_settings){.estimator = estimator,
+                                       .quality = quality,
                                        .downsample = downsample,
                                        .radius = 1.0f,
                                        .generate_normals = true,
@@ -130,8 +131,13 @@ static double sweep_quality(vkdev *dev, int quality, bool downsample) {
 static void test_sweep(vkdev *dev) {
     double worst = 1.0;
     for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
-        for (int ds = 0; ds < 2; ++ds) worst = fmin(worst, sweep_quality(dev, q, ds));
-    printf("sweep: %zu sizes x 5 qualities x native/downsampled, blur none/2 (fp16)/8 in turn, flat plane and "
+        for (int ds = 0; ds < 2; ++ds) worst = fmin(worst, sweep_quality(dev, CACAO_ESTIMATOR_CACAO, q, ds));
+    /* the horizon-slice estimators (native only), at their smallest and largest budgets */
+    for (int e = CACAO_ESTIMATOR_GTAO; e <= CACAO_ESTIMATOR_BITMASK; ++e)
+        for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; q += 4)
+            worst = fmin(worst, sweep_quality(dev, (cacao_estimator)e, q, false));
+    printf("sweep: %zu sizes x 5 qualities x native/downsampled (gtao, bitmask: lowest, highest, native), blur "
+           "none/2 (fp16)/8 in turn, flat plane and "
            "crease: every pixel written, finite, in [0,1]; flat plane smallest AO %.4f (bound >= %.2f)\n",
            SIZE_COUNT, worst, FLAT_MIN_BOUND);
 }
