@@ -69,6 +69,11 @@ expect_refused("--fade-out 1: expected two numbers" --scene ${ROOM} --fade-out 1
 expect_refused("--blur 9: must be a whole number" --scene ${ROOM} --blur 9)
 expect_refused("--radius abc: not a number" --scene ${ROOM} --radius abc)
 expect_refused("--quality ultra: unknown value 'ultra'" --scene ${ROOM} --quality ultra)
+expect_refused("--estimator fast: unknown value 'fast' (one of cacao, gtao, bitmask)" --scene ${ROOM} --estimator fast)
+expect_refused("--downsample (or its key in --settings): settings.downsample: the gtao estimator runs at full"
+               --scene ${ROOM} --estimator gtao --downsample)
+expect_refused("--steps 33: must be a whole number, 0 (default) to 32" --scene ${ROOM} --estimator bitmask --steps 33)
+expect_refused("--thickness -1: must not be negative" --scene ${ROOM} --estimator bitmask --thickness -1)
 expect_refused("--precision fp8: unknown value" --scene ${ROOM} --precision fp8)
 expect_refused("--bits 12: must be 8 or 16" --scene ${ROOM} --bits 12)
 expect_refused("--repeat 0: must be" --scene ${ROOM} --repeat 0)

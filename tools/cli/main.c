@@ -91,7 +91,9 @@ static bool effective_settings(const cli_options *o, const cli_inputs *in, cacao
     if (!in->normals.data) encoded->generate_normals = true;
     char why[512];
     if (cacao_settings_resolve(encoded, resolved, why, sizeof why) == CACAO_SUCCESS) return true;
-    set_err(err, "settings: %s", why);
+    const char *flag = cli_flag_of_message(why); /* name what the user gave */
+    if (flag) set_err(err, "%s (or its key in --settings): %s", flag, why);
+    else set_err(err, "settings: %s", why);
     return false;
 }
 

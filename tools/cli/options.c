@@ -588,6 +588,19 @@ cJSON *cli_settings_to_json(const cacao_settings *resolved) {
     return root;
 }
 
+const char *cli_flag_of_message(const char *message) {
+    const char *field = strncmp(message, "settings.", 9) == 0 ? message + 9 : NULL;
+    if (!field) return NULL;
+    const size_t len = strspn(field, "abcdefghijklmnopqrstuvwxyz_");
+    for (size_t i = 0; i < FLAG_COUNT_ALL; ++i) {
+        if (!is_setting(&flags[i])) continue;
+        if ((flags[i].json && strlen(flags[i].json) == len && strncmp(flags[i].json, field, len) == 0) ||
+            (flags[i].json2 && strlen(flags[i].json2) == len && strncmp(flags[i].json2, field, len) == 0))
+            return flags[i].name;
+    }
+    return NULL;
+}
+
 /* ---- Help ----------------------------------------------------------------------------------- */
 
 /* The runtime's default of a setting, as text for --help. */

@@ -60,4 +60,8 @@ void cli_print_help(FILE *out);
 /* The resolved settings as a JSON object in the --settings schema (cJSON *, caller deletes). */
 struct cJSON *cli_settings_to_json(const cacao_settings *resolved);
 
+/* The flag that sets a cacao_settings field named in a runtime message ("settings.downsample ..."
+ * -> "--downsample"), or NULL when the message names none. */
+const char *cli_flag_of_message(const char *message);
+
 #endif /* CACAO_CLI_OPTIONS_H */
