@@ -47,6 +47,26 @@ static inline float scene_buffers_default(uint32_t w, uint32_t h, scene_buffers 
     return (float)scene.ao_radius_world;
 }
 
+/* The scene scaled by sc about the world origin: primitives, eye, target, near and far (far_z then
+ * set by the caller where it must differ). prims holds up to prim_cap primitives. */
+static inline cacao_scene scene_scaled(const cacao_scene *base, double sc, cacao_prim *prims, uint32_t prim_cap) {
+    cacao_scene scene = *base;
+    scene.prim_count = base->prim_count < prim_cap ? base->prim_count : prim_cap;
+    for (uint32_t i = 0; i < scene.prim_count; ++i) {
+        prims[i] = base->prims[i];
+        for (int j = 0; j < 3; ++j) {
+            prims[i].a[j] *= sc;
+            if (prims[i].kind != CACAO_PRIM_PLANE) prims[i].b[j] *= sc;
+        }
+        prims[i].r *= sc;
+    }
+    scene.prims = prims;
+    for (int j = 0; j < 3; ++j) scene.camera.eye[j] *= sc, scene.camera.target[j] *= sc;
+    scene.camera.near_z *= sc;
+    scene.camera.far_z *= sc;
+    return scene;
+}
+
 static inline void scene_buffers_free(scene_buffers *b) {
     free(b->depth);
     free(b->depth_reversed);

@@ -290,19 +290,7 @@ static void test_invariance(vkdev *dev) {
         const double scales[] = {1e-3, 1e3};
         for (int k = 0; k < 2; ++k) {
             const double sc = scales[k];
-            cacao_scene scene = base;
-            for (uint32_t i = 0; i < base.prim_count && i < 64; ++i) {
-                prims[i] = base.prims[i];
-                for (int j = 0; j < 3; ++j) {
-                    prims[i].a[j] *= sc;
-                    if (prims[i].kind != CACAO_PRIM_PLANE) prims[i].b[j] *= sc;
-                }
-                prims[i].r *= sc;
-            }
-            scene.prims = prims;
-            for (int j = 0; j < 3; ++j) scene.camera.eye[j] *= sc, scene.camera.target[j] *= sc;
-            scene.camera.near_z *= sc;
-            scene.camera.far_z *= sc;
+            const cacao_scene scene = scene_scaled(&base, sc, prims, 64);
             scene_buffers bs;
             scene_buffers_render(&scene, &bs);
             cacao_settings ss = s;

@@ -85,18 +85,7 @@ static void test_world_scale(vkdev *dev) {
     bool finite = true;
     for (int k = -1; k < 6; ++k) {
         const double sc = k < 0 ? 1.0 : scales[k];
-        cacao_scene scene = base;
-        for (uint32_t i = 0; i < base.prim_count && i < 64; ++i) {
-            prims[i] = base.prims[i];
-            for (int j = 0; j < 3; ++j) {
-                prims[i].a[j] *= sc;
-                if (prims[i].kind != CACAO_PRIM_PLANE) prims[i].b[j] *= sc;
-            }
-            prims[i].r *= sc;
-        }
-        scene.prims = prims;
-        for (int j = 0; j < 3; ++j) scene.camera.eye[j] *= sc, scene.camera.target[j] *= sc;
-        scene.camera.near_z *= sc;
+        cacao_scene scene = scene_scaled(&base, sc, prims, 64);
         scene.camera.far_z = 200.0 * sc; /* the infinite floor ends within fp16 range at x1e3 */
         scene_buffers b;
         scene_buffers_render(&scene, &b);
