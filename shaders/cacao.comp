@@ -826,17 +826,23 @@ void main()
 /* spec: upsample.md (bilateral 5x5, Smart / NonSmart / Half) */
 layout(local_size_x = CACAO_WG_UPSAMPLE_X, local_size_y = CACAO_WG_UPSAMPLE_Y) in;
 
-#define UP_TABLE 12 /* 8 + 2 apron on each side */
+#define UP_B CACAO_UPSAMPLE_BLOCK
+#define UP_TABLE_X (CACAO_UPSAMPLE_SPAN_X + 4) /* the group's half-res positions + 2 apron each side */
+#define UP_TABLE_Y (CACAO_UPSAMPLE_SPAN_Y + 4)
+#define UP_WIN (UP_B + 4)                       /* one thread's window of table entries */
 #define UP_NO_DEPTH -1.0e30 /* marks an entry outside the Q image: weight 0 */
 
-shared rfloat up_value[UP_TABLE * UP_TABLE];
-shared float up_depth[UP_TABLE * UP_TABLE];
+shared rfloat up_value[UP_TABLE_X * UP_TABLE_Y];
+shared float up_depth[UP_TABLE_X * UP_TABLE_Y];
 
 /* Deinterleaved depth (mip 0) at slice texel c of a layer; OOB -> 0 (D3D load rule). */
 float load_depth_or_zero(ivec2 c, int layer)
 {
     return in_rect(c, textureSize(depths, 0).xy) ? texelFetch(depths, ivec3(c, layer), 0).r : 0.0;
 }
+
+/* exp(-(i/2)^2 / spatial variance) for i = 0..5 (a constant index after unrolling). */
+float up_axis_weight(int i) { return cb.bilateral_axis_weight[i >> 2][i & 3]; }
 
 rfloat table_value(float v)
 {
@@ -854,10 +860,11 @@ void main()
     ivec2 g = ivec2(gl_WorkGroupID.xy);
     vec2 inv_s = cb.ssao_buffer_inverse_dimensions;
 
-    /* Step 1: (value, depth) of Q-positions g*8 - 2 .. g*8 + 9, filled by all 64 threads.
-     * Entries outside [0, 2S) get weight 0 ([quirk] BILATERAL-LEFT-BORDER fixed). */
-    for (int i = int(gl_LocalInvocationIndex); i < UP_TABLE * UP_TABLE; i += CACAO_WG_UPSAMPLE_X * CACAO_WG_UPSAMPLE_Y) {
-        ivec2 q = g * 8 + ivec2(i % UP_TABLE, i / UP_TABLE) - 2;
+    /* Step 1: (value, depth) of Q-positions g*SPAN - 2 .. g*SPAN + SPAN + 1, filled by all
+     * threads. Entries outside [0, 2S) get weight 0 ([quirk] BILATERAL-LEFT-BORDER fixed). */
+    const ivec2 span = ivec2(CACAO_UPSAMPLE_SPAN_X, CACAO_UPSAMPLE_SPAN_Y);
+    for (int i = int(gl_LocalInvocationIndex); i < UP_TABLE_X * UP_TABLE_Y; i += CACAO_WG_UPSAMPLE_X * CACAO_WG_UPSAMPLE_Y) {
+        ivec2 q = g * span + ivec2(i % UP_TABLE_X, i / UP_TABLE_X) - 2;
         float value = 0.0;
         float depth = UP_NO_DEPTH;
         if (in_rect(q, qsize)) {
@@ -891,42 +898,57 @@ void main()
     }
     barrier();
 
-    /* Step 2: bilateral filter for the 2x2 full-res pixels of this half-res position */
-    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 l = ivec2(gl_LocalInvocationID.xy);
-    float zf[4];
-    [[unroll]] for (int o = 0; o < 4; ++o) zf[o] = view_z(load_src_depth_or_zero(2 * t + ivec2(o & 1, o >> 1)));
-
-    rfloat centre = up_value[(l.y + 2) * UP_TABLE + l.x + 2];
-    rfloat tot[4], wsum[4];
-    [[unroll]] for (int o = 0; o < 4; ++o) {
-        tot[o] = rfloat(CACAO_BILATERAL_EPSILON) * centre;
-        wsum[o] = rfloat(CACAO_BILATERAL_EPSILON);
-    }
-    /* fully unrolled: tot[] and wsum[] stay in registers */
-    [[unroll]] for (int y = -2; y <= 2; ++y) {
-        [[unroll]] for (int x = -2; x <= 2; ++x) {
-            int idx = (l.y + 2 + y) * UP_TABLE + (l.x + 2 + x);
-            rfloat v = up_value[idx];
-            float zq = up_depth[idx];
-            bool valid = zq > -1.0e29;
-            [[unroll]] for (int o = 0; o < 4; ++o) {
-                float dx = float(x) - 0.5 * float(o & 1);
-                float dy = float(y) - 0.5 * float(o >> 1);
-                float ws = exp(-(dx * dx + dy * dy) / cb.bilateral_sigma_squared);
-                float dz = zf[o] - zq; /* sigma is used as a variance, as AMD does */
-                float wz = valid ? exp(-(dz * dz) / cb.bilateral_similarity_distance_sigma) : 0.0;
-                rfloat w = rfloat(ws * wz);
-                tot[o] += v * w;
-                wsum[o] += w;
-            }
+    /* Step 2: bilateral filter for the 2x2 full-res pixels of each of this thread's BxB
+     * half-res positions. The thread's (B+4)^2 window of the table is read once into registers:
+     * with B = 2 that is 36 shared-memory reads for 4 positions instead of 100, which is most of
+     * this pass's time on a CPU device (every such read is a gather). */
+    ivec2 l = ivec2(gl_LocalInvocationID.xy) * UP_B;
+    ivec2 t0 = g * span + l;
+    rfloat win_v[UP_WIN][UP_WIN];
+    float win_z[UP_WIN][UP_WIN];
+    [[unroll]] for (int y = 0; y < UP_WIN; ++y) {
+        [[unroll]] for (int x = 0; x < UP_WIN; ++x) {
+            int idx = (l.y + y) * UP_TABLE_X + l.x + x;
+            win_v[y][x] = up_value[idx];
+            win_z[y][x] = up_depth[idx];
         }
     }
 
     ivec2 out_size = imageSize(output_image);
-    [[unroll]] for (int o = 0; o < 4; ++o) {
-        ivec2 p = 2 * t + ivec2(o & 1, o >> 1);
-        if (in_rect(p, out_size)) imageStore(output_image, p, vec4(float(tot[o] / wsum[o]), 0.0, 0.0, 0.0));
+    [[unroll]] for (int by = 0; by < UP_B; ++by) {
+        [[unroll]] for (int bx = 0; bx < UP_B; ++bx) {
+            ivec2 t = t0 + ivec2(bx, by);
+            float zf[4];
+            [[unroll]] for (int o = 0; o < 4; ++o) zf[o] = view_z(load_src_depth_or_zero(2 * t + ivec2(o & 1, o >> 1)));
+
+            rfloat centre = win_v[by + 2][bx + 2];
+            rfloat tot[4], wsum[4];
+            [[unroll]] for (int o = 0; o < 4; ++o) {
+                tot[o] = rfloat(CACAO_BILATERAL_EPSILON) * centre;
+                wsum[o] = rfloat(CACAO_BILATERAL_EPSILON);
+            }
+            /* fully unrolled: tot[] and wsum[] stay in registers */
+            [[unroll]] for (int y = -2; y <= 2; ++y) {
+                [[unroll]] for (int x = -2; x <= 2; ++x) {
+                    rfloat v = win_v[by + 2 + y][bx + 2 + x];
+                    float zq = win_z[by + 2 + y][bx + 2 + x];
+                    bool valid = zq > -1.0e29;
+                    [[unroll]] for (int o = 0; o < 4; ++o) {
+                        /* |dx|, |dy| in half texels: x - (o & 1) / 2 and y - (o >> 1) / 2 */
+                        float ws = up_axis_weight(abs(2 * x - (o & 1))) * up_axis_weight(abs(2 * y - (o >> 1)));
+                        float dz = zf[o] - zq; /* sigma is used as a variance, as AMD does */
+                        float wz = valid ? exp2(dz * dz * cb.bilateral_depth_exp2_mul) : 0.0;
+                        rfloat w = rfloat(ws * wz);
+                        tot[o] += v * w;
+                        wsum[o] += w;
+                    }
+                }
+            }
+            [[unroll]] for (int o = 0; o < 4; ++o) {
+                ivec2 p = 2 * t + ivec2(o & 1, o >> 1);
+                if (in_rect(p, out_size)) imageStore(output_image, p, vec4(float(tot[o] / wsum[o]), 0.0, 0.0, 0.0));
+            }
+        }
     }
 }
 #endif /* UPSAMPLE */

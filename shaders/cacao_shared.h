@@ -96,8 +96,11 @@
 #define CACAO_BLUR_OUT_Y(n) (CACAO_WG_BLUR_Y * CACAO_BLUR_BLOCK_Y - 2 * (n))
 #define CACAO_WG_APPLY_X 8
 #define CACAO_WG_APPLY_Y 8
-#define CACAO_WG_UPSAMPLE_X 8            /* each upsample thread writes 2x2 output pixels */
+#define CACAO_WG_UPSAMPLE_X 8
 #define CACAO_WG_UPSAMPLE_Y 8
+#define CACAO_UPSAMPLE_BLOCK 2           /* each upsample thread filters BxB half-res positions */
+#define CACAO_UPSAMPLE_SPAN_X (CACAO_WG_UPSAMPLE_X * CACAO_UPSAMPLE_BLOCK) /* half-res per group */
+#define CACAO_UPSAMPLE_SPAN_Y (CACAO_WG_UPSAMPLE_Y * CACAO_UPSAMPLE_BLOCK)
 #define CACAO_WG_SLICE_X 8               /* slice prepare, main and denoise: one pixel per thread */
 #define CACAO_WG_SLICE_Y 8
 
@@ -223,8 +226,8 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(FLOAT, adaptive_sample_count_limit)                                                          \
     M(FLOAT, inv_sharpness)                                                                        \
     M(INT, slice_count)                 /* 2 at LOWEST (slices 0 and 3 in layers 0 and 1), else 4 */ \
-    M(FLOAT, bilateral_sigma_squared)                                                              \
-    M(FLOAT, bilateral_similarity_distance_sigma)                                                  \
+    M(FLOAT, bilateral_depth_exp2_mul)  /* upsample depth weight exp2(dz^2 x) = exp(-dz^2 / variance) */ \
+    M(FLOAT, bilateral_spatial_exp2_mul) /* -log2(e) / spatial variance (bilateral_axis_weight's source) */ \
     M(FLOAT, normals_unpack_mul)                                                                   \
     M(FLOAT, normals_unpack_add)                                                                   \
     M(FLOAT, detail_ao_strength)                                                                   \
@@ -241,6 +244,8 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     A(VEC4, pattern_rot_scale, 20)      /* [slice * 5 + j] = (m0, m1, m2, m3) */                   \
     A(VEC4, sample_pattern, 32)         /* CACAO_SAMPLE_PATTERN_VALUES; in the block because a */  \
                                         /* dynamically indexed GLSL const array is copied per call */ \
+    A(VEC4, bilateral_axis_weight, 2)   /* [i] = exp(-(i/2)^2 / spatial variance), i = 0..5: the */ \
+                                        /* upsample's spatial weight is the product for |dx|, |dy| */ \
     M(MAT4, normals_to_view)            /* n'_j = sum_i E[j][i] n_i, stored column-major */       \
     M(VEC2, depth_unpack_d)             /* (0, -1) perspective, (P(3,3), 0) orthographic */       \
     M(VEC2, view_xy_z)                  /* view xy = (ndc_to_view_mul uv + add) (x z + y) */       \

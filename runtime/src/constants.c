@@ -259,8 +259,15 @@ void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao
     c->adaptive_sample_count_limit = s->adaptive_quality_limit;
     c->inv_sharpness = fminf(fmaxf(1.0f - s->sharpness, 0.0f), 1.0f);
     c->slice_count = (int)plan->slice_count;
-    c->bilateral_sigma_squared = s->bilateral_sigma_squared;
-    c->bilateral_similarity_distance_sigma = s->bilateral_similarity_distance_sigma * k * k;
+    /* The upsample's weights as exp2 of precomputed products: no division per weight, and the
+     * spatial Gaussian separates, exp(-(dx^2 + dy^2) / v) = exp(-dx^2 / v) exp(-dy^2 / v), so its
+     * 6 distinct axis factors (|d| = 0, 0.5, .., 2.5 texels) come from this block. */
+    const double log2e = 1.4426950408889634;
+    c->bilateral_depth_exp2_mul = (float)(-log2e / ((double)s->bilateral_similarity_distance_sigma * k * k));
+    c->bilateral_spatial_exp2_mul = (float)(-log2e / (double)s->bilateral_sigma_squared);
+    float *axis = &c->bilateral_axis_weight[0].x;
+    for (int i = 0; i < 6; ++i) axis[i] = (float)exp(-(0.25 * i * i) / (double)s->bilateral_sigma_squared);
+    axis[6] = axis[7] = 0.0f;
     const bool default_unpack = in->normals_unpack_mul == 0.0f && in->normals_unpack_add == 0.0f;
     c->normals_unpack_mul = default_unpack ? 2.0f : in->normals_unpack_mul;
     c->normals_unpack_add = default_unpack ? -1.0f : in->normals_unpack_add;

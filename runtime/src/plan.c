@@ -281,7 +281,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     const uint8_t out_variant = (uint8_t)cacaoi_output_variant_for_quality(quality, ds);
     if (ds) {
         key = (cacao_key){CACAO_PASS_UPSAMPLE, out_variant, 0, 0, fp16};
-        st = add_step(&b, &key, div_up(width, 2 * CACAO_WG_UPSAMPLE_X), div_up(height, 2 * CACAO_WG_UPSAMPLE_Y), 1);
+        st = add_step(&b, &key, div_up(width, 2 * CACAO_UPSAMPLE_SPAN_X), div_up(height, 2 * CACAO_UPSAMPLE_SPAN_Y), 1);
         bind(st, CACAO_BINDING_SSAO_IN, ao, 0, false);
         bind(st, CACAO_BINDING_DEPTHS, CACAO_RES_DEPTHS, 0, false);
         bind(st, CACAO_BINDING_SRC_DEPTH, CACAO_RES_DEPTH_INPUT, 0, false);
