@@ -90,7 +90,8 @@ static void test_dispatch_sizes(void) {
         build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true, .generate_normals = true}, 1001, 37);
     CHECK(d.slice_width == 251 && d.slice_height == 10); /* ceil(ceil(1001/2)/2), ceil(ceil(37/2)/2) */
     CHECK(strcmp(d.steps[d.step_count - 1].key_name, "upsample.smart.fp32") == 0);
-    CHECK(d.steps[d.step_count - 1].dispatch[0] == 63 && d.steps[d.step_count - 1].dispatch[1] == 3); /* /16 */
+    /* upsample: 2x2 full-res pixels per half-res position, 2x2 positions per thread, 8x8 threads */
+    CHECK(d.steps[d.step_count - 1].dispatch[0] == 32 && d.steps[d.step_count - 1].dispatch[1] == 2); /* /32 */
 }
 
 /* Small sizes: the depth mip chain is what Vulkan allows for the slice (floor(log2(max side)) + 1
