@@ -331,7 +331,8 @@ void main()
 #if CACAO_VARIANT == 1
     /* Transform the caller's normal; not renormalised ([quirk] NORMALS-NOT-NORMALIZED). */
     ivec2 size = textureSize(src_normals, 0);
-    for (int layer = 0; layer < cb.slice_count; ++layer) {
+    [[unroll]] for (int layer = 0; layer < 4; ++layer) {
+        if (layer >= cb.slice_count) break;
         ivec2 p = full_res_pixel(t, slice_of_layer(layer));
         vec3 rgb = in_rect(p, size) ? texelFetch(src_normals, p, 0).rgb : vec3(0.0);
         vec3 n = rgb * cb.normals_unpack_mul + cb.normals_unpack_add;
