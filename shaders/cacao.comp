@@ -618,18 +618,22 @@ void main()
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
     if (!in_rect(t, imageSize(importance_out))) return;
     ivec2 s = textureSize(ssao_in, 0).xy;
-    float mx = 0.0, mn = 1.0;
-    for (int k = 0; k < 4; ++k) {
-        for (int b = 0; b < 2; ++b) {
-            for (int a = 0; a < 2; ++a) {
+    /* The per-texel shaping pow(sat(1 - strength v), power) (no clamp, no fade) is monotone in v
+     * (strength and power are >= 0), so the max and min of the shaped values are the shaped
+     * min and max of the raw ones: 2 pow calls per texel instead of 16. */
+    float vmin = 1.0e30, vmax = -1.0e30;
+    [[unroll]] for (int k = 0; k < 4; ++k) {
+        [[unroll]] for (int b = 0; b < 2; ++b) {
+            [[unroll]] for (int a = 0; a < 2; ++a) {
                 ivec2 p = clamp(2 * t + ivec2(a, b), ivec2(0), s - 1);
                 float v = texelFetch(ssao_in, ivec3(p, k), 0).r;
-                v = pow(sat(1.0 - cb.effect_shadow_strength * v), cb.effect_shadow_pow); /* no clamp, no fade */
-                mx = max(mx, v);
-                mn = min(mn, v);
+                vmin = min(vmin, v);
+                vmax = max(vmax, v);
             }
         }
     }
+    float mx = max(pow(sat(1.0 - cb.effect_shadow_strength * vmin), cb.effect_shadow_pow), 0.0);
+    float mn = min(pow(sat(1.0 - cb.effect_shadow_strength * vmax), cb.effect_shadow_pow), 1.0);
     imageStore(importance_out, t, vec4(pow(sat(2.0 * (mx - mn)), CACAO_IMPORTANCE_POWER)));
 }
 #endif /* IMPORTANCE */
