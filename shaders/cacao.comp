@@ -278,8 +278,19 @@ void main()
 #else
     /* Four slices; clamp-to-edge reads (the footprint AMD's gather / point samples intend). */
     float z[4];
-    for (int k = 0; k < 4; ++k) {
+#if CACAO_DOWNSAMPLED == 0
+    /* Native: slice k holds pixel 2t + (k & 1, k >> 1), so the four are one 2x2 gather, taken at
+     * the texels' shared corner (see prepare_normals). Gather order: x = (0,1), y = (1,1),
+     * z = (1,0), w = (0,0). */
+    vec4 g4 = textureGather(src_depth, vec2(2 * t + 1) * cb.depth_buffer_inverse_dimensions, 0);
+    vec4 raw = g4.wzxy;
+#endif
+    [[unroll]] for (int k = 0; k < 4; ++k) {
+#if CACAO_DOWNSAMPLED == 0
+        z[k] = view_z(raw[k]);
+#else
         z[k] = view_z(load_src_depth_clamped(full_res_pixel(t, k)));
+#endif
         if (t_in) imageStore(depths_out0, ivec3(t, k), vec4(z[k]));
     }
 
@@ -342,6 +353,25 @@ void main()
 #else
     /* 4x4 neighbourhood without corners; pos[j][i] = column i, row j. */
     vec3 pos[4][4];
+#if CACAO_DOWNSAMPLED == 0
+    /* Native: the 4x4 block of full-res depths at 2t - 1 .. 2t + 2 in four gathers (one sampler
+     * operation per 2x2, clamp-to-edge like load_src_depth_clamped), not twelve loads. Each gather
+     * is taken at the shared corner of its 2x2 texels, exactly representable, so the texels are
+     * the intended ones. Gather order: x = (0,1), y = (1,1), z = (1,0), w = (0,0). */
+    float dz[4][4];
+    {
+        vec2 inv = cb.depth_buffer_inverse_dimensions;
+        [[unroll]] for (int gj = 0; gj < 2; ++gj) {
+            [[unroll]] for (int gi = 0; gi < 2; ++gi) {
+                vec4 g4 = textureGather(src_depth, vec2(2 * t + 2 * ivec2(gi, gj)) * inv, 0);
+                dz[2 * gj][2 * gi] = g4.w;
+                dz[2 * gj][2 * gi + 1] = g4.z;
+                dz[2 * gj + 1][2 * gi] = g4.x;
+                dz[2 * gj + 1][2 * gi + 1] = g4.y;
+            }
+        }
+    }
+#endif
     /* fully unrolled: with constant indices the array lives in registers (a dynamically indexed
      * local array is copied to memory on lavapipe) */
     [[unroll]] for (int j = 0; j < 4; ++j) {
@@ -354,8 +384,7 @@ void main()
             float d = load_src_depth_or_zero(4 * t + 2 * o);
             vec2 uv = (vec2(4 * t) + 0.5 + 2.0 * vec2(o)) * cb.depth_buffer_inverse_dimensions;
 #else
-            /* AMD's gathers use clamp-to-edge */
-            float d = load_src_depth_clamped(2 * t + o);
+            float d = dz[j][i];
             vec2 uv = (vec2(2 * t) + 0.5 + vec2(o)) * cb.depth_buffer_inverse_dimensions;
 #endif
             pos[j][i] = view_pos(uv, view_z(d));
