@@ -434,11 +434,6 @@ layout(local_size_x = CACAO_WG_GENERATE_X, local_size_y = CACAO_WG_GENERATE_Y) i
  * a loop variable is copied into function memory at every call (40x slower on lavapipe). */
 vec4 pattern_entry(int i) { return cb.sample_pattern[i]; }
 
-/* Deinterleaved depth at slice texel p, mip 0, mirror addressing (AMD: PointMirror gathers). */
-float load_depth_mirror(ivec2 p, ivec2 s, int layer)
-{
-    return texelFetch(depths, ivec3(mirror_coord(p, s), layer), 0).r;
-}
 
 /* Normal at slice texel p; OOB -> (0,0,0) ([quirk] NORMAL-EDGE-OOB kept). */
 vec3 load_normal_or_zero(ivec2 p, ivec2 s, int layer)
@@ -518,11 +513,17 @@ void main()
 
     /* 1. centre, neighbours (mirror), view position, normal, pixel size */
     vec2 uvd = (vec2(xy) + 0.5) * inv_s;
-    float zc = texelFetch(depths, ivec3(xy, layer), 0).r;
-    float zl = load_depth_mirror(xy + ivec2(-1, 0), size, layer);
-    float zr = load_depth_mirror(xy + ivec2(1, 0), size, layer);
-    float zt = load_depth_mirror(xy + ivec2(0, -1), size, layer);
-    float zb = load_depth_mirror(xy + ivec2(0, 1), size, layer);
+    /* Centre and its 4 neighbours from two 2x2 gathers at the texel corners before and after xy
+     * (exactly representable UVs). For a neighbour one texel away, the sampler's clamp-to-edge
+     * gives what mirror addressing gives (-1 -> 0, n -> n - 1). Gather order: x = (0,1),
+     * y = (1,1), z = (1,0), w = (0,0). */
+    vec4 g_ul = textureGather(depths, vec3(vec2(xy) * inv_s, float(layer)), 0);
+    vec4 g_br = textureGather(depths, vec3(vec2(xy + 1) * inv_s, float(layer)), 0);
+    float zc = g_ul.y;
+    float zl = g_ul.x;
+    float zt = g_ul.z;
+    float zr = g_br.z;
+    float zb = g_br.x;
     vec2 uvs = uvd; /* slice UV used as screen UV ([quirk] SLICE-SUBPIXEL) */
     vec3 pc = view_pos(uvs, zc);
     vec3 n = texelFetch(normals, ivec3(xy, layer), 0).xyz;
