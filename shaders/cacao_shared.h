@@ -227,7 +227,7 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(FLOAT, inv_sharpness)                                                                        \
     M(INT, slice_count)                 /* 2 at LOWEST (slices 0 and 3 in layers 0 and 1), else 4 */ \
     M(FLOAT, bilateral_depth_exp2_mul)  /* upsample depth weight exp2(dz^2 x) = exp(-dz^2 / variance) */ \
-    M(FLOAT, bilateral_spatial_exp2_mul) /* -log2(e) / spatial variance (bilateral_axis_weight's source) */ \
+    M(FLOAT, pad0)                      /* unused: keeps the members below at their std140 offsets */ \
     M(FLOAT, normals_unpack_mul)                                                                   \
     M(FLOAT, normals_unpack_add)                                                                   \
     M(FLOAT, detail_ao_strength)                                                                   \

@@ -100,6 +100,13 @@ static inline bool scene_world_position(const cacao_scene *scene, const scene_bu
     return true;
 }
 
+/* Mean |a - b| over n values. */
+static inline double mean_abs_diff(const float *a, const float *b, size_t n) {
+    double m = 0;
+    for (size_t i = 0; i < n; ++i) m += fabs((double)a[i] - b[i]);
+    return m / (double)n;
+}
+
 static inline bool all_finite_unit(const float *ao, size_t n) {
     for (size_t i = 0; i < n; ++i)
         if (!(ao[i] >= 0.0f && ao[i] <= 1.0f)) return false; /* also catches NaN */

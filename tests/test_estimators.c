@@ -261,12 +261,6 @@ static void test_groove(vkdev *dev) {
     free(ao);
 }
 
-static double mean_abs_diff(const float *a, const float *b, size_t n) {
-    double m = 0;
-    for (size_t i = 0; i < n; ++i) m += fabs((double)a[i] - b[i]);
-    return m / (double)n;
-}
-
 /* The same geometry in reverse-Z depth, and at world scales 1e-3..1e3 (radius, near, far scaled),
  * gives the same AO: the estimators see only view-space vectors and their ratios. */
 static void test_invariance(vkdev *dev) {

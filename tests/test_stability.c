@@ -67,12 +67,6 @@ static bool write_markdown(const char *path, const char *device) {
     return fclose(f) == 0;
 }
 
-static double mean_abs(const float *a, const float *b, size_t n) {
-    double m = 0;
-    for (size_t i = 0; i < n; ++i) m += fabs((double)a[i] - b[i]);
-    return m / (double)n;
-}
-
 /* World scale x1e-3 .. x1e3 with radius, near/far and fade-out scaled: the same picture. */
 static void test_world_scale(vkdev *dev) {
     const uint32_t w = 160, h = 90;
@@ -96,7 +90,7 @@ static void test_world_scale(vkdev *dev) {
         vkdev_frame f = scene_frame(&b, false, true);
         if (run(dev, &s, &f, k < 0 ? ref : ao) && k >= 0) {
             finite = finite && all_finite_unit(ao, n);
-            const double m = mean_abs(ao, ref, n);
+            const double m = mean_abs_diff(ao, ref, n);
             if (m > worst) worst = m, worst_scale = sc;
         }
         scene_buffers_free(&b);
@@ -228,7 +222,7 @@ static void test_flicker(vkdev *dev) {
                 ok = run(dev, &s, &f, ao + k * n) && all_finite_unit(ao + k * n, n);
             }
             double m = 0;
-            for (int k = 1; k < 8 && ok; ++k) m += mean_abs(ao + k * n, ao + (k - 1) * n, n) / 7.0;
+            for (int k = 1; k < 8 && ok; ++k) m += mean_abs_diff(ao + k * n, ao + (k - 1) * n, n) / 7.0;
             char name[96];
             snprintf(name, sizeof name, "flicker: %s, blur %d, 8 sub-pixel jitters", quality_names[q],
                      blurs[bi] == CACAO_BLUR_NONE ? 0 : blurs[bi]);
@@ -565,7 +559,7 @@ static void test_beyond_half(vkdev *dev) {
             for (size_t i = 0; i < (size_t)w * h; ++i) crease[big] = fmin(crease[big], ao[big][i]);
         scene_buffers_free(&b);
     }
-    const double m = mean_abs(ao[0], ao[1], (size_t)w * h);
+    const double m = mean_abs_diff(ao[0], ao[1], (size_t)w * h);
     report("view depth > 65504 (R16F deinterleaved depth): crease at 1e5 vs at 100",
            m <= 1.0 / 255.0 && crease[1] < 0.9, "mean <= 0.0039; crease < 0.9",
            "view space scaled by 60000 / far when far > 60000 (constants only)",

@@ -264,7 +264,6 @@ void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao
      * 6 distinct axis factors (|d| = 0, 0.5, .., 2.5 texels) come from this block. */
     const double log2e = 1.4426950408889634;
     c->bilateral_depth_exp2_mul = (float)(-log2e / ((double)s->bilateral_similarity_distance_sigma * k * k));
-    c->bilateral_spatial_exp2_mul = (float)(-log2e / (double)s->bilateral_sigma_squared);
     float *axis = &c->bilateral_axis_weight[0].x;
     for (int i = 0; i < 6; ++i) axis[i] = (float)exp(-(0.25 * i * i) / (double)s->bilateral_sigma_squared);
     axis[6] = axis[7] = 0.0f;
