@@ -77,7 +77,7 @@ static void buf_printf(sg_buf *b, const char *fmt, unsigned value, const char *s
 
 char *sg_specialise(const char *source, const char *shared_header, const cacao_key *key) {
     static const char include_line[] = "#include \"cacao_shared.h\"";
-    char defines[512];
+    char defines[CACAO_KEY_DEFINES_MAX];
     if (!cacaoi_key_defines(key, defines, sizeof defines)) return NULL;
     sg_buf b = {0};
     unsigned line = 1;

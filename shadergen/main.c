@@ -93,7 +93,7 @@ int main(int argc, char **argv) {
         cacaoi_key_name(&keys[i], m->name, sizeof m->name);
         char *text = sg_specialise(source, shared, &keys[i]);
         bool ok = text && sg_compile(text, m->name, &args.options, &m->words, &m->word_count) &&
-                  sg_validate(m->words, m->word_count, m->name) && sg_reflect(m);
+                  sg_validate(m->words, m->word_count, m->name) && sg_reflect(m) && sg_check_row(m);
         free(text);
         if (!ok) {
             ++failures;

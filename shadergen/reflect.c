@@ -55,6 +55,12 @@ bool sg_reflect(sg_module *m) {
                 goto done;
             }
             m->bindings[binding] = kinds[k].kind;
+            if (kinds[k].kind == CACAO_RESOURCE_SAMPLED_IMAGE || kinds[k].kind == CACAO_RESOURCE_STORAGE_IMAGE) {
+                spvc_type type = spvc_compiler_get_type_handle(compiler, list[i].type_id);
+                m->image_format[binding] = (uint32_t)spvc_type_get_image_storage_format(type);
+                m->image_arrayed[binding] = spvc_type_get_image_arrayed(type);
+                m->non_writable[binding] = spvc_compiler_has_decoration(compiler, list[i].id, SpvDecorationNonWritable);
+            }
             if (kinds[k].kind == CACAO_RESOURCE_UNIFORM_BUFFER) {
                 size_t size = 0;
                 spvc_compiler_get_declared_struct_size(
@@ -77,6 +83,71 @@ bool sg_reflect(sg_module *m) {
     ok = true;
 done:
     spvc_context_destroy(context);
+    return ok;
+}
+
+/* SPIR-V image format of a GLSL storage-image qualifier used by the resource rows. */
+static SpvImageFormat spv_format(const char *glsl) {
+    static const struct {
+        const char *glsl;
+        SpvImageFormat spv;
+    } formats[] = {
+        {"r16f", SpvImageFormatR16f}, {"r32f", SpvImageFormatR32f}, {"rgba8_snorm", SpvImageFormatRgba8Snorm},
+        {"rg8", SpvImageFormatRg8},   {"r8", SpvImageFormatR8},
+    };
+    for (size_t i = 0; i < sizeof formats / sizeof formats[0]; ++i)
+        if (strcmp(formats[i].glsl, glsl) == 0) return formats[i].spv;
+    return SpvImageFormatUnknown;
+}
+
+static const char *const kind_names[] = {"nothing", "a uniform buffer", "a storage buffer",
+                                         "a combined image sampler", "a storage image"};
+
+bool sg_check_row(const sg_module *m) {
+    cacaoi_module_expect want;
+    if (!cacaoi_pass_expect(&m->key, &want)) {
+        fprintf(stderr, "shadergen: %s: no pass row for this key\n", m->name);
+        return false;
+    }
+    bool ok = true;
+    const char *pass = cacaoi_pass_name(m->key.pass);
+    if (memcmp(m->workgroup_size, want.workgroup, sizeof want.workgroup) != 0) {
+        fprintf(stderr, "shadergen: %s: pass %s: workgroup %ux%ux%u, its row says %ux%ux%u\n", m->name, pass,
+                m->workgroup_size[0], m->workgroup_size[1], m->workgroup_size[2], want.workgroup[0],
+                want.workgroup[1], want.workgroup[2]);
+        ok = false;
+    }
+    for (unsigned b = 0; b < CACAO_BINDING_COUNT; ++b) {
+        const char *slot = cacaoi_slots[b].name;
+        if (m->bindings[b] != want.descriptor[b]) {
+            fprintf(stderr, "shadergen: %s: pass %s, binding %s (%u): the module declares %s, its row %s\n", m->name,
+                    pass, slot, b, kind_names[m->bindings[b]], kind_names[want.descriptor[b]]);
+            ok = false;
+            continue;
+        }
+        const bool image = want.descriptor[b] == CACAO_RESOURCE_SAMPLED_IMAGE ||
+                           want.descriptor[b] == CACAO_RESOURCE_STORAGE_IMAGE;
+        if (!image) continue;
+        const cacaoi_resource_row *res = &cacaoi_resources[want.resource[b]];
+        if (m->image_arrayed[b] != res->layered) {
+            fprintf(stderr, "shadergen: %s: pass %s, binding %s (%u): the module declares %s image, resource %s is %s\n",
+                    m->name, pass, slot, b, m->image_arrayed[b] ? "an array" : "a 2D", res->name,
+                    res->layered ? "layered" : "one layer");
+            ok = false;
+        }
+        if (want.descriptor[b] != CACAO_RESOURCE_STORAGE_IMAGE) continue;
+        if (m->image_format[b] != (uint32_t)spv_format(res->glsl_format)) {
+            fprintf(stderr, "shadergen: %s: pass %s, binding %s (%u): declared format %u, resource %s has '%s'\n",
+                    m->name, pass, slot, b, m->image_format[b], res->name,
+                    *res->glsl_format ? res->glsl_format : "none (the view's format)");
+            ok = false;
+        }
+        if (m->non_writable[b] == want.write[b]) {
+            fprintf(stderr, "shadergen: %s: pass %s, binding %s (%u): the module %s it, its row says %s\n", m->name,
+                    pass, slot, b, m->non_writable[b] ? "only reads" : "may write", want.write[b] ? "write" : "read");
+            ok = false;
+        }
+    }
     return ok;
 }
 

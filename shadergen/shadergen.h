@@ -20,6 +20,10 @@ typedef struct sg_module {
     uint32_t uniform_size;
     uint32_t push_constant_size;
     uint8_t bindings[CACAO_BINDING_COUNT];
+    /* Image bindings only: declared format (SpvImageFormat), arrayed, decorated NonWritable. */
+    uint32_t image_format[CACAO_BINDING_COUNT];
+    bool image_arrayed[CACAO_BINDING_COUNT];
+    bool non_writable[CACAO_BINDING_COUNT];
 } sg_module;
 
 typedef struct sg_options {
@@ -46,6 +50,11 @@ char *sg_disassemble(const uint32_t *words, size_t word_count);
 
 /* Fills workgroup size, bindings, uniform and push-constant sizes from SPIRV-Cross reflection. */
 bool sg_reflect(sg_module *module);
+
+/* Checks a reflected module against its pass row (cacaoi_pass_expect): workgroup size, and per
+ * binding slot the descriptor kind, image layering, storage format and access. Prints every
+ * mismatch naming the pass and the binding; false if there was one. */
+bool sg_check_row(const sg_module *module);
 
 /* Marks identical modules (dedup_of, module_index); returns the number of unique modules. */
 uint32_t sg_dedup(sg_module *modules, size_t count);

@@ -195,25 +195,25 @@ layout(std430, set = 0, binding = CACAO_BINDING_LOAD_COUNTER) buffer cacao_load_
 #endif
 
 #if CACAO_PASS == CACAO_PASS_PREPARE_DEPTHS
-layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT0, r16f) uniform writeonly image2DArray depths_out0;
+layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT0, CACAO_FORMAT_DEPTHS_OUT0) uniform writeonly image2DArray depths_out0;
 #if CACAO_VARIANT == CACAO_DEPTHS_MIPS
-layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT1, r16f) uniform writeonly image2DArray depths_out1;
-layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT2, r16f) uniform writeonly image2DArray depths_out2;
-layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT3, r16f) uniform writeonly image2DArray depths_out3;
+layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT1, CACAO_FORMAT_DEPTHS_OUT1) uniform writeonly image2DArray depths_out1;
+layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT2, CACAO_FORMAT_DEPTHS_OUT2) uniform writeonly image2DArray depths_out2;
+layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT3, CACAO_FORMAT_DEPTHS_OUT3) uniform writeonly image2DArray depths_out3;
 #endif
 #endif
 
 #if CACAO_PASS == CACAO_PASS_PREPARE_NORMALS
-layout(set = 0, binding = CACAO_BINDING_NORMALS_OUT, rgba8_snorm) uniform writeonly image2DArray normals_out;
+layout(set = 0, binding = CACAO_BINDING_NORMALS_OUT, CACAO_FORMAT_NORMALS_OUT) uniform writeonly image2DArray normals_out;
 #endif
 
 #if CACAO_PASS == CACAO_PASS_GENERATE || CACAO_PASS == CACAO_PASS_BLUR
-layout(set = 0, binding = CACAO_BINDING_SSAO_OUT, rg8) uniform writeonly image2DArray ssao_out;
+layout(set = 0, binding = CACAO_BINDING_SSAO_OUT, CACAO_FORMAT_SSAO_OUT) uniform writeonly image2DArray ssao_out;
 #endif
 
 #if CACAO_PASS == CACAO_PASS_IMPORTANCE || CACAO_PASS == CACAO_PASS_IMPORTANCE_A || \
     CACAO_PASS == CACAO_PASS_IMPORTANCE_B
-layout(set = 0, binding = CACAO_BINDING_IMPORTANCE_OUT, r8) uniform writeonly image2D importance_out;
+layout(set = 0, binding = CACAO_BINDING_IMPORTANCE_OUT, CACAO_FORMAT_IMPORTANCE_OUT) uniform writeonly image2D importance_out;
 #endif
 
 #if CACAO_PASS == CACAO_PASS_APPLY || CACAO_PASS == CACAO_PASS_UPSAMPLE
@@ -238,10 +238,16 @@ ivec2 full_res_pixel(ivec2 t, int slice)
 layout(local_size_x = CACAO_WG_PREPARE_X, local_size_y = CACAO_WG_PREPARE_Y) in;
 
 #if CACAO_VARIANT == CACAO_DEPTHS_MIPS
-/* Per-slice tiles of mips 0..2 of this group, fp32 (AMD does not re-quantise between levels). */
-shared float lds_mip0[4][64];
-shared float lds_mip1[4][16];
-shared float lds_mip2[4][4];
+/* Per-slice tiles of mips 0..2 of this group, fp32 (AMD does not re-quantise between levels).
+ * The group's tile is T x T slice texels; mips 1..3 of it are T/2, T/4 and T/8 = 1 texel wide, and
+ * the reduction below gives each step's texels to the first threads: written for T = 8. */
+#define PREP_T CACAO_WG_PREPARE_X
+#if CACAO_WG_PREPARE_X != 8 || CACAO_WG_PREPARE_Y != 8
+#error "prepare_depths.mips reduces an 8x8 workgroup tile to mips 1..3 (one texel at mip 3): rewrite its reduction for another CACAO_WG_PREPARE size"
+#endif
+shared float lds_mip0[4][PREP_T * PREP_T];
+shared float lds_mip1[4][(PREP_T / 2) * (PREP_T / 2)];
+shared float lds_mip2[4][(PREP_T / 4) * (PREP_T / 4)];
 
 /* Depth-aware average; F = -1 ([quirk] MIP-WEIGHT-PRECEDENCE kept). */
 float smart_average(float d0, float d1, float d2, float d3)
@@ -303,8 +309,9 @@ void main()
 
     { /* mip 1: 4 slices x 4x4 texels = 64 work items, one per thread */
         int k = li / 16, j = li % 16, a = j % 4, b = j / 4;
-        float m = smart_average(lds_mip0[k][(2 * b) * 8 + 2 * a], lds_mip0[k][(2 * b + 1) * 8 + 2 * a],
-                                lds_mip0[k][(2 * b) * 8 + 2 * a + 1], lds_mip0[k][(2 * b + 1) * 8 + 2 * a + 1]);
+        float m = smart_average(lds_mip0[k][(2 * b) * PREP_T + 2 * a], lds_mip0[k][(2 * b + 1) * PREP_T + 2 * a],
+                                lds_mip0[k][(2 * b) * PREP_T + 2 * a + 1],
+                                lds_mip0[k][(2 * b + 1) * PREP_T + 2 * a + 1]);
         lds_mip1[k][b * 4 + a] = m;
         store_mip(1, g * 4 + ivec2(a, b), k, m);
     }
@@ -1018,8 +1025,8 @@ layout(set = 0, binding = CACAO_BINDING_SRC_DEPTH) uniform sampler2D src_depth;
 #if CACAO_VARIANT == CACAO_SLICE_NORMALS_INPUT
 layout(set = 0, binding = CACAO_BINDING_SRC_NORMALS) uniform sampler2D src_normals;
 #endif
-layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT0, r32f) uniform writeonly image2D view_depth_out;
-layout(set = 0, binding = CACAO_BINDING_NORMALS_OUT, rgba8_snorm) uniform writeonly image2D view_normals_out;
+layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT0, CACAO_FORMAT_DEPTHS_OUT0) uniform writeonly image2D view_depth_out;
+layout(set = 0, binding = CACAO_BINDING_NORMALS_OUT, CACAO_FORMAT_NORMALS_OUT) uniform writeonly image2D view_normals_out;
 
 /* Raw depth -> view z, -1 for background (estimators.md section 1: the denominator keeps 1 - d
  * exact where d is near 1). */
@@ -1079,8 +1086,8 @@ void main()
 #if CACAO_PASS == CACAO_PASS_SLICE_MAIN || CACAO_PASS == CACAO_PASS_SLICE_DENOISE
 /* The full-resolution intermediates are read as storage images: lavapipe loads those at a fraction
  * of the cost of a sampled fetch (measured: the GTAO pass 35% faster at 64 reads). */
-layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT0, r32f) uniform readonly image2D view_depth;
-layout(set = 0, binding = CACAO_BINDING_NORMALS_OUT, rgba8_snorm) uniform readonly image2D view_normals;
+layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT0, CACAO_FORMAT_DEPTHS_OUT0) uniform readonly image2D view_depth;
+layout(set = 0, binding = CACAO_BINDING_NORMALS_OUT, CACAO_FORMAT_NORMALS_OUT) uniform readonly image2D view_normals;
 
 float fetch_view_z(ivec2 p) { return imageLoad(view_depth, p).r; }
 vec3 fetch_stored_normal(ivec2 p) { return imageLoad(view_normals, p).xyz; }
@@ -1091,7 +1098,7 @@ vec3 fetch_normal(ivec2 p, vec3 to_camera) { return slice_normal(fetch_stored_no
 layout(set = 0, binding = CACAO_BINDING_OUTPUT) uniform writeonly image2D output_image;
 void store_visibility(ivec2 p, float v) { imageStore(output_image, p, vec4(v, 0.0, 0.0, 0.0)); }
 #else
-layout(set = 0, binding = CACAO_BINDING_SSAO_OUT, r16f) uniform writeonly image2D ao_out;
+layout(set = 0, binding = CACAO_BINDING_SSAO_OUT, CACAO_FORMAT_SSAO_OUT) uniform writeonly image2D ao_out;
 void store_visibility(ivec2 p, float v) { imageStore(ao_out, p, vec4(v)); }
 #endif
 #endif
@@ -1304,7 +1311,7 @@ void main()
 #endif /* SLICE_MAIN */
 
 #if CACAO_PASS == CACAO_PASS_SLICE_DENOISE
-layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT1, r16f) uniform readonly image2D ao_in;
+layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT1, CACAO_FORMAT_DEPTHS_OUT1) uniform readonly image2D ao_in;
 
 /* 3x3 bilateral filter (estimators.md section 5): weight by the distance of the neighbour's point
  * from this pixel's tangent plane (relative to sigma z) and by the agreement of the normals. */

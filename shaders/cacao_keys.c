@@ -1,53 +1,21 @@
 /* cacao_keys.c - the permutation key space (see cacao_keys.h). */
 #include "cacao_keys.h"
 
+#include "cacao_passes.h"
+
 #include <stdio.h>
 #include <string.h>
 
-static const char *const pass_names[CACAO_PASS_COUNT] = {
-    "prepare_depths", "prepare_normals", "generate", "importance", "importance_a",
-    "importance_b",   "blur",            "apply",    "upsample",   "slice_prepare",
-    "slice_main",     "slice_denoise",
-};
-static const char *const depths_names[] = {"half", "full", "mips"};
-static const char *const normals_names[] = {"depth", "input"};
-static const char *const generate_names[] = {"q0", "q1", "q2", "q3", "q3base"};
-static const char *const output_names[] = {"smart", "nonsmart", "half"};
-static const char *const slice_main_names[] = {"gtao", "bitmask", "gtao_direct", "bitmask_direct"};
-static const char *const denoise_names[] = {"intermediate", "final"};
 static const char *const resolution_names[] = {"native", "downsampled"};
 static const char *const precision_names[] = {"fp32", "fp16"};
 
-/* Axis extents per pass: number of variants, whether resolution / blur / precision apply. */
-typedef struct pass_axes {
-    uint8_t variants;
-    bool has_resolution;
-    bool has_blur;
-    bool has_precision;
-} pass_axes;
-
-static const pass_axes axes[CACAO_PASS_COUNT] = {
-    [CACAO_PASS_PREPARE_DEPTHS] = {3, true, false, false},
-    [CACAO_PASS_PREPARE_NORMALS] = {2, true, false, false},
-    [CACAO_PASS_GENERATE] = {5, false, false, false},
-    [CACAO_PASS_IMPORTANCE] = {1, false, false, false},
-    [CACAO_PASS_IMPORTANCE_A] = {1, false, false, false},
-    [CACAO_PASS_IMPORTANCE_B] = {1, false, false, false},
-    [CACAO_PASS_BLUR] = {1, false, true, true},
-    [CACAO_PASS_APPLY] = {3, false, false, true},
-    [CACAO_PASS_UPSAMPLE] = {3, false, false, true},
-    [CACAO_PASS_SLICE_PREPARE] = {2, false, false, false},
-    [CACAO_PASS_SLICE_MAIN] = {4, false, false, false},
-    [CACAO_PASS_SLICE_DENOISE] = {2, false, false, false},
-};
-
 const char *cacaoi_pass_name(unsigned pass) {
-    return pass < CACAO_PASS_COUNT ? pass_names[pass] : NULL;
+    return pass < CACAO_PASS_COUNT ? cacaoi_passes[pass].name : NULL;
 }
 
 bool cacaoi_key_is_valid(const cacao_key *key) {
     if (!key || key->pass >= CACAO_PASS_COUNT) return false;
-    const pass_axes *a = &axes[key->pass];
+    const cacaoi_pass_row *a = &cacaoi_passes[key->pass];
     if (key->variant >= a->variants) return false;
     if (key->downsampled > (a->has_resolution ? 1 : 0)) return false;
     if (a->has_blur ? (key->blur_passes < 1 || key->blur_passes > CACAO_KEY_MAX_BLUR_PASSES)
@@ -59,7 +27,7 @@ bool cacaoi_key_is_valid(const cacao_key *key) {
 size_t cacaoi_key_list(cacao_key *out, size_t cap) {
     size_t n = 0;
     for (unsigned pass = 0; pass < CACAO_PASS_COUNT; ++pass) {
-        const pass_axes *a = &axes[pass];
+        const cacaoi_pass_row *a = &cacaoi_passes[pass];
         for (unsigned v = 0; v < a->variants; ++v)
             for (unsigned ds = 0; ds <= (a->has_resolution ? 1u : 0u); ++ds)
                 for (unsigned b = a->has_blur ? 1u : 0u;
@@ -82,26 +50,12 @@ int cacaoi_key_compare(const cacao_key *a, const cacao_key *b) {
     return 0;
 }
 
-static const char *variant_name(const cacao_key *key) {
-    switch (key->pass) {
-    case CACAO_PASS_PREPARE_DEPTHS: return depths_names[key->variant];
-    case CACAO_PASS_PREPARE_NORMALS:
-    case CACAO_PASS_SLICE_PREPARE: return normals_names[key->variant];
-    case CACAO_PASS_SLICE_MAIN: return slice_main_names[key->variant];
-    case CACAO_PASS_SLICE_DENOISE: return denoise_names[key->variant];
-    case CACAO_PASS_GENERATE: return generate_names[key->variant];
-    case CACAO_PASS_APPLY:
-    case CACAO_PASS_UPSAMPLE: return output_names[key->variant];
-    default: return NULL;
-    }
-}
-
 size_t cacaoi_key_name(const cacao_key *key, char *buf, size_t buf_size) {
     if (!cacaoi_key_is_valid(key) || !buf || buf_size == 0) return 0;
-    const pass_axes *a = &axes[key->pass];
+    const cacaoi_pass_row *a = &cacaoi_passes[key->pass];
     char tmp[CACAO_KEY_NAME_MAX];
-    int len = snprintf(tmp, sizeof tmp, "%s", pass_names[key->pass]);
-    const char *variant = variant_name(key);
+    int len = snprintf(tmp, sizeof tmp, "%s", a->name);
+    const char *variant = a->variant_names[key->variant];
     if (variant) len += snprintf(tmp + len, sizeof tmp - (size_t)len, ".%s", variant);
     if (a->has_blur) len += snprintf(tmp + len, sizeof tmp - (size_t)len, ".%u", key->blur_passes);
     if (a->has_resolution)
@@ -128,12 +82,20 @@ bool cacaoi_key_parse(const char *name, cacao_key *out) {
 }
 
 size_t cacaoi_key_defines(const cacao_key *key, char *buf, size_t buf_size) {
-    if (!cacaoi_key_is_valid(key) || !buf) return 0;
+    cacaoi_module_expect expect;
+    if (!cacaoi_pass_expect(key, &expect) || !buf) return 0;
     int len = snprintf(buf, buf_size,
                        "#define CACAO_GLSL 1\n#define CACAO_PASS %u\n#define CACAO_VARIANT %u\n"
                        "#define CACAO_DOWNSAMPLED %u\n#define CACAO_BLUR_PASSES %u\n"
                        "#define CACAO_FP16 %u\n",
                        key->pass, key->variant, key->downsampled, key->blur_passes, key->fp16);
+    /* The format qualifier of each storage image the pass row binds, from its resource's row. */
+    for (unsigned slot = 0; len > 0 && (size_t)len < buf_size && slot < CACAO_BINDING_COUNT; ++slot) {
+        const char *format = cacaoi_resources[expect.resource[slot]].glsl_format;
+        if (expect.descriptor[slot] != CACAO_RESOURCE_STORAGE_IMAGE || !*format) continue;
+        len += snprintf(buf + len, buf_size - (size_t)len, "#define CACAO_FORMAT_%s %s\n", cacaoi_slots[slot].name,
+                        format);
+    }
     return (len > 0 && (size_t)len < buf_size) ? (size_t)len : 0;
 }
 
@@ -161,38 +123,16 @@ unsigned cacaoi_slice_count_for_quality(unsigned quality) {
     return quality == CACAO_KEY_QUALITY_LOWEST ? 2 : 4;
 }
 
-/* The horizon-slice estimators: full resolution, fp32, normals prepared once, denoise passes. */
-static size_t slice_keys_for_config(const cacao_key_config *c, cacao_key out[CACAO_KEY_CONFIG_MAX]) {
-    if (c->downsampled) return 0; /* full resolution only */
-    size_t n = 0;
-    const bool direct = c->blur_passes == 0;
-    const unsigned main_variant = (c->estimator == CACAO_KEY_ESTIMATOR_GTAO ? CACAO_SLICE_GTAO : CACAO_SLICE_BITMASK) +
-                                  (direct ? CACAO_SLICE_GTAO_DIRECT : 0);
-    out[n++] = (cacao_key){CACAO_PASS_SLICE_PREPARE,
-                           c->normals_from_input ? CACAO_SLICE_NORMALS_INPUT : CACAO_SLICE_NORMALS_DEPTH, 0, 0, 0};
-    out[n++] = (cacao_key){CACAO_PASS_SLICE_MAIN, (uint8_t)main_variant, 0, 0, 0};
-    if (c->blur_passes > 1) out[n++] = (cacao_key){CACAO_PASS_SLICE_DENOISE, CACAO_DENOISE_INTERMEDIATE, 0, 0, 0};
-    if (c->blur_passes > 0) out[n++] = (cacao_key){CACAO_PASS_SLICE_DENOISE, CACAO_DENOISE_FINAL, 0, 0, 0};
-    return n;
-}
-
+/* The keys of the configuration's steps (cacaoi_sequence), each once, in first-dispatch order. */
 size_t cacaoi_keys_for_config(const cacao_key_config *c, cacao_key out[CACAO_KEY_CONFIG_MAX]) {
-    if (c->estimator != CACAO_KEY_ESTIMATOR_CACAO) return slice_keys_for_config(c, out);
+    cacaoi_step steps[CACAOI_SEQUENCE_MAX];
+    const size_t count = cacaoi_sequence(c, steps);
     size_t n = 0;
-    const uint8_t ds = c->downsampled ? 1 : 0, fp = c->fp16 ? 1 : 0;
-    out[n++] = (cacao_key){CACAO_PASS_PREPARE_DEPTHS, (uint8_t)cacaoi_depths_variant_for_quality(c->quality), ds, 0, 0};
-    out[n++] = (cacao_key){CACAO_PASS_PREPARE_NORMALS, c->normals_from_input ? 1 : 0, ds, 0, 0};
-    if (c->quality == CACAO_KEY_QUALITY_HIGHEST) {
-        out[n++] = (cacao_key){CACAO_PASS_GENERATE, CACAO_GENERATE_Q3_BASE, 0, 0, 0};
-        out[n++] = (cacao_key){CACAO_PASS_IMPORTANCE, 0, 0, 0, 0};
-        out[n++] = (cacao_key){CACAO_PASS_IMPORTANCE_A, 0, 0, 0, 0};
-        out[n++] = (cacao_key){CACAO_PASS_IMPORTANCE_B, 0, 0, 0, 0};
+    for (size_t i = 0; i < count; ++i) {
+        size_t j = 0;
+        while (j < n && cacaoi_key_compare(&out[j], &steps[i].key) != 0) ++j;
+        if (j == n) out[n++] = steps[i].key;
     }
-    out[n++] = (cacao_key){CACAO_PASS_GENERATE, (uint8_t)cacaoi_generate_variant_for_quality(c->quality), 0, 0, 0};
-    if (c->blur_passes > 0)
-        out[n++] = (cacao_key){CACAO_PASS_BLUR, 0, 0, (uint8_t)c->blur_passes, fp};
-    out[n++] = (cacao_key){c->downsampled ? CACAO_PASS_UPSAMPLE : CACAO_PASS_APPLY,
-                           (uint8_t)cacaoi_output_variant_for_quality(c->quality, c->downsampled), 0, 0, fp};
     return n;
 }
 

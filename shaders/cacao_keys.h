@@ -42,6 +42,9 @@ typedef struct cacao_key {
 /* Longest key name, including the terminating zero. */
 #define CACAO_KEY_NAME_MAX 48
 
+/* Longest text cacaoi_key_defines writes, including the terminating zero. */
+#define CACAO_KEY_DEFINES_MAX 1024
+
 /* Writes every valid key, in canonical (sorted) order, into out[0..cap) and returns the total
  * number of valid keys (which may exceed cap; pass out = NULL, cap = 0 to count). */
 size_t cacaoi_key_list(cacao_key *out, size_t cap);

@@ -1,8 +1,9 @@
 /* cacao_shared.h - the one header shared by the C runtime, the generator and the GLSL source.
  *
  * Everything whose value or layout must agree between host and shader lives here exactly once:
- * the constant-buffer block, binding numbers, workgroup sizes, intermediate formats and the
- * numeric tables of the algorithm (spec: constants.md).
+ * the constant-buffer block, binding numbers, workgroup sizes and the numeric tables of the
+ * algorithm (spec: constants.md). Which pass binds what, in which format, is the pass table's
+ * (cacao_passes.h).
  *
  * It is valid C11 and valid GLSL 4.50: the GLSL side is selected by CACAO_GLSL, which the
  * generator defines in front of every shader. Keep it to #defines, the constants block and plain
@@ -104,11 +105,8 @@
 #define CACAO_WG_SLICE_X 8               /* slice prepare, main and denoise: one pixel per thread */
 #define CACAO_WG_SLICE_Y 8
 
-/* ---- Intermediate formats (VkFormat values, so they are plain numbers in GLSL too) ---- */
-#define CACAO_FORMAT_DEPTHS 76           /* VK_FORMAT_R16_SFLOAT      (GLSL r16f) */
-#define CACAO_FORMAT_NORMALS 38          /* VK_FORMAT_R8G8B8A8_SNORM  (GLSL rgba8_snorm) */
-#define CACAO_FORMAT_SSAO 16             /* VK_FORMAT_R8G8_UNORM      (GLSL rg8) */
-#define CACAO_FORMAT_IMPORTANCE 9        /* VK_FORMAT_R8_UNORM        (GLSL r8) */
+/* ---- Depth mips. Intermediate formats live in the resource rows (cacao_passes.c); the shader
+ * gets each storage image's qualifier as CACAO_FORMAT_<binding> from the generator. ---- */
 #define CACAO_DEPTH_MIP_COUNT 4
 /* Depth mip levels for a slice whose larger side is n: the full chain, at most
  * CACAO_DEPTH_MIP_COUNT (Vulkan allows floor(log2(n)) + 1 levels; slices narrower than 8 texels,

@@ -9,13 +9,7 @@
 #include <stdint.h>
 
 #include "cacao_keys.h"
-
-/* Descriptor kinds a binding can have (0 = the module does not use that binding). */
-#define CACAO_RESOURCE_NONE 0
-#define CACAO_RESOURCE_UNIFORM_BUFFER 1
-#define CACAO_RESOURCE_STORAGE_BUFFER 2
-#define CACAO_RESOURCE_SAMPLED_IMAGE 3 /* combined image sampler */
-#define CACAO_RESOURCE_STORAGE_IMAGE 4
+#include "cacao_passes.h"
 
 typedef struct cacao_module {
     const uint32_t *words; /* SPIR-V */

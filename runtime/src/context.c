@@ -30,16 +30,14 @@ static cacao_result vk_fail(cacao_context *ctx, VkResult vr, const char *what) {
     return cacaoi_fail(ctx, r, "%s failed (VkResult %d)", what, (int)vr);
 }
 
-/* Descriptor type of each binding of the one set layout. */
+/* Descriptor type of each binding of the one set layout (its slot row). */
 VkDescriptorType cacaoi_binding_type(unsigned binding) {
-    if (binding == CACAO_BINDING_CONSTANTS) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    if (binding == CACAO_BINDING_LOAD_COUNTER) return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    if (binding < CACAO_BINDING_DEPTHS_OUT0) return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-}
-
-static bool binding_is_linear(unsigned binding) {
-    return binding == CACAO_BINDING_SSAO_IN || binding == CACAO_BINDING_IMPORTANCE_IN;
+    switch (cacaoi_slots[binding].descriptor) {
+    case CACAO_RESOURCE_UNIFORM_BUFFER: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case CACAO_RESOURCE_STORAGE_BUFFER: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    case CACAO_RESOURCE_SAMPLED_IMAGE: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    default: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    }
 }
 
 static cacao_result create_layouts(cacao_context *ctx) {
@@ -68,7 +66,7 @@ static cacao_result create_layouts(cacao_context *ctx) {
             .descriptorCount = 1,
             .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT,
             .pImmutableSamplers = type != VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER ? NULL
-                                  : binding_is_linear(b)                            ? &ctx->linear_sampler
+                                  : cacaoi_slots[b].sampler == CACAOI_SAMPLER_LINEAR ? &ctx->linear_sampler
                                                                                     : &ctx->nearest_sampler,
         };
     }
@@ -248,9 +246,8 @@ static cacao_result check_format(cacao_context *ctx, VkFormat format, bool linea
 
 static cacao_result create_image(cacao_context *ctx, const cacao_plan_image *pi) {
     cacao_intermediate *im = &ctx->images[pi->resource];
-    const bool linear = pi->resource == CACAO_RES_SSAO_PING || pi->resource == CACAO_RES_SSAO_PONG ||
-                        pi->resource == CACAO_RES_IMPORTANCE || pi->resource == CACAO_RES_IMPORTANCE_PONG;
-    cacao_result r = check_format(ctx, pi->format, linear, cacao_resource_name(pi->resource));
+    const cacaoi_resource_row *row = &cacaoi_resources[pi->resource];
+    cacao_result r = check_format(ctx, pi->format, row->filtered, row->name);
     if (r != CACAO_SUCCESS) return r;
     const VkImageCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
@@ -275,8 +272,7 @@ static cacao_result create_image(cacao_context *ctx, const cacao_plan_image *pi)
     vr = vkBindImageMemory(ctx->device, im->image, im->memory, 0);
     if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkBindImageMemory");
     /* CACAO's deinterleaved intermediates are arrays of slices; the rest are plain 2D images. */
-    const bool array = pi->resource == CACAO_RES_DEPTHS || pi->resource == CACAO_RES_NORMALS ||
-                       pi->resource == CACAO_RES_SSAO_PING || pi->resource == CACAO_RES_SSAO_PONG;
+    const bool array = row->layered;
     VkImageViewCreateInfo view = {
         .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
         .image = im->image,

@@ -4,16 +4,11 @@
  * it. */
 #include <string.h>
 
+#include "cacao_passes.h"
 #include "internal.h"
 
-static const char *const resource_names[CACAO_RES_COUNT] = {
-    "depth_input", "normals_input", "output",    "constants",  "load_counter",   "depths",
-    "normals",     "ssao_ping",     "ssao_pong", "importance", "importance_pong", "view_depth",
-    "view_normals", "ao_raw",       "ao_pong",
-};
-
 const char *cacao_resource_name(cacao_resource resource) {
-    return (unsigned)resource < CACAO_RES_COUNT ? resource_names[resource] : "unknown";
+    return (unsigned)resource < CACAO_RES_COUNT ? cacaoi_resources[resource].name : "unknown";
 }
 
 static uint32_t div_up(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
@@ -30,26 +25,6 @@ typedef struct plan_builder {
     cacao_plan *plan;
     uint32_t read_since_barrier, written_since_barrier;
 } plan_builder;
-
-static cacao_plan_step *add_step(plan_builder *b, const cacao_key *key, uint32_t gx, uint32_t gy, uint32_t gz) {
-    cacao_plan_step *s = &b->plan->steps[b->plan->step_count++];
-    memset(s, 0, sizeof *s);
-    cacaoi_key_name(key, s->key_name, sizeof s->key_name);
-    s->key[0] = key->pass;
-    s->key[1] = key->variant;
-    s->key[2] = key->downsampled;
-    s->key[3] = key->blur_passes;
-    s->key[4] = key->fp16;
-    s->dispatch[0] = gx;
-    s->dispatch[1] = gy;
-    s->dispatch[2] = gz;
-    s->bindings[s->binding_count++] = (cacao_plan_binding){CACAO_BINDING_CONSTANTS, CACAO_RES_CONSTANTS, 0, 0};
-    return s;
-}
-
-static void bind(cacao_plan_step *s, unsigned binding, cacao_resource res, unsigned mip, bool write) {
-    s->bindings[s->binding_count++] = (cacao_plan_binding){(uint8_t)binding, (uint8_t)res, (uint8_t)mip, write};
-}
 
 /* Decides whether the step needs a barrier before it (read-after-write, write-after-read or
  * write-after-write on any intermediate since the last barrier), then records its accesses. */
@@ -74,84 +49,54 @@ static void finish_step(plan_builder *b, cacao_plan_step *s) {
     b->written_since_barrier |= writes;
 }
 
-/* One row per intermediate image: its format, the format's name and bytes per texel. */
-#define INTERMEDIATE(res, fmt, bytes) [res] = {VK_FORMAT_##fmt, #fmt, bytes}
-static const struct {
-    VkFormat format;
-    const char *format_name;
-    uint32_t texel_bytes;
-} intermediates[CACAO_RES_COUNT] = {
-    INTERMEDIATE(CACAO_RES_DEPTHS, R16_SFLOAT, 2),    INTERMEDIATE(CACAO_RES_NORMALS, R8G8B8A8_SNORM, 4),
-    INTERMEDIATE(CACAO_RES_SSAO_PING, R8G8_UNORM, 2), INTERMEDIATE(CACAO_RES_SSAO_PONG, R8G8_UNORM, 2),
-    INTERMEDIATE(CACAO_RES_IMPORTANCE, R8_UNORM, 1),  INTERMEDIATE(CACAO_RES_IMPORTANCE_PONG, R8_UNORM, 1),
-    INTERMEDIATE(CACAO_RES_VIEW_DEPTH, R32_SFLOAT, 4),  INTERMEDIATE(CACAO_RES_VIEW_NORMALS, R8G8B8A8_SNORM, 4),
-    INTERMEDIATE(CACAO_RES_AO_RAW, R16_SFLOAT, 2),    INTERMEDIATE(CACAO_RES_AO_PONG, R16_SFLOAT, 2),
-};
-#undef INTERMEDIATE
+/* The dispatch grid of a step (the pass row's grid rule). */
+static void dispatch_size(const cacao_plan *p, const cacao_key *key, uint32_t out[3]) {
+    const cacaoi_pass_row *row = &cacaoi_passes[key->pass];
+    const uint32_t wx = row->workgroup[0], wy = row->workgroup[1];
+    out[2] = 1;
+    switch (row->grid) {
+    case CACAOI_GRID_SLICE_LAYERS: out[2] = p->slice_count; /* fall through */
+    case CACAOI_GRID_SLICE:
+        out[0] = div_up(p->slice_width, wx);
+        out[1] = div_up(p->slice_height, wy);
+        return;
+    case CACAOI_GRID_IMPORTANCE:
+        out[0] = div_up(p->importance_width, wx);
+        out[1] = div_up(p->importance_height, wy);
+        return;
+    case CACAOI_GRID_BLUR:
+        out[0] = div_up(p->slice_width, CACAO_BLUR_OUT_X(key->blur_passes));
+        out[1] = div_up(p->slice_height, CACAO_BLUR_OUT_Y(key->blur_passes));
+        out[2] = p->slice_count;
+        return;
+    case CACAOI_GRID_UPSAMPLE:
+        out[0] = div_up(p->width, 2 * CACAO_UPSAMPLE_SPAN_X);
+        out[1] = div_up(p->height, 2 * CACAO_UPSAMPLE_SPAN_Y);
+        return;
+    default: /* CACAOI_GRID_OUTPUT */
+        out[0] = div_up(p->width, wx);
+        out[1] = div_up(p->height, wy);
+        return;
+    }
+}
 
-static void add_image(cacao_plan *p, cacao_resource res, uint32_t w, uint32_t h, uint32_t layers, uint32_t mips) {
-    const VkFormat format = intermediates[res].format;
-    const uint32_t texel_bytes = intermediates[res].texel_bytes;
+/* An intermediate sized by its row's rule, with the mips the steps bind (clamped to the chain the
+ * slice has: CACAO_DEPTH_MIP_LEVELS). */
+static void add_image(cacao_plan *p, cacao_resource res, uint32_t mips_bound) {
+    const cacaoi_resource_row *row = &cacaoi_resources[res];
+    uint32_t w = p->width, h = p->height, layers = 1;
+    if (row->size == CACAOI_SIZE_SLICE) w = p->slice_width, h = p->slice_height;
+    if (row->size == CACAOI_SIZE_IMPORTANCE) w = p->importance_width, h = p->importance_height;
+    if (row->layered) layers = p->slice_count;
+    const uint32_t chain = CACAO_DEPTH_MIP_LEVELS(w > h ? w : h);
+    const uint32_t mips = mips_bound < chain ? mips_bound : chain;
     uint64_t bytes = 0;
     for (uint32_t m = 0; m < mips; ++m) {
         uint64_t mw = w >> m ? w >> m : 1, mh = h >> m ? h >> m : 1;
-        bytes += mw * mh * layers * texel_bytes;
+        bytes += mw * mh * layers * row->texel_bytes;
     }
-    p->images[p->image_count++] = (cacao_plan_image){res, format, w, h, layers, mips, bytes};
+    p->images[p->image_count++] = (cacao_plan_image){res, row->format, w, h, layers, mips, bytes};
     p->total_bytes += bytes;
-}
-
-/* The horizon-slice estimators (spec: estimators.md): prepare view z and normals at full
- * resolution, run the estimator per pixel, then the denoise passes (the last one writes the
- * output; with no denoise the estimator writes it). */
-static void build_slice_plan(cacao_plan *plan, unsigned blur) {
-    const cacao_settings *s = &plan->settings;
-    const uint32_t w = plan->width, h = plan->height;
-    plan->slice_width = w;
-    plan->slice_height = h;
-    plan->slice_count = 1;
-    add_image(plan, CACAO_RES_VIEW_DEPTH, w, h, 1, 1);
-    add_image(plan, CACAO_RES_VIEW_NORMALS, w, h, 1, 1);
-    if (blur > 0) add_image(plan, CACAO_RES_AO_RAW, w, h, 1, 1);
-    if (blur > 1) add_image(plan, CACAO_RES_AO_PONG, w, h, 1, 1);
-    plan->total_bytes += sizeof(cacao_constants);
-
-    plan_builder b = {plan, 0, 0};
-    const uint32_t gx = div_up(w, CACAO_WG_SLICE_X), gy = div_up(h, CACAO_WG_SLICE_Y);
-    cacao_key key = {CACAO_PASS_SLICE_PREPARE,
-                     s->generate_normals ? CACAO_SLICE_NORMALS_DEPTH : CACAO_SLICE_NORMALS_INPUT, 0, 0, 0};
-    cacao_plan_step *st = add_step(&b, &key, gx, gy, 1);
-    bind(st, CACAO_BINDING_SRC_DEPTH, CACAO_RES_DEPTH_INPUT, 0, false);
-    if (!s->generate_normals) bind(st, CACAO_BINDING_SRC_NORMALS, CACAO_RES_NORMALS_INPUT, 0, false);
-    bind(st, CACAO_BINDING_DEPTHS_OUT0, CACAO_RES_VIEW_DEPTH, 0, true);
-    bind(st, CACAO_BINDING_NORMALS_OUT, CACAO_RES_VIEW_NORMALS, 0, true);
-    finish_step(&b, st);
-
-    const bool gtao = s->estimator == CACAO_ESTIMATOR_GTAO;
-    key = (cacao_key){CACAO_PASS_SLICE_MAIN,
-                      (uint8_t)((gtao ? CACAO_SLICE_GTAO : CACAO_SLICE_BITMASK) + (blur == 0 ? CACAO_SLICE_GTAO_DIRECT : 0)),
-                      0, 0, 0};
-    st = add_step(&b, &key, gx, gy, 1);
-    bind(st, CACAO_BINDING_DEPTHS_OUT0, CACAO_RES_VIEW_DEPTH, 0, false);
-    bind(st, CACAO_BINDING_NORMALS_OUT, CACAO_RES_VIEW_NORMALS, 0, false);
-    if (blur == 0) bind(st, CACAO_BINDING_OUTPUT, CACAO_RES_OUTPUT, 0, true);
-    else bind(st, CACAO_BINDING_SSAO_OUT, CACAO_RES_AO_RAW, 0, true);
-    finish_step(&b, st);
-
-    cacao_resource ao = CACAO_RES_AO_RAW;
-    for (unsigned pass = 1; pass <= blur; ++pass) {
-        const bool last = pass == blur;
-        key = (cacao_key){CACAO_PASS_SLICE_DENOISE, last ? CACAO_DENOISE_FINAL : CACAO_DENOISE_INTERMEDIATE, 0, 0, 0};
-        st = add_step(&b, &key, gx, gy, 1);
-        bind(st, CACAO_BINDING_DEPTHS_OUT1, ao, 0, false);
-        bind(st, CACAO_BINDING_DEPTHS_OUT0, CACAO_RES_VIEW_DEPTH, 0, false);
-        bind(st, CACAO_BINDING_NORMALS_OUT, CACAO_RES_VIEW_NORMALS, 0, false);
-        const cacao_resource next = ao == CACAO_RES_AO_RAW ? CACAO_RES_AO_PONG : CACAO_RES_AO_RAW;
-        if (last) bind(st, CACAO_BINDING_OUTPUT, CACAO_RES_OUTPUT, 0, true);
-        else bind(st, CACAO_BINDING_SSAO_OUT, next, 0, true);
-        finish_step(&b, st);
-        ao = next;
-    }
 }
 
 cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, uint32_t height,
@@ -172,126 +117,71 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     plan->settings = s;
     plan->width = width;
     plan->height = height;
-    const unsigned quality = cacaoi_key_quality(s.quality);
-    const bool ds = s.downsample, highest = quality == CACAO_KEY_QUALITY_HIGHEST;
-    const uint8_t fp16 = s.precision == CACAO_PRECISION_FP16;
-    const uint32_t sw = ds ? div_up(div_up(width, 2), 2) : div_up(width, 2);
-    const uint32_t sh = ds ? div_up(div_up(height, 2), 2) : div_up(height, 2);
-    const uint32_t iw = div_up(sw, 2), ih = div_up(sh, 2);
-    const uint32_t slices = cacaoi_slice_count_for_quality(quality);
-    const unsigned depths_variant = cacaoi_depths_variant_for_quality(quality);
-    const uint32_t mips = depths_variant == CACAO_DEPTHS_MIPS ? CACAO_DEPTH_MIP_LEVELS(sw > sh ? sw : sh) : 1;
-    const unsigned blur = s.blur_pass_count == CACAO_BLUR_NONE ? 0 : (unsigned)s.blur_pass_count;
-    if (s.estimator != CACAO_ESTIMATOR_CACAO) {
-        build_slice_plan(plan, blur);
-        return CACAO_SUCCESS;
+    const cacao_key_config config = {
+        .quality = cacaoi_key_quality(s.quality),
+        .downsampled = s.downsample,
+        .fp16 = s.precision == CACAO_PRECISION_FP16,
+        .normals_from_input = !s.generate_normals,
+        .blur_passes = s.blur_pass_count == CACAO_BLUR_NONE ? 0 : (unsigned)s.blur_pass_count,
+        .estimator = (unsigned)s.estimator - 1u,
+    };
+    if (s.estimator != CACAO_ESTIMATOR_CACAO) { /* one full-resolution "slice" */
+        plan->slice_width = width;
+        plan->slice_height = height;
+        plan->slice_count = 1;
+    } else {
+        plan->slice_width = s.downsample ? div_up(div_up(width, 2), 2) : div_up(width, 2);
+        plan->slice_height = s.downsample ? div_up(div_up(height, 2), 2) : div_up(height, 2);
+        plan->importance_width = div_up(plan->slice_width, 2);
+        plan->importance_height = div_up(plan->slice_height, 2);
+        plan->slice_count = cacaoi_slice_count_for_quality(config.quality);
     }
-    plan->slice_width = sw;
-    plan->slice_height = sh;
-    plan->importance_width = iw;
-    plan->importance_height = ih;
-    plan->slice_count = slices;
-    plan->uses_load_counter = highest;
 
-    /* Intermediates: only what the steps below touch. */
-    add_image(plan, CACAO_RES_DEPTHS, sw, sh, slices, mips);
-    add_image(plan, CACAO_RES_NORMALS, sw, sh, slices, 1);
-    add_image(plan, CACAO_RES_SSAO_PING, sw, sh, slices, 1);
-    if (blur > 0 || highest) add_image(plan, CACAO_RES_SSAO_PONG, sw, sh, slices, 1);
-    if (highest) {
-        add_image(plan, CACAO_RES_IMPORTANCE, iw, ih, 1, 1);
-        add_image(plan, CACAO_RES_IMPORTANCE_PONG, iw, ih, 1, 1);
-        plan->total_bytes += sizeof(uint32_t); /* load counter */
+    cacaoi_step steps[CACAOI_SEQUENCE_MAX];
+    const size_t count = cacaoi_sequence(&config, steps);
+    uint32_t mips[CACAO_RES_COUNT] = {0}; /* levels bound per resource, 0 = untouched */
+    for (size_t i = 0; i < count; ++i) {
+        cacaoi_pass_binding bindings[CACAOI_PASS_MAX_BINDINGS];
+        const size_t n = cacaoi_step_bindings(&steps[i], bindings);
+        for (size_t j = 0; j < n; ++j)
+            if (mips[bindings[j].resource] < bindings[j].mip + 1u) mips[bindings[j].resource] = bindings[j].mip + 1u;
     }
-    plan->total_bytes += sizeof(cacao_constants);
+
+    /* Intermediates: only those the steps touch, in resource order; then the buffers. */
+    for (unsigned res = 0; res < CACAO_RES_COUNT; ++res) {
+        const uint8_t size = cacaoi_resources[res].size;
+        if (mips[res] && size != CACAOI_SIZE_CALLER && size != CACAOI_SIZE_BUFFER) add_image(plan, res, mips[res]);
+    }
+    plan->uses_load_counter = mips[CACAO_RES_LOAD_COUNTER] != 0;
+    for (unsigned res = 0; res < CACAO_RES_COUNT; ++res)
+        if (mips[res] && cacaoi_resources[res].size == CACAOI_SIZE_BUFFER)
+            plan->total_bytes += cacaoi_resources[res].buffer_bytes;
 
     plan_builder b = {plan, 0, 0};
-    const uint32_t pgx = div_up(sw, CACAO_WG_PREPARE_X), pgy = div_up(sh, CACAO_WG_PREPARE_Y);
-    cacao_key key = {CACAO_PASS_PREPARE_DEPTHS, (uint8_t)depths_variant, ds, 0, 0};
-    cacao_plan_step *st = add_step(&b, &key, pgx, pgy, 1);
-    bind(st, CACAO_BINDING_SRC_DEPTH, CACAO_RES_DEPTH_INPUT, 0, false);
-    /* The MIPS variant writes every level's binding; a small slice's missing levels alias its last
-     * level, which the shader leaves alone there (CACAO_DEPTH_MIP_LEVELS). */
-    const uint32_t outputs = depths_variant == CACAO_DEPTHS_MIPS ? CACAO_DEPTH_MIP_COUNT : 1;
-    for (uint32_t m = 0; m < outputs; ++m)
-        bind(st, CACAO_BINDING_DEPTHS_OUT0 + m, CACAO_RES_DEPTHS, m < mips ? m : mips - 1, true);
-    finish_step(&b, st);
-
-    key = (cacao_key){CACAO_PASS_PREPARE_NORMALS, s.generate_normals ? 0 : 1, ds, 0, 0};
-    st = add_step(&b, &key, pgx, pgy, 1);
-    if (s.generate_normals)
-        bind(st, CACAO_BINDING_SRC_DEPTH, CACAO_RES_DEPTH_INPUT, 0, false);
-    else
-        bind(st, CACAO_BINDING_SRC_NORMALS, CACAO_RES_NORMALS_INPUT, 0, false);
-    bind(st, CACAO_BINDING_NORMALS_OUT, CACAO_RES_NORMALS, 0, true);
-    finish_step(&b, st);
-
-    const uint32_t ggx = div_up(sw, CACAO_WG_GENERATE_X), ggy = div_up(sh, CACAO_WG_GENERATE_Y);
-    if (highest) {
-        key = (cacao_key){CACAO_PASS_GENERATE, CACAO_GENERATE_Q3_BASE, 0, 0, 0};
-        st = add_step(&b, &key, ggx, ggy, slices);
-        bind(st, CACAO_BINDING_DEPTHS, CACAO_RES_DEPTHS, 0, false);
-        bind(st, CACAO_BINDING_NORMALS, CACAO_RES_NORMALS, 0, false);
-        bind(st, CACAO_BINDING_SSAO_OUT, CACAO_RES_SSAO_PONG, 0, true);
-        finish_step(&b, st);
-
-        const uint32_t igx = div_up(iw, CACAO_WG_IMPORTANCE_X), igy = div_up(ih, CACAO_WG_IMPORTANCE_Y);
-        key = (cacao_key){CACAO_PASS_IMPORTANCE, 0, 0, 0, 0};
-        st = add_step(&b, &key, igx, igy, 1);
-        bind(st, CACAO_BINDING_SSAO_IN, CACAO_RES_SSAO_PONG, 0, false);
-        bind(st, CACAO_BINDING_IMPORTANCE_OUT, CACAO_RES_IMPORTANCE, 0, true);
-        finish_step(&b, st);
-
-        key = (cacao_key){CACAO_PASS_IMPORTANCE_A, 0, 0, 0, 0};
-        st = add_step(&b, &key, igx, igy, 1);
-        bind(st, CACAO_BINDING_IMPORTANCE_IN, CACAO_RES_IMPORTANCE, 0, false);
-        bind(st, CACAO_BINDING_IMPORTANCE_OUT, CACAO_RES_IMPORTANCE_PONG, 0, true);
-        finish_step(&b, st);
-
-        key = (cacao_key){CACAO_PASS_IMPORTANCE_B, 0, 0, 0, 0};
-        st = add_step(&b, &key, igx, igy, 1);
-        bind(st, CACAO_BINDING_IMPORTANCE_IN, CACAO_RES_IMPORTANCE_PONG, 0, false);
-        bind(st, CACAO_BINDING_IMPORTANCE_OUT, CACAO_RES_IMPORTANCE, 0, true);
-        bind(st, CACAO_BINDING_LOAD_COUNTER, CACAO_RES_LOAD_COUNTER, 0, true);
+    for (size_t i = 0; i < count; ++i) {
+        cacao_plan_step *st = &plan->steps[plan->step_count++];
+        const cacao_key *key = &steps[i].key;
+        cacaoi_key_name(key, st->key_name, sizeof st->key_name);
+        st->key[0] = key->pass;
+        st->key[1] = key->variant;
+        st->key[2] = key->downsampled;
+        st->key[3] = key->blur_passes;
+        st->key[4] = key->fp16;
+        dispatch_size(plan, key, st->dispatch);
+        cacaoi_pass_binding bindings[CACAOI_PASS_MAX_BINDINGS];
+        const size_t n = cacaoi_step_bindings(&steps[i], bindings);
+        for (size_t j = 0; j < n; ++j) {
+            /* A level the slice's chain lacks is bound to its last level, which the shader then
+             * leaves alone (CACAO_DEPTH_MIP_LEVELS). */
+            const cacao_plan_image *im = NULL;
+            for (uint32_t k = 0; k < plan->image_count; ++k)
+                if (plan->images[k].resource == bindings[j].resource) im = &plan->images[k];
+            const uint32_t mip = im && bindings[j].mip >= im->mips ? im->mips - 1 : bindings[j].mip;
+            st->bindings[st->binding_count++] =
+                (cacao_plan_binding){bindings[j].slot, bindings[j].resource, (uint8_t)mip, bindings[j].write};
+        }
         finish_step(&b, st);
     }
-
-    key = (cacao_key){CACAO_PASS_GENERATE, (uint8_t)cacaoi_generate_variant_for_quality(quality), 0, 0, 0};
-    st = add_step(&b, &key, ggx, ggy, slices);
-    bind(st, CACAO_BINDING_DEPTHS, CACAO_RES_DEPTHS, 0, false);
-    bind(st, CACAO_BINDING_NORMALS, CACAO_RES_NORMALS, 0, false);
-    if (highest) {
-        bind(st, CACAO_BINDING_IMPORTANCE_IN, CACAO_RES_IMPORTANCE, 0, false);
-        bind(st, CACAO_BINDING_LOAD_COUNTER, CACAO_RES_LOAD_COUNTER, 0, false);
-        bind(st, CACAO_BINDING_SSAO_BASE, CACAO_RES_SSAO_PONG, 0, false);
-    }
-    bind(st, CACAO_BINDING_SSAO_OUT, CACAO_RES_SSAO_PING, 0, true);
-    finish_step(&b, st);
-
-    cacao_resource ao = CACAO_RES_SSAO_PING;
-    if (blur > 0) {
-        key = (cacao_key){CACAO_PASS_BLUR, 0, 0, (uint8_t)blur, fp16};
-        st = add_step(&b, &key, div_up(sw, CACAO_BLUR_OUT_X(blur)), div_up(sh, CACAO_BLUR_OUT_Y(blur)), slices);
-        bind(st, CACAO_BINDING_SSAO_IN, CACAO_RES_SSAO_PING, 0, false);
-        bind(st, CACAO_BINDING_SSAO_OUT, CACAO_RES_SSAO_PONG, 0, true);
-        finish_step(&b, st);
-        ao = CACAO_RES_SSAO_PONG;
-    }
-
-    const uint8_t out_variant = (uint8_t)cacaoi_output_variant_for_quality(quality, ds);
-    if (ds) {
-        key = (cacao_key){CACAO_PASS_UPSAMPLE, out_variant, 0, 0, fp16};
-        st = add_step(&b, &key, div_up(width, 2 * CACAO_UPSAMPLE_SPAN_X), div_up(height, 2 * CACAO_UPSAMPLE_SPAN_Y), 1);
-        bind(st, CACAO_BINDING_SSAO_IN, ao, 0, false);
-        bind(st, CACAO_BINDING_DEPTHS, CACAO_RES_DEPTHS, 0, false);
-        bind(st, CACAO_BINDING_SRC_DEPTH, CACAO_RES_DEPTH_INPUT, 0, false);
-    } else {
-        key = (cacao_key){CACAO_PASS_APPLY, out_variant, 0, 0, fp16};
-        st = add_step(&b, &key, div_up(width, CACAO_WG_APPLY_X), div_up(height, CACAO_WG_APPLY_Y), 1);
-        bind(st, CACAO_BINDING_SSAO_IN, ao, 0, false);
-    }
-    bind(st, CACAO_BINDING_OUTPUT, CACAO_RES_OUTPUT, 0, true);
-    finish_step(&b, st);
     return CACAO_SUCCESS;
 }
 
@@ -318,29 +208,29 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
         if (s->barrier_before) {
             fprintf(out, "  barrier (compute -> compute) for");
             for (unsigned r = 0; r < CACAO_RES_COUNT; ++r)
-                if (s->barrier_resources & (1u << r)) fprintf(out, " %s", resource_names[r]);
+                if (s->barrier_resources & (1u << r)) fprintf(out, " %s", cacaoi_resources[r].name);
             fprintf(out, "\n");
         }
         fprintf(out, "  %2u %-34s dispatch %4u x %4u x %u  reads", i, s->key_name, s->dispatch[0], s->dispatch[1],
                 s->dispatch[2]);
         for (uint32_t j = 0; j < s->binding_count; ++j)
             if (!s->bindings[j].write && s->bindings[j].resource != CACAO_RES_CONSTANTS)
-                fprintf(out, " %s", resource_names[s->bindings[j].resource]);
+                fprintf(out, " %s", cacaoi_resources[s->bindings[j].resource].name);
         fprintf(out, "  writes");
         for (uint32_t j = 0; j < s->binding_count; ++j)
             if (s->bindings[j].write) {
                 if (s->bindings[j].resource == CACAO_RES_DEPTHS)
                     fprintf(out, " depths[mip %u]", s->bindings[j].mip);
                 else
-                    fprintf(out, " %s", resource_names[s->bindings[j].resource]);
+                    fprintf(out, " %s", cacaoi_resources[s->bindings[j].resource].name);
             }
         fprintf(out, "\n");
     }
     fprintf(out, "intermediates:\n");
     for (uint32_t i = 0; i < p->image_count; ++i) {
         const cacao_plan_image *im = &p->images[i];
-        fprintf(out, "  %-16s %4ux%-4u x%u layers, %u mips, %-14s %llu bytes\n", resource_names[im->resource],
-                im->width, im->height, im->layers, im->mips, intermediates[im->resource].format_name,
+        fprintf(out, "  %-16s %4ux%-4u x%u layers, %u mips, %-14s %llu bytes\n", cacaoi_resources[im->resource].name,
+                im->width, im->height, im->layers, im->mips, cacaoi_resources[im->resource].format_name,
                 (unsigned long long)im->bytes);
     }
     fprintf(out, "total intermediate memory: %llu bytes\n", (unsigned long long)p->total_bytes);

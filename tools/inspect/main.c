@@ -233,7 +233,7 @@ static int cmd_show(int argc, char **argv) {
     const cacao_permutation *p = cacaoi_table_find(table, &key);
     if (!p) return fail("show: '%s' is not embedded in this build", argv[0]);
     const cacao_module *m = &table->modules[p->module];
-    char defines[512];
+    char defines[CACAO_KEY_DEFINES_MAX];
     cacaoi_key_defines(&key, defines, sizeof defines);
     printf("== %s\nSPIR-V: %u bytes (module %u), entry point '%s', workgroup %ux%ux%u\n\n== defines\n%s\n", p->name,
            m->word_count * 4, p->module, table->entry_point, p->workgroup_size[0], p->workgroup_size[1],

@@ -1,0 +1,173 @@
+/* test_pass_table - the declarative pass table (shaders/cacao_passes.c) is consistent, and what is
+ * derived from it agrees everywhere, over every configuration (estimator x quality x resolution x
+ * precision x normals source x blur 0..8):
+ *   - the rows: a binding's slot kind fits its resource (buffers at buffer slots, images at image
+ *     slots), each variant binds a slot at most once, and every resource a linear-sampler slot reads
+ *     supports filtering;
+ *   - the sequence: a step rebinds a slot only to a resource of the same format and layering as the
+ *     row's (the GLSL qualifier is the row's), and no step reads what it writes;
+ *   - the plan built from it: its steps are exactly the sequence's keys, the subset filter's keys
+ *     (cacaoi_keys_for_config) are exactly the plan's distinct keys, each step binds exactly the
+ *     slots its embedded module declares, with that module's workgroup size, and every resource a
+ *     step touches is allocated (intermediates) or supplied by the caller;
+ *   - the GLSL defines of every key carry one CACAO_FORMAT_<slot> per formatted storage image.
+ * Pure C: no device. */
+#include <string.h>
+
+#include "cacao_passes.h"
+#include "cacao_table.h"
+#include "internal.h"
+#include "test_util.h"
+
+static bool is_buffer(cacao_resource r) { return cacaoi_resources[r].size == CACAOI_SIZE_BUFFER; }
+
+static void test_rows(void) {
+    for (unsigned p = 0; p < CACAO_PASS_COUNT; ++p) {
+        const cacaoi_pass_row *row = &cacaoi_passes[p];
+        CHECK(row->name && row->variants >= 1 && row->variants <= CACAOI_MAX_VARIANTS);
+        CHECK(row->binding_count <= CACAOI_PASS_MAX_BINDINGS);
+        for (unsigned v = 0; v < row->variants; ++v) {
+            CHECK((row->variants == 1) == (row->variant_names[v] == NULL));
+            unsigned seen[CACAO_BINDING_COUNT] = {0};
+            for (unsigned i = 0; i < row->binding_count; ++i) {
+                const cacaoi_pass_binding *b = &row->bindings[i];
+                CHECK(b->slot < CACAO_BINDING_COUNT && b->resource < CACAO_RES_COUNT);
+                if (!((b->variants >> v) & 1u)) continue;
+                ++seen[b->slot];
+                const uint8_t kind = cacaoi_slots[b->slot].descriptor;
+                const bool buffer_slot = kind == CACAO_RESOURCE_UNIFORM_BUFFER || kind == CACAO_RESOURCE_STORAGE_BUFFER;
+                if (buffer_slot != is_buffer(b->resource))
+                    fprintf(stderr, "%s variant %u: slot %s holds %s\n", row->name, v, cacaoi_slots[b->slot].name,
+                            cacaoi_resources[b->resource].name);
+                CHECK(buffer_slot == is_buffer(b->resource));
+                if (cacaoi_slots[b->slot].sampler == CACAOI_SAMPLER_LINEAR) CHECK(cacaoi_resources[b->resource].filtered);
+                if (kind == CACAO_RESOURCE_SAMPLED_IMAGE) CHECK(!b->write); /* sampled = read */
+                if (b->mip) CHECK(b->resource == CACAO_RES_DEPTHS && b->mip < CACAO_DEPTH_MIP_COUNT);
+            }
+            CHECK(seen[CACAO_BINDING_CONSTANTS] == 1); /* every pass reads the constant block */
+            for (unsigned s = 0; s < CACAO_BINDING_COUNT; ++s) CHECK(seen[s] <= 1);
+        }
+    }
+    /* Only the caller's images and the buffers lack a format; intermediates have a GLSL one. */
+    for (unsigned r = 0; r < CACAO_RES_COUNT; ++r) {
+        const cacaoi_resource_row *row = &cacaoi_resources[r];
+        CHECK(strcmp(row->name, cacao_resource_name((cacao_resource)r)) == 0);
+        const bool intermediate = row->size != CACAOI_SIZE_CALLER && row->size != CACAOI_SIZE_BUFFER;
+        CHECK(intermediate == (row->format != VK_FORMAT_UNDEFINED));
+        CHECK(intermediate == (*row->glsl_format != '\0'));
+        CHECK(intermediate == (row->texel_bytes > 0));
+    }
+}
+
+static void test_defines(void) {
+    cacao_key keys[64];
+    const size_t n = cacaoi_key_list(keys, 64);
+    for (size_t i = 0; i < n; ++i) {
+        char defines[CACAO_KEY_DEFINES_MAX], name[64];
+        CHECK(cacaoi_key_defines(&keys[i], defines, sizeof defines) > 0);
+        cacaoi_module_expect want;
+        CHECK(cacaoi_pass_expect(&keys[i], &want));
+        for (unsigned s = 0; s < CACAO_BINDING_COUNT; ++s) {
+            snprintf(name, sizeof name, "#define CACAO_FORMAT_%s ", cacaoi_slots[s].name);
+            const bool formatted = want.descriptor[s] == CACAO_RESOURCE_STORAGE_IMAGE &&
+                                   *cacaoi_resources[want.resource[s]].glsl_format;
+            const char *at = strstr(defines, name);
+            CHECK((at != NULL) == formatted);
+            if (at) CHECK(strncmp(at + strlen(name), cacaoi_resources[want.resource[s]].glsl_format,
+                                  strlen(cacaoi_resources[want.resource[s]].glsl_format)) == 0);
+        }
+    }
+}
+
+static unsigned configs_checked;
+
+static void check_config(const cacao_settings *s) {
+    cacao_plan plan;
+    char err[256];
+    if (cacao_plan_build(s, 97, 61, &plan, err, sizeof err) != CACAO_SUCCESS) {
+        CHECK(s->estimator != CACAO_ESTIMATOR_CACAO && s->downsample); /* the one refused combination */
+        return;
+    }
+    ++configs_checked;
+    const cacao_key_config config = {cacaoi_key_quality(plan.settings.quality), plan.settings.downsample,
+                                     plan.settings.precision == CACAO_PRECISION_FP16, !plan.settings.generate_normals,
+                                     plan.settings.blur_pass_count == CACAO_BLUR_NONE
+                                         ? 0u
+                                         : (unsigned)plan.settings.blur_pass_count,
+                                     (unsigned)plan.settings.estimator - 1u};
+    cacaoi_step steps[CACAOI_SEQUENCE_MAX];
+    const size_t count = cacaoi_sequence(&config, steps);
+    CHECK(count == plan.step_count);
+    cacao_key keys[CACAO_KEY_CONFIG_MAX];
+    const size_t key_count = cacaoi_keys_for_config(&config, keys);
+    bool key_listed[CACAO_KEY_CONFIG_MAX] = {false};
+    bool allocated[CACAO_RES_COUNT] = {false};
+    for (uint32_t i = 0; i < plan.image_count; ++i) allocated[plan.images[i].resource] = true;
+    for (uint32_t i = 0; i < plan.step_count && i < count; ++i) {
+        const cacao_plan_step *st = &plan.steps[i];
+        const cacao_key key = cacaoi_plan_step_key(st);
+        CHECK(cacaoi_key_compare(&key, &steps[i].key) == 0);
+        size_t k = 0;
+        while (k < key_count && cacaoi_key_compare(&keys[k], &key) != 0) ++k;
+        CHECK(k < key_count);
+        if (k < key_count) key_listed[k] = true;
+
+        /* Rebinding keeps the row's format and layering. */
+        cacaoi_module_expect want;
+        CHECK(cacaoi_pass_expect(&key, &want));
+        uint32_t reads = 0, writes = 0;
+        bool bound[CACAO_BINDING_COUNT] = {false};
+        for (uint32_t j = 0; j < st->binding_count; ++j) {
+            const cacao_plan_binding *b = &st->bindings[j];
+            const cacaoi_resource_row *have = &cacaoi_resources[b->resource], *row = &cacaoi_resources[want.resource[b->binding]];
+            CHECK(have->format == row->format && have->layered == row->layered && have->size == row->size);
+            CHECK(b->write == want.write[b->binding]);
+            bound[b->binding] = true;
+            *(b->write ? &writes : &reads) |= 1u << b->resource;
+            const uint8_t size = have->size;
+            CHECK(allocated[b->resource] || size == CACAOI_SIZE_CALLER || size == CACAOI_SIZE_BUFFER);
+        }
+        CHECK((reads & writes) == 0);
+
+        /* The embedded module declares exactly the bound slots, at the row's workgroup size. */
+        const cacao_permutation *perm = cacaoi_table_find(&cacaoi_embedded_table, &key);
+        CHECK(perm != NULL);
+        if (!perm) continue;
+        for (unsigned b = 0; b < CACAO_BINDING_COUNT; ++b) {
+            if ((perm->bindings[b] != CACAO_RESOURCE_NONE) != bound[b])
+                fprintf(stderr, "%s: slot %s bound %d, module %d\n", st->key_name, cacaoi_slots[b].name, bound[b],
+                        perm->bindings[b]);
+            CHECK((perm->bindings[b] != CACAO_RESOURCE_NONE) == bound[b]);
+            if (bound[b]) CHECK(perm->bindings[b] == cacaoi_slots[b].descriptor);
+        }
+        CHECK(memcmp(perm->workgroup_size, want.workgroup, sizeof want.workgroup) == 0);
+    }
+    for (size_t k = 0; k < key_count; ++k) CHECK(key_listed[k]); /* no key the plan does not dispatch */
+}
+
+static void test_every_configuration(void) {
+    for (int est = CACAO_ESTIMATOR_CACAO; est <= CACAO_ESTIMATOR_BITMASK; ++est)
+        for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
+            for (int ds = 0; ds < 2; ++ds)
+                for (int fp = CACAO_PRECISION_FP32; fp <= CACAO_PRECISION_FP16; ++fp)
+                    for (int gen = 0; gen < 2; ++gen)
+                        for (int blur = 0; blur <= 8; ++blur) {
+                            const cacao_settings s = {.estimator = (cacao_estimator)est,
+                                                      .quality = (cacao_quality)q,
+                                                      .downsample = ds != 0,
+                                                      .precision = (cacao_precision)fp,
+                                                      .generate_normals = gen != 0,
+                                                      .blur_pass_count = blur ? blur : CACAO_BLUR_NONE};
+                            check_config(&s);
+                        }
+    /* 5 qualities x 2 x 2 x 2 x 9 for CACAO, the same less downsampling for each slice estimator */
+    printf("%u configurations checked\n", configs_checked);
+    CHECK(configs_checked == 360 + 2 * 180);
+}
+
+int main(void) {
+    test_rows();
+    test_defines();
+    test_every_configuration();
+    return test_report("pass_table");
+}
