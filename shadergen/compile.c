@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "shadergen.h"
+#include "text_file.h"
 
 #define STR2(x) #x
 #define STR(x) STR2(x)
@@ -24,26 +25,10 @@ const char *sg_spirv_tools_version(void) {
 }
 
 char *sg_read_file(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        fprintf(stderr, "shadergen: cannot open '%s'\n", path);
-        return NULL;
-    }
-    char *data = NULL;
-    long size = -1;
-    if (fseek(f, 0, SEEK_END) == 0) size = ftell(f);
-    if (size >= 0 && fseek(f, 0, SEEK_SET) == 0) {
-        data = malloc((size_t)size + 1);
-        if (data && fread(data, 1, (size_t)size, f) == (size_t)size) {
-            data[size] = '\0';
-        } else {
-            free(data);
-            data = NULL;
-        }
-    }
-    fclose(f);
-    if (!data) fprintf(stderr, "shadergen: cannot read '%s'\n", path);
-    return data;
+    char err[512];
+    char *text = cacao_read_whole_file(path, 64u << 20, err, sizeof err);
+    if (!text) fprintf(stderr, "shadergen: %s\n", err);
+    return text;
 }
 
 /* Appends text to a growing buffer. */

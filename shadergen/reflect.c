@@ -86,6 +86,46 @@ done:
     return ok;
 }
 
+bool sg_uniform_block(const uint32_t *words, size_t word_count, sg_block *block) {
+    spvc_context context = NULL;
+    spvc_parsed_ir ir = NULL;
+    spvc_compiler compiler = NULL;
+    spvc_resources resources = NULL;
+    const spvc_reflected_resource *list = NULL;
+    size_t count = 0;
+    bool ok = false;
+    if (spvc_context_create(&context) != SPVC_SUCCESS) return false;
+    spvc_context_set_error_callback(context, report, (void *)"uniform block");
+    if (spvc_context_parse_spirv(context, words, word_count, &ir) == SPVC_SUCCESS &&
+        spvc_context_create_compiler(context, SPVC_BACKEND_NONE, ir, SPVC_CAPTURE_MODE_TAKE_OWNERSHIP, &compiler) ==
+            SPVC_SUCCESS &&
+        spvc_compiler_create_shader_resources(compiler, &resources) == SPVC_SUCCESS &&
+        spvc_resources_get_resource_list_for_type(resources, SPVC_RESOURCE_TYPE_UNIFORM_BUFFER, &list, &count) ==
+            SPVC_SUCCESS &&
+        count == 1) {
+        spvc_type type = spvc_compiler_get_type_handle(compiler, list[0].base_type_id);
+        snprintf(block->name, sizeof block->name, "%s", list[0].name);
+        block->binding = spvc_compiler_get_decoration(compiler, list[0].id, SpvDecorationBinding);
+        spvc_compiler_get_declared_struct_size(compiler, type, &block->size);
+        const unsigned n = spvc_type_get_num_member_types(type);
+        block->member_count = n;
+        sg_member *members = block->members;
+        for (unsigned i = 0; i < n && i < SG_BLOCK_MAX_MEMBERS; ++i) {
+            unsigned offset = 0;
+            size_t member_size = 0;
+            spvc_compiler_type_struct_member_offset(compiler, type, i, &offset);
+            spvc_compiler_get_declared_struct_member_size(compiler, type, i, &member_size);
+            snprintf(members[i].name, sizeof members[i].name, "%s",
+                     spvc_compiler_get_member_name(compiler, list[0].base_type_id, i));
+            members[i].offset = offset;
+            members[i].size = (uint32_t)member_size;
+        }
+        ok = true;
+    }
+    spvc_context_destroy(context);
+    return ok;
+}
+
 /* SPIR-V image format of a GLSL storage-image qualifier used by the resource rows. */
 static SpvImageFormat spv_format(const char *glsl) {
     static const struct {

@@ -51,6 +51,25 @@ char *sg_disassemble(const uint32_t *words, size_t word_count);
 /* Fills workgroup size, bindings, uniform and push-constant sizes from SPIRV-Cross reflection. */
 bool sg_reflect(sg_module *module);
 
+/* One member of a module's uniform block, as SPIRV-Cross lays it out (std140). */
+typedef struct sg_member {
+    char name[64];
+    uint32_t offset;
+    uint32_t size;
+} sg_member;
+
+typedef struct sg_block {
+    char name[64];
+    uint32_t binding;
+    size_t size;         /* declared size, bytes */
+    size_t member_count; /* all members; members[] holds the first SG_BLOCK_MAX_MEMBERS */
+    sg_member members[128];
+} sg_block;
+#define SG_BLOCK_MAX_MEMBERS 128
+
+/* The module's one uniform block. False when it has none (or several) or reflection fails. */
+bool sg_uniform_block(const uint32_t *words, size_t word_count, sg_block *block);
+
 /* Checks a reflected module against its pass row (cacaoi_pass_expect): workgroup size, and per
  * binding slot the descriptor kind, image layering, storage format and access. Prints every
  * mismatch naming the pass and the binding; false if there was one. */

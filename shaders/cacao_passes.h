@@ -132,4 +132,9 @@ size_t cacaoi_sequence(const cacao_key_config *config, cacaoi_step out[CACAOI_SE
 /* The bindings a step makes: its row's bindings for its variant, with the step's overrides. */
 size_t cacaoi_step_bindings(const cacaoi_step *step, cacaoi_pass_binding out[CACAOI_PASS_MAX_BINDINGS]);
 
+/* A plan step's key (cacao_plan_step.key holds pass, variant, downsampled, blur passes, fp16). */
+static inline cacao_key cacaoi_plan_step_key(const cacao_plan_step *step) {
+    return (cacao_key){step->key[0], step->key[1], step->key[2], step->key[3], step->key[4]};
+}
+
 #endif /* CACAO_PASSES_H */

@@ -13,6 +13,7 @@
 #include "camera_json.h"
 #include "gpu_scene.h"
 #include "internal.h"
+#include "text_file.h"
 
 /* Relative: |a - b| <= tol * |b|; an expected 0 must be met exactly. */
 #define NEAR(a, b, tol) (fabs((double)(a) - (double)(b)) <= (tol)*fabs((double)(b)))
@@ -142,19 +143,12 @@ static void test_simple_projection(void) {
 static int compare_with_amd(const char *shared, const char *scene) {
     char path[4096], err[256];
     snprintf(path, sizeof path, "%s/reference-amd/%s/settings.json", shared, scene);
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        fprintf(stderr, "cannot open %s\n", path);
+    char *text = cacao_read_whole_file(path, 1u << 20, err, sizeof err);
+    if (!text) {
+        fprintf(stderr, "%s\n", err);
         ++test_failures;
         return 0;
     }
-    fseek(f, 0, SEEK_END);
-    long size = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *text = malloc((size_t)size + 1);
-    CHECK(text && fread(text, 1, (size_t)size, f) == (size_t)size);
-    fclose(f);
-    text[size] = 0;
     cJSON *root = cJSON_Parse(text);
     free(text);
     CHECK(root != NULL);

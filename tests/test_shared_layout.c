@@ -2,11 +2,10 @@
  * the std140 layout SPIRV-Cross reflects from every embedded module that uses the block. The
  * shaders and the runtime include the same header, but C and std140 pack differently (vec2
  * alignment, array strides, mat4), so only reflection of the compiled SPIR-V proves agreement. */
-#include <spirv_cross/spirv_cross_c.h>
 #include <stddef.h>
 #include <string.h>
 
-#include "cacao_table.h"
+#include "shadergen.h"
 #include "test_util.h"
 
 typedef struct c_member {
@@ -21,42 +20,21 @@ static const c_member c_members[] = {CACAO_CONSTANTS_MEMBERS(MEMBER, MEMBER_ARRA
 
 static void check_module(const cacao_permutation *p) {
     const cacao_module *m = &cacaoi_embedded_table.modules[p->module];
-    spvc_context ctx = NULL;
-    spvc_parsed_ir ir = NULL;
-    spvc_compiler comp = NULL;
-    spvc_resources res = NULL;
-    const spvc_reflected_resource *list = NULL;
-    size_t count = 0;
-    CHECK(spvc_context_create(&ctx) == SPVC_SUCCESS);
-    CHECK(spvc_context_parse_spirv(ctx, m->words, m->word_count, &ir) == SPVC_SUCCESS);
-    CHECK(spvc_context_create_compiler(ctx, SPVC_BACKEND_NONE, ir, SPVC_CAPTURE_MODE_TAKE_OWNERSHIP, &comp) ==
-          SPVC_SUCCESS);
-    CHECK(spvc_compiler_create_shader_resources(comp, &res) == SPVC_SUCCESS);
-    CHECK(spvc_resources_get_resource_list_for_type(res, SPVC_RESOURCE_TYPE_UNIFORM_BUFFER, &list, &count) ==
-          SPVC_SUCCESS);
-    CHECK(count == 1);
-    for (size_t r = 0; r < count; ++r) {
-        spvc_type type = spvc_compiler_get_type_handle(comp, list[r].base_type_id);
-        size_t struct_size = 0;
-        spvc_compiler_get_declared_struct_size(comp, type, &struct_size);
-        CHECK(struct_size == sizeof(cacao_constants));
-        CHECK(p->uniform_size == sizeof(cacao_constants));
-        unsigned members = spvc_type_get_num_member_types(type);
-        CHECK(members == C_MEMBER_COUNT);
-        for (unsigned i = 0; i < members && i < C_MEMBER_COUNT; ++i) {
-            const char *name = spvc_compiler_get_member_name(comp, list[r].base_type_id, i);
-            unsigned offset = 0;
-            size_t size = 0;
-            spvc_compiler_type_struct_member_offset(comp, type, i, &offset);
-            spvc_compiler_get_declared_struct_member_size(comp, type, i, &size);
-            if (strcmp(name, c_members[i].name) != 0 || offset != c_members[i].offset || size != c_members[i].size) {
-                fprintf(stderr, "%s: member %u: SPIR-V '%s' at %u (%zu bytes), C '%s' at %zu (%zu bytes)\n", p->name,
-                        i, name, offset, size, c_members[i].name, c_members[i].offset, c_members[i].size);
-                ++test_failures;
-            }
+    static sg_block block;
+    CHECK(sg_uniform_block(m->words, m->word_count, &block));
+    CHECK(block.binding == CACAO_BINDING_CONSTANTS);
+    CHECK(block.size == sizeof(cacao_constants));
+    CHECK(p->uniform_size == sizeof(cacao_constants));
+    CHECK(block.member_count == C_MEMBER_COUNT);
+    for (size_t i = 0; i < block.member_count && i < C_MEMBER_COUNT; ++i) {
+        const sg_member *got = &block.members[i];
+        if (strcmp(got->name, c_members[i].name) != 0 || got->offset != c_members[i].offset ||
+            got->size != c_members[i].size) {
+            fprintf(stderr, "%s: member %zu: SPIR-V '%s' at %u (%u bytes), C '%s' at %zu (%zu bytes)\n", p->name, i,
+                    got->name, got->offset, got->size, c_members[i].name, c_members[i].offset, c_members[i].size);
+            ++test_failures;
         }
     }
-    spvc_context_destroy(ctx);
 }
 
 int main(void) {

@@ -16,9 +16,6 @@ void cacaoi_set_error(char *error, size_t error_size, const char *fmt, ...)
  * Resolved settings keep those encodings so that resolving them again is the identity. */
 void cacaoi_settings_literal(const cacao_settings *resolved, cacao_settings *out);
 
-/* The step's key as the key-space struct. */
-cacao_key cacaoi_plan_step_key(const cacao_plan_step *step);
-
 /* Checks the projection (finite, P(1,1) > 0, P(0,0) > 0, usable depth mapping). */
 cacao_result cacaoi_check_projection(const cacao_inputs *inputs, char *error, size_t error_size);
 

@@ -16,10 +16,6 @@ static uint32_t div_up(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
 _Static_assert(CACAO_DEPTH_MIP_COUNT == 4 && CACAO_DEPTH_MIP_LEVELS(8) == 4 && CACAO_DEPTH_MIP_LEVELS(7) == 3,
                "CACAO_DEPTH_MIP_LEVELS is written for a chain of 4 levels");
 
-cacao_key cacaoi_plan_step_key(const cacao_plan_step *step) {
-    return (cacao_key){step->key[0], step->key[1], step->key[2], step->key[3], step->key[4]};
-}
-
 /* Builder state: accesses since the last barrier, to place barriers where hazards are. */
 typedef struct plan_builder {
     cacao_plan *plan;

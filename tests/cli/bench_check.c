@@ -29,20 +29,11 @@ static int failures;
         }                                                                                                              \
     } while (0)
 
+/* The whole file, or NULL (the message printed). */
 static char *slurp(const char *path, size_t *size) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    const long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *text = malloc((size_t)n + 1);
-    if (text && fread(text, 1, (size_t)n, f) != (size_t)n) {
-        free(text);
-        text = NULL;
-    }
-    if (text) text[n] = 0;
-    if (size) *size = (size_t)n;
-    fclose(f);
+    char err[512];
+    char *text = cacao_read_file(path, 1u << 30, size, err, sizeof err);
+    if (!text) fprintf(stderr, "%s\n", err);
     return text;
 }
 

@@ -294,7 +294,7 @@ static bool load_scene(const bench_options *o, const char *dir, bench_scene *s) 
 /* The JSON in path, or NULL after one line naming the flag and the file. */
 static cJSON *read_json(const char *flag, const char *path) {
     char err[BENCH_ERR];
-    char *text = cacao_read_text_file(path, 256u << 20, err, sizeof err);
+    char *text = cacao_read_whole_file(path, 256u << 20, err, sizeof err);
     if (!text) return fail("%s %s", flag, err), NULL;
     cJSON *root = cJSON_Parse(text);
     free(text);

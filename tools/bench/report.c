@@ -12,17 +12,13 @@
 
 #include "bench.h"
 #include "options.h"
+#include "text_file.h"
 
 extern char **environ;
 extern const char cacao_bench_pareto_gp[]; /* tools/bench/pareto.gp, embedded at build time */
 
-static bool set_err(char *err, const char *fmt, ...) {
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, BENCH_ERR, fmt, ap);
-    va_end(ap);
-    return false;
-}
+/* cacao_set_err into a BENCH_ERR buffer, as a failed result. */
+#define fail_with(err, ...) cacao_set_err(err, BENCH_ERR, __VA_ARGS__)
 
 int bench_plot_truth(const bench_scene *scene) {
     for (int t = 0; t < BENCH_TRUTHS; ++t)
@@ -71,10 +67,10 @@ void bench_print_table(FILE *out, const bench_run *run) {
 
 static bool write_text(const char *path, const char *text, char *err) {
     char *temp = cacao_temp_path_for(path);
-    if (!temp) return set_err(err, "%s: out of memory", path);
+    if (!temp) return fail_with(err, "%s: out of memory", path);
     FILE *f = fopen(temp, "wb");
     if (!f) {
-        set_err(err, "%s: cannot create: %s", path, strerror(errno));
+        fail_with(err, "%s: cannot create: %s", path, strerror(errno));
         free(temp);
         return false;
     }
@@ -185,12 +181,12 @@ bool bench_write_json(const char *path, const bench_run *run, char *err) {
     cJSON *root = run_json(run);
     char *text = root ? cJSON_Print(root) : NULL;
     cJSON_Delete(root);
-    if (!text) return set_err(err, "%s: out of memory", path);
+    if (!text) return fail_with(err, "%s: out of memory", path);
     const size_t n = strlen(text);
     char *line = realloc(text, n + 2);
     if (!line) {
         cJSON_free(text);
-        return set_err(err, "%s: out of memory", path);
+        return fail_with(err, "%s: out of memory", path);
     }
     memcpy(line + n, "\n", 2);
     const bool ok = write_text(path, line, err);
@@ -290,7 +286,7 @@ bool bench_write_csv(const char *path, const bench_run *run, char *err) {
     text_buffer b = {0};
     append(&b, "%s", csv_header);
     for (uint32_t i = 0; i < run->result_count; ++i) append_row(&b, run, &run->results[i]);
-    const bool ok = !b.failed ? write_text(path, b.data, err) : set_err(err, "%s: out of memory", path);
+    const bool ok = !b.failed ? write_text(path, b.data, err) : fail_with(err, "%s: out of memory", path);
     free(b.data);
     return ok;
 }
@@ -350,7 +346,7 @@ static bool run_gnuplot(const char *script_path, char *err) {
     size_t count = 0;
     while (environ[count]) ++count;
     char **env = calloc(count + 1, sizeof *env);
-    if (!env) return set_err(err, "--plot: out of memory");
+    if (!env) return fail_with(err, "--plot: out of memory");
     for (size_t i = 0, j = 0; i < count; ++i)
         if (strncmp(environ[i], "LD_PRELOAD=", 11) != 0) env[j++] = environ[i];
     pid_t pid;
@@ -358,22 +354,22 @@ static bool run_gnuplot(const char *script_path, char *err) {
     const int spawned = posix_spawnp(&pid, "gnuplot", NULL, NULL, args, env);
     free(env);
     if (spawned != 0)
-        return set_err(err, "--plot: cannot run gnuplot (%s); install the gnuplot-nox package", strerror(spawned));
+        return fail_with(err, "--plot: cannot run gnuplot (%s); install the gnuplot-nox package", strerror(spawned));
     int status = 0;
     if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-        return set_err(err, "--plot: gnuplot failed (its messages are above)");
+        return fail_with(err, "--plot: gnuplot failed (its messages are above)");
     return true;
 }
 
 static bool write_temp(const char *text, char *path_out, const char *suffix, char *err) {
     snprintf(path_out, 64, "/tmp/cacao-bench-XXXXXX%s", suffix);
     const int fd = mkstemps(path_out, (int)strlen(suffix));
-    if (fd < 0) return set_err(err, "--plot: cannot create a temporary file: %s", strerror(errno));
+    if (fd < 0) return fail_with(err, "--plot: cannot create a temporary file: %s", strerror(errno));
     const size_t n = strlen(text);
     const bool ok = write(fd, text, n) == (ssize_t)n;
     close(fd);
     if (!ok) remove(path_out);
-    return ok ? true : set_err(err, "--plot: cannot write a temporary file");
+    return ok ? true : fail_with(err, "--plot: cannot write a temporary file");
 }
 
 bool bench_write_plot(const char *path, const bench_run *run, char *err) {
@@ -392,7 +388,7 @@ bool bench_write_plot(const char *path, const bench_run *run, char *err) {
     char data_path[64] = "", script_path[64] = "";
     char *temp = cacao_temp_path_for(path);
     bool ok = had_memory && temp && !data.failed && !names.failed;
-    if (!ok) set_err(err, "%s: out of memory", path);
+    if (!ok) fail_with(err, "%s: out of memory", path);
     if (ok) ok = write_temp(data.data, data_path, ".dat", err);
     if (ok) {
         append(&script, "datafile = ");
@@ -406,7 +402,7 @@ bool bench_write_plot(const char *path, const bench_run *run, char *err) {
                bench_truth_names[shown_truth < 0 ? 0 : shown_truth]);
         append_gp_string(&script, run->point_count ? run->reference_name : "");
         append(&script, "\n%s", cacao_bench_pareto_gp);
-        ok = !script.failed ? write_temp(script.data, script_path, ".gp", err) : set_err(err, "out of memory");
+        ok = !script.failed ? write_temp(script.data, script_path, ".gp", err) : fail_with(err, "out of memory");
     }
     if (ok) ok = run_gnuplot(script_path, err);
     if (data_path[0]) remove(data_path);
@@ -417,6 +413,6 @@ bool bench_write_plot(const char *path, const bench_run *run, char *err) {
     if (!temp) return false;
     char commit_err[BENCH_ERR];
     const bool committed = cacao_commit_temp(temp, path, ok, commit_err, sizeof commit_err);
-    if (ok && !committed) set_err(err, "%s", commit_err);
+    if (ok && !committed) fail_with(err, "%s", commit_err);
     return ok && committed;
 }

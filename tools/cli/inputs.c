@@ -11,13 +11,7 @@
 #include "camera_json.h"
 #include "exr_io.h"
 #include "scene.h"
-
-static void set_err(char *err, size_t n, const char *fmt, ...) {
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, n, fmt, ap);
-    va_end(ap);
-}
+#include "text_file.h"
 
 void cli_extension(const char *path, char *out, size_t out_size) {
     const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
@@ -31,7 +25,7 @@ void cli_extension(const char *path, char *out, size_t out_size) {
 static bool check_channels(const cacao_img *img, uint32_t want, const char *path, const char *role, char *err,
                            size_t n) {
     if (img->channels == want) return true;
-    set_err(err, n, "%s: wrong channel count for %s: needs %u, the file has %u", path, role, want, img->channels);
+    cacao_set_err(err, n, "%s: wrong channel count for %s: needs %u, the file has %u", path, role, want, img->channels);
     return false;
 }
 
@@ -39,7 +33,7 @@ static bool read_png_scalar(const char *path, const char *role, bool allow_8bit,
     bool is16 = false;
     if (!cacao_png_read(path, out, &is16, err, n)) return false;
     if (!is16 && !allow_8bit) {
-        set_err(err, n, "%s: 8-bit PNG %s is too coarse; use a 16-bit grey PNG (value/65535 = raw depth), PFM or EXR",
+        cacao_set_err(err, n, "%s: 8-bit PNG %s is too coarse; use a 16-bit grey PNG (value/65535 = raw depth), PFM or EXR",
                 path, role);
         return false;
     }
@@ -57,7 +51,7 @@ bool cli_read_scalar_image(const char *path, const char *role, bool allow_8bit, 
     else if (strcmp(ext, ".png") == 0)
         ok = read_png_scalar(path, role, allow_8bit, out, err, n);
     else {
-        set_err(err, n, "%s: unknown %s format '%s' (use .pfm, .exr or .png)", path, role, ext);
+        cacao_set_err(err, n, "%s: unknown %s format '%s' (use .pfm, .exr or .png)", path, role, ext);
         ok = false;
     }
     if (!ok) cacao_img_free(out);
@@ -73,7 +67,7 @@ static bool read_normals_image(const char *path, cacao_img *out, char *err, size
     else if (strcmp(ext, ".exr") == 0)
         ok = cacao_exr_read_vector(path, out, err, n);
     else {
-        set_err(err, n, "%s: unknown normals format '%s' (use float .pfm or .exr)", path, ext);
+        cacao_set_err(err, n, "%s: unknown normals format '%s' (use float .pfm or .exr)", path, ext);
         ok = false;
     }
     if (!ok) cacao_img_free(out);
@@ -93,16 +87,16 @@ static bool build_projection(const cli_options *o, const cacao_camera_file *file
     const double near_z = o->near_z > 0 ? o->near_z : file ? file->near_z : 0;
     const double far_z = o->far_z > 0 ? o->far_z : file ? file->far_z : 0;
     if (!file && !(fov > 0 && near_z > 0 && far_z > 0)) {
-        set_err(err, n, "--depth: needs --camera FILE, or all of --fov, --near and --far");
+        cacao_set_err(err, n, "--depth: needs --camera FILE, or all of --fov, --near and --far");
         return false;
     }
     if (!(fov < 180) || !(far_z > near_z)) {
-        set_err(err, n, "--fov/--near/--far: need fov below 180 degrees and near < far (fov %g, near %g, far %g)", fov,
+        cacao_set_err(err, n, "--fov/--near/--far: need fov below 180 degrees and near < far (fov %g, near %g, far %g)", fov,
                 near_z, far_z);
         return false;
     }
     if (file && (file->width || file->height) && ((uint32_t)file->width != width || (uint32_t)file->height != height)) {
-        set_err(err, n, "%s: camera is %dx%d but the depth is %ux%u", camera_path, file->width, file->height, width,
+        cacao_set_err(err, n, "%s: camera is %dx%d but the depth is %ux%u", camera_path, file->width, file->height, width,
                 height);
         return false;
     }
@@ -126,7 +120,7 @@ static bool build_projection(const cli_options *o, const cacao_camera_file *file
 
 static bool load_default_scene(const cli_options *o, cli_inputs *in, char *err, size_t n) {
     if (o->fov_y_deg > 0 || o->near_z > 0 || o->far_z > 0) {
-        set_err(err, n, "--fov/--near/--far: the default scene has its own camera; give --depth or --scene");
+        cacao_set_err(err, n, "--fov/--near/--far: the default scene has its own camera; give --depth or --scene");
         return false;
     }
     const cacao_scene scene_value = cacao_default_scene(1280, 720);
@@ -135,12 +129,12 @@ static bool load_default_scene(const cli_options *o, cli_inputs *in, char *err, 
     in->depth = (cacao_img){w, h, 1, malloc(sizeof(float) * w * h)};
     in->normals = (cacao_img){w, h, 3, malloc(sizeof(float) * 3 * w * h)};
     if (!in->depth.data || !in->normals.data) {
-        set_err(err, n, "default scene: out of memory");
+        cacao_set_err(err, n, "default scene: out of memory");
         return false;
     }
     float *standard = o->reverse_z ? malloc(sizeof(float) * w * h) : in->depth.data; /* always rendered */
     if (!standard) {
-        set_err(err, n, "default scene: out of memory");
+        cacao_set_err(err, n, "default scene: out of memory");
         return false;
     }
     cacao_scene_render(scene, standard, o->reverse_z ? in->depth.data : NULL, in->normals.data);
@@ -164,13 +158,13 @@ static bool file_exists(const char *path) {
 static bool check_same_size(const cacao_img *depth, const cacao_img *normals, const char *depth_path,
                             const char *normals_path, char *err, size_t n) {
     if (normals->data && (uint64_t)depth->width * depth->height > MAX_PIXELS_WITH_NORMALS) {
-        set_err(err, n, "%s: %ux%u with normals is more than the %llu pixels the tools stage at once; give the depth "
+        cacao_set_err(err, n, "%s: %ux%u with normals is more than the %llu pixels the tools stage at once; give the depth "
                 "alone (normals are then reconstructed)", normals_path, depth->width, depth->height,
                 (unsigned long long)MAX_PIXELS_WITH_NORMALS);
         return false;
     }
     if (!normals->data || (normals->width == depth->width && normals->height == depth->height)) return true;
-    set_err(err, n, "%s: normals are %ux%u but the depth (%s) is %ux%u", normals_path, normals->width, normals->height,
+    cacao_set_err(err, n, "%s: normals are %ux%u but the depth (%s) is %ux%u", normals_path, normals->width, normals->height,
             depth_path, depth->width, depth->height);
     return false;
 }
@@ -194,12 +188,12 @@ static bool load_scene_dir(const cli_options *o, cli_inputs *in, char *err, size
     snprintf(normals, sizeof normals, "%s/normals.pfm", o->scene_dir);
     snprintf(camera, sizeof camera, "%s/camera.json", o->scene_dir);
     if (!file_exists(depth)) {
-        set_err(err, n, "--scene %s: no %s in the folder", o->scene_dir,
+        cacao_set_err(err, n, "--scene %s: no %s in the folder", o->scene_dir,
                 o->reverse_z ? "depth_reversed.pfm" : "depth.pfm");
         return false;
     }
     if (!file_exists(camera)) {
-        set_err(err, n, "--scene %s: no camera.json in the folder", o->scene_dir);
+        cacao_set_err(err, n, "--scene %s: no camera.json in the folder", o->scene_dir);
         return false;
     }
     return load_files(o, depth, file_exists(normals) ? normals : NULL, camera, in, err, n);
@@ -207,11 +201,11 @@ static bool load_scene_dir(const cli_options *o, cli_inputs *in, char *err, size
 
 static bool check_source_flags(const cli_options *o, char *err, size_t n) {
     if (o->scene_dir && (o->depth_path || o->normals_path || o->camera_path)) {
-        set_err(err, n, "--scene: cannot be combined with --depth, --normals or --camera");
+        cacao_set_err(err, n, "--scene: cannot be combined with --depth, --normals or --camera");
         return false;
     }
     if (!o->depth_path && (o->normals_path || o->camera_path)) {
-        set_err(err, n, "%s: needs --depth", o->normals_path ? "--normals" : "--camera");
+        cacao_set_err(err, n, "%s: needs --depth", o->normals_path ? "--normals" : "--camera");
         return false;
     }
     return true;

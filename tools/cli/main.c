@@ -17,6 +17,7 @@
 #include "inputs.h"
 #include "options.h"
 #include "outputs.h"
+#include "text_file.h"
 #include "vkdev.h"
 
 #define ERR_SIZE 1024
@@ -24,13 +25,6 @@
 static int fail(const char *message) {
     fprintf(stderr, "cacao: %s\n", message);
     return 1;
-}
-
-static void set_err(char *err, const char *fmt, ...) {
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, ERR_SIZE, fmt, ap);
-    va_end(ap);
 }
 
 static unsigned png_bits(const cli_options *o) { return o->png16 ? 16u : o->png_bits ? o->png_bits : 8u; }
@@ -46,7 +40,7 @@ static bool same_file(const char *a, const char *b) {
 /* -o and --json must not name each other or any input (the output would overwrite it). */
 static bool check_output_collisions(const cli_options *o, char *err) {
     if (same_file(o->output_path, o->json_path)) {
-        set_err(err, "--output %s and --json %s name the same file", o->output_path, o->json_path);
+        cacao_set_err(err, ERR_SIZE, "--output %s and --json %s name the same file", o->output_path, o->json_path);
         return false;
     }
     const struct {
@@ -57,7 +51,7 @@ static bool check_output_collisions(const cli_options *o, char *err) {
     for (size_t k = 0; k < sizeof outputs / sizeof outputs[0]; ++k)
         for (size_t i = 0; i < sizeof inputs / sizeof inputs[0]; ++i)
             if (same_file(outputs[k].path, inputs[i].path)) {
-                set_err(err, "%s %s: is also the %s input; it would be overwritten", outputs[k].flag, outputs[k].path,
+                cacao_set_err(err, ERR_SIZE, "%s %s: is also the %s input; it would be overwritten", outputs[k].flag, outputs[k].path,
                         inputs[i].flag);
                 return false;
             }
@@ -68,15 +62,15 @@ static bool check_output_flags(const cli_options *o, char *err) {
     if (!check_output_collisions(o, err)) return false;
     const cli_format format = cli_output_format(o->output_path);
     if (format == CLI_FORMAT_UNKNOWN) {
-        set_err(err, "--output %s: unknown format (use .png, .pfm or .exr)", o->output_path);
+        cacao_set_err(err, ERR_SIZE, "--output %s: unknown format (use .png, .pfm or .exr)", o->output_path);
         return false;
     }
     if ((o->png16 || o->png_bits) && format != CLI_FORMAT_PNG) {
-        set_err(err, "--bits/--png16: only for .png output, not %s", o->output_path);
+        cacao_set_err(err, ERR_SIZE, "--bits/--png16: only for .png output, not %s", o->output_path);
         return false;
     }
     if (o->png16 && o->png_bits == 8) {
-        set_err(err, "--png16 contradicts --bits 8");
+        cacao_set_err(err, ERR_SIZE, "--png16 contradicts --bits 8");
         return false;
     }
     return true;
@@ -92,8 +86,8 @@ static bool effective_settings(const cli_options *o, const cli_inputs *in, cacao
     char why[512];
     if (cacao_settings_resolve(encoded, resolved, why, sizeof why) == CACAO_SUCCESS) return true;
     const char *flag = cli_flag_of_message(why); /* name what the user gave */
-    if (flag) set_err(err, "%s (or its key in --settings): %s", flag, why);
-    else set_err(err, "settings: %s", why);
+    if (flag) cacao_set_err(err, ERR_SIZE, "%s (or its key in --settings): %s", flag, why);
+    else cacao_set_err(err, ERR_SIZE, "settings: %s", why);
     return false;
 }
 
@@ -110,7 +104,7 @@ static int print_settings(const cacao_settings *resolved) {
 static bool load_ground_truth(const cli_options *o, const cli_inputs *in, cacao_img *gt, char *err) {
     if (!cli_read_scalar_image(o->compare_path, "ground truth", true, gt, err, ERR_SIZE)) return false;
     if (gt->width == in->depth.width && gt->height == in->depth.height) return true;
-    set_err(err, "%s: ground truth is %ux%u but the depth is %ux%u", o->compare_path, gt->width, gt->height,
+    cacao_set_err(err, ERR_SIZE, "%s: ground truth is %ux%u but the depth is %ux%u", o->compare_path, gt->width, gt->height,
             in->depth.width, in->depth.height);
     cacao_img_free(gt);
     return false;
@@ -144,7 +138,7 @@ static bool plan_of_run(const vkdev *dev, const cacao_settings *encoded, uint32_
     if (s.precision == CACAO_PRECISION_FP16 && !dev->fp16) s.precision = CACAO_PRECISION_FP32;
     char why[512];
     if (cacao_plan_build(&s, w, h, plan, why, sizeof why) == CACAO_SUCCESS) return true;
-    set_err(err, "settings: %s", why);
+    cacao_set_err(err, ERR_SIZE, "settings: %s", why);
     return false;
 }
 
@@ -157,9 +151,9 @@ static bool run_on_device(vkdev *dev, const cli_options *o, const cli_inputs *in
                                            &out->timings, why, sizeof why);
     if (r == CACAO_SUCCESS) return true;
     if (strncmp(why, "inputs.projection", 17) == 0) /* name what the user gave, then why */
-        set_err(err, "%s: the projection is refused (%s)", in->projection_source, why);
+        cacao_set_err(err, ERR_SIZE, "%s: the projection is refused (%s)", in->projection_source, why);
     else
-        set_err(err, "%s: %s", cacao_result_string(r), why);
+        cacao_set_err(err, ERR_SIZE, "%s: %s", cacao_result_string(r), why);
     return false;
 }
 
@@ -168,7 +162,7 @@ static bool render(const cli_options *o, const cli_inputs *in, const cacao_setti
     const uint32_t w = in->depth.width, h = in->depth.height;
     out->ao = (cacao_img){w, h, 1, malloc(sizeof(float) * w * h)};
     if (!out->ao.data) {
-        set_err(err, "out of memory for the %ux%u output", w, h);
+        cacao_set_err(err, ERR_SIZE, "out of memory for the %ux%u output", w, h);
         return false;
     }
     vkdev dev;
@@ -178,7 +172,7 @@ static bool render(const cli_options *o, const cli_inputs *in, const cacao_setti
     bool ok = run_on_device(&dev, o, in, encoded, out, err);
     vkdev_destroy(&dev); /* keeps validation_messages, which counts messages from teardown too */
     if (ok && dev.validation_messages) {
-        set_err(err, "--validate: the validation layer reported %u message(s) (above); no output written",
+        cacao_set_err(err, ERR_SIZE, "--validate: the validation layer reported %u message(s) (above); no output written",
                 dev.validation_messages);
         ok = false;
     }
@@ -196,11 +190,11 @@ static bool write_outputs(const cli_options *o, const cli_report *report, const 
     bool ok = cli_write_ao(cli_output_format(o->output_path), image_new, ao, png_bits(o), err, ERR_SIZE);
     if (ok && o->json_path) ok = cli_write_report(json_new, report, err, ERR_SIZE);
     if (ok && o->json_path && rename(json_new, o->json_path) != 0) {
-        set_err(err, "%s: cannot rename %s into place: %s", o->json_path, json_new, strerror(errno));
+        cacao_set_err(err, ERR_SIZE, "%s: cannot rename %s into place: %s", o->json_path, json_new, strerror(errno));
         ok = false;
     }
     if (ok && rename(image_new, o->output_path) != 0) {
-        set_err(err, "%s: cannot rename %s into place: %s", o->output_path, image_new, strerror(errno));
+        cacao_set_err(err, ERR_SIZE, "%s: cannot rename %s into place: %s", o->output_path, image_new, strerror(errno));
         ok = false;
     }
     remove(image_new);

@@ -190,13 +190,6 @@ static const flag_def flags[] = {
 };
 #define FLAG_COUNT_ALL (sizeof flags / sizeof flags[0])
 
-static void set_err(char *err, size_t n, const char *fmt, ...) {
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, n, fmt, ap);
-    va_end(ap);
-}
-
 static bool is_setting(const flag_def *def) { return def->kind >= SET_FLOAT; }
 
 static const flag_def *find_flag(const char *arg) {
@@ -231,11 +224,11 @@ static bool runtime_default_is_zero(size_t offset) {
 /* Stores a literal float: finite, not negative, 0 as CACAO_ZERO where the runtime allows 0. */
 static bool store_float(size_t offset, double literal, cacao_settings *s, const char *label, char *err, size_t n) {
     if (!isfinite(literal)) {
-        set_err(err, n, "%s: not a finite number", label);
+        cacao_set_err(err, n, "%s: not a finite number", label);
         return false;
     }
     if (literal < 0.0) {
-        set_err(err, n, "%s: must not be negative", label);
+        cacao_set_err(err, n, "%s: must not be negative", label);
         return false;
     }
     if (literal == 0.0 && runtime_default_is_zero(offset)) { /* e.g. thickness: 0 = relative to R */
@@ -243,7 +236,7 @@ static bool store_float(size_t offset, double literal, cacao_settings *s, const 
         return true;
     }
     if (literal == 0.0 && !runtime_accepts_zero(offset)) {
-        set_err(err, n, "%s: must be greater than 0", label);
+        cacao_set_err(err, n, "%s: must be greater than 0", label);
         return false;
     }
     *float_field(s, offset) = literal == 0.0 ? CACAO_ZERO : (float)literal;
@@ -252,7 +245,7 @@ static bool store_float(size_t offset, double literal, cacao_settings *s, const 
 
 static bool store_blur(double literal, cacao_settings *s, const char *label, char *err, size_t n) {
     if (!(literal >= 0 && literal <= 8) || literal != floor(literal)) {
-        set_err(err, n, "%s: must be a whole number of passes, 0 (no blur) to 8", label);
+        cacao_set_err(err, n, "%s: must be a whole number of passes, 0 (no blur) to 8", label);
         return false;
     }
     s->blur_pass_count = literal == 0 ? CACAO_BLUR_NONE : (int)literal;
@@ -262,7 +255,7 @@ static bool store_blur(double literal, cacao_settings *s, const char *label, cha
 static bool store_int(const flag_def *def, double literal, cacao_settings *s, const char *label, char *err,
                       size_t n) {
     if (!(literal >= 0 && literal <= def->int_max) || literal != floor(literal)) {
-        set_err(err, n, "%s: must be a whole number, 0 (default) to %d", label, def->int_max);
+        cacao_set_err(err, n, "%s: must be a whole number, 0 (default) to %d", label, def->int_max);
         return false;
     }
     *int_field(s, def->offset) = (int)literal;
@@ -279,7 +272,7 @@ static bool store_enum(const flag_def *def, const char *name, cacao_settings *s,
     char choices[128] = "";
     for (int i = 1; i < def->name_count; ++i)
         snprintf(choices + strlen(choices), sizeof choices - strlen(choices), "%s%s", i > 1 ? ", " : "", def->names[i]);
-    set_err(err, n, "%s: unknown value '%s' (one of %s)", label, name, choices);
+    cacao_set_err(err, n, "%s: unknown value '%s' (one of %s)", label, name, choices);
     return false;
 }
 
@@ -292,7 +285,7 @@ static bool check_with_runtime(const flag_def *def, const cacao_settings *s, con
     if (def->kind == SET_FLOAT_PAIR) memcpy((char *)&probe + def->offset2, (const char *)s + def->offset2, size);
     char why[256];
     if (cacao_settings_resolve(&probe, &resolved, why, sizeof why) == CACAO_SUCCESS) return true;
-    set_err(err, n, "%s: %s", label, why);
+    cacao_set_err(err, n, "%s: %s", label, why);
     return false;
 }
 
@@ -310,7 +303,7 @@ static bool parse_number(const char *text, double *out) {
 
 static bool parse_number_flag(const char *text, double *out, const char *label, char *err, size_t n) {
     if (parse_number(text, out)) return true;
-    set_err(err, n, "%s: not a number", label);
+    cacao_set_err(err, n, "%s: not a number", label);
     return false;
 }
 
@@ -319,14 +312,14 @@ static bool apply_pair_flag(const flag_def *def, const char *value, cacao_settin
     const char *comma = strchr(value, ',');
     char first[64];
     if (!comma || (size_t)(comma - value) >= sizeof first) {
-        set_err(err, n, "%s: expected two numbers FROM,TO", label);
+        cacao_set_err(err, n, "%s: expected two numbers FROM,TO", label);
         return false;
     }
     memcpy(first, value, (size_t)(comma - value));
     first[comma - value] = '\0';
     double from, to;
     if (!parse_number(first, &from) || !parse_number(comma + 1, &to)) {
-        set_err(err, n, "%s: expected two numbers FROM,TO", label);
+        cacao_set_err(err, n, "%s: expected two numbers FROM,TO", label);
         return false;
     }
     return store_float(def->offset, from, s, label, err, n) && store_float(def->offset2, to, s, label, err, n);
@@ -372,7 +365,7 @@ static bool apply_option_flag(const flag_def *def, const char *value, cli_option
     case FLAG_PATH:
     case FLAG_SETTINGS_FILE:
         if (!value[0]) {
-            set_err(err, n, "%s: empty value", def->name);
+            cacao_set_err(err, n, "%s: empty value", def->name);
             return false;
         }
         *(const char **)field = value;
@@ -382,7 +375,7 @@ static bool apply_option_flag(const flag_def *def, const char *value, cli_option
         return true;
     case FLAG_POSITIVE:
         if (!parse_number(value, &number) || !isfinite(number) || number <= 0) {
-            set_err(err, n, "%s %s: must be a finite number greater than 0", def->name, value);
+            cacao_set_err(err, n, "%s %s: must be a finite number greater than 0", def->name, value);
             return false;
         }
         *(double *)field = number;
@@ -395,7 +388,7 @@ static bool apply_option_flag(const flag_def *def, const char *value, cli_option
         const bool ok = parse_number(value, &number) && number == floor(number) &&
                         (bits ? (number == 8 || number == 16) : (number >= low && number <= 100000));
         if (!ok) {
-            set_err(err, n, "%s %s: must be %s", def->name, value,
+            cacao_set_err(err, n, "%s %s: must be %s", def->name, value,
                     bits  ? "8 or 16"
                     : low ? "a whole number from 1 to 100000"
                           : "a whole number from 0 to 100000");
@@ -416,7 +409,7 @@ static bool parse_pass(int argc, char **argv, cli_options *o, bool settings_file
         if (!def) {
             char shown[256];
             cacao_escape_text(argv[i], shown, sizeof shown);
-            set_err(err, n,
+            cacao_set_err(err, n,
                     argv[i][0] == '-' ? "%s: unknown flag (see --help)" : "%s: unexpected argument (see --help)",
                     shown);
             return false;
@@ -424,7 +417,7 @@ static bool parse_pass(int argc, char **argv, cli_options *o, bool settings_file
         const char *value = NULL;
         if (def->value) {
             if (i + 1 >= argc || find_flag(argv[i + 1])) { /* "--quality -o x.png": --quality lacks its value */
-                set_err(err, n, "%s: needs a value (%s)%s%s", argv[i], def->value, i + 1 < argc ? " before " : "",
+                cacao_set_err(err, n, "%s: needs a value (%s)%s%s", argv[i], def->value, i + 1 < argc ? " before " : "",
                         i + 1 < argc ? argv[i + 1] : "");
                 return false;
             }
@@ -459,11 +452,11 @@ static bool apply_json_item(const flag_def *def, size_t offset, const cJSON *ite
     const bool want_number =
         def->kind == SET_FLOAT || def->kind == SET_FLOAT_PAIR || def->kind == SET_BLUR || def->kind == SET_INT;
     if (want_number && !cJSON_IsNumber(item)) {
-        set_err(err, n, "%s: must be a number", label);
+        cacao_set_err(err, n, "%s: must be a number", label);
         return false;
     }
     if ((def->kind == SET_ENUM && !cJSON_IsString(item)) || (def->kind == SET_BOOL && !cJSON_IsBool(item))) {
-        set_err(err, n, "%s: must be %s", label, def->kind == SET_ENUM ? "a string" : "true or false");
+        cacao_set_err(err, n, "%s: must be %s", label, def->kind == SET_ENUM ? "a string" : "true or false");
         return false;
     }
     switch (def->kind) {
@@ -497,7 +490,7 @@ static bool apply_json_settings(const cJSON *root, const char *path, const bool 
         cacao_escape_text(item->string, key, sizeof key);
         snprintf(label, sizeof label, "%s: \"%s\"", path, key);
         if (!def) {
-            set_err(err, n, "%s: unknown setting (see --print-settings for the schema)", label);
+            cacao_set_err(err, n, "%s: unknown setting (see --print-settings for the schema)", label);
             return false;
         }
         if (overridden[def - flags]) continue;

@@ -11,13 +11,7 @@
 #include "exr_io.h"
 #include "inputs.h"
 #include "options.h"
-
-static void set_err(char *err, size_t n, const char *fmt, ...) {
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, n, fmt, ap);
-    va_end(ap);
-}
+#include "text_file.h"
 
 cli_format cli_output_format(const char *path) {
     char ext[16];
@@ -37,7 +31,7 @@ bool cli_write_ao(cli_format format, const char *path, const cacao_img *ao, unsi
     case CLI_FORMAT_EXR:
         return cacao_exr_write(path, ao, err, n);
     default:
-        set_err(err, n, "%s: unknown output format", path);
+        cacao_set_err(err, n, "%s: unknown output format", path);
         return false;
     }
 }
@@ -120,7 +114,7 @@ static bool write_text_atomically(const char *path, const char *text, char *err,
     snprintf(temp, sizeof temp, "%s.tmp", path);
     FILE *f = fopen(temp, "wb");
     if (!f) {
-        set_err(err, n, "%s: cannot create: %s", path, strerror(errno));
+        cacao_set_err(err, n, "%s: cannot create: %s", path, strerror(errno));
         return false;
     }
     const size_t length = strlen(text);
@@ -128,7 +122,7 @@ static bool write_text_atomically(const char *path, const char *text, char *err,
     ok = fclose(f) == 0 && ok;
     if (ok && rename(temp, path) != 0) ok = false;
     if (!ok) {
-        set_err(err, n, "%s: write failed: %s", path, strerror(errno));
+        cacao_set_err(err, n, "%s: write failed: %s", path, strerror(errno));
         remove(temp);
     }
     return ok;
@@ -139,7 +133,7 @@ bool cli_write_report(const char *path, const cli_report *report, char *err, siz
     char *text = root ? cJSON_Print(root) : NULL;
     cJSON_Delete(root);
     if (!text) {
-        set_err(err, n, "%s: out of memory", path);
+        cacao_set_err(err, n, "%s: out of memory", path);
         return false;
     }
     const bool ok = write_text_atomically(path, text, err, n);

@@ -18,14 +18,6 @@ typedef struct exr_job {
     char message[256];
 } exr_job;
 
-static void set_err(char *err, size_t err_size, const char *fmt, ...) {
-    if (!err || err_size == 0) return;
-    va_list args;
-    va_start(args, fmt);
-    vsnprintf(err, err_size, fmt, args);
-    va_end(args);
-}
-
 static void on_exr_error(exr_const_context_t ctxt, exr_result_t code, const char *msg) {
     void *user = NULL;
     if (!ctxt || exr_get_user_data(ctxt, &user) != EXR_ERR_SUCCESS || !user) return;
@@ -44,7 +36,7 @@ static exr_context_initializer_t job_initializer(exr_job *job) {
 /* Reports a failed library call, preferring the library's own detailed message. */
 static bool exr_fail(const exr_job *job, exr_result_t rv, const char *path, const char *what, char *err,
                      size_t err_size) {
-    set_err(err, err_size, "%s: %s: %s", path, what,
+    cacao_set_err(err, err_size, "%s: %s: %s", path, what,
             job->message[0] ? job->message : exr_get_default_error_message(rv));
     return false;
 }
@@ -98,7 +90,7 @@ static bool choose_scalar_channel(const exr_attr_chlist_t *list, const char *pat
     }
     char found[256];
     list_channel_names(list, found, sizeof found);
-    set_err(err, err_size,
+    cacao_set_err(err, err_size,
             "%s: wrong channels: expected one channel named Z, R or Y (or a single channel), found %d (%s)", path,
             list->num_channels, found);
     return false;
@@ -110,7 +102,7 @@ static bool choose_vector_channels(const exr_attr_chlist_t *list, const char *pa
     if (select_channels(list, names, 2, 3, sel)) return true;
     char found[256];
     list_channel_names(list, found, sizeof found);
-    set_err(err, err_size, "%s: wrong channels: expected R, G, B or X, Y, Z, found %d (%s)", path, list->num_channels,
+    cacao_set_err(err, err_size, "%s: wrong channels: expected R, G, B or X, Y, Z, found %d (%s)", path, list->num_channels,
             found);
     return false;
 }
@@ -132,12 +124,12 @@ static bool read_layout(exr_const_context_t ctx, const exr_job *job, const char 
     if (rv == EXR_ERR_SUCCESS) rv = exr_get_data_window(ctx, 0, &window);
     if (rv != EXR_ERR_SUCCESS) return exr_fail(job, rv, path, "bad header", err, err_size);
     if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED) {
-        set_err(err, err_size, "%s: deep EXR images are not supported", path);
+        cacao_set_err(err, err_size, "%s: deep EXR images are not supported", path);
         return false;
     }
     const int64_t w = (int64_t)window.max.x - window.min.x + 1, h = (int64_t)window.max.y - window.min.y + 1;
     if (w < 1 || h < 1 || w > CACAO_IMG_MAX_SIZE || h > CACAO_IMG_MAX_SIZE) {
-        set_err(err, err_size, "%s: image size %lldx%lld is zero or larger than %u", path, (long long)w, (long long)h,
+        cacao_set_err(err, err_size, "%s: image size %lldx%lld is zero or larger than %u", path, (long long)w, (long long)h,
                 CACAO_IMG_MAX_SIZE);
         return false;
     }
@@ -151,7 +143,7 @@ static bool read_layout(exr_const_context_t ctx, const exr_job *job, const char 
     if (rv != EXR_ERR_SUCCESS) return exr_fail(job, rv, path, "bad header", err, err_size);
     if ((layout->tiled && (layout->tile_width < 1 || layout->tile_height < 1)) ||
         (!layout->tiled && layout->lines_per_chunk < 1)) {
-        set_err(err, err_size, "%s: bad header: invalid chunk size", path);
+        cacao_set_err(err, err_size, "%s: bad header: invalid chunk size", path);
         return false;
     }
     return true;
@@ -164,7 +156,7 @@ static bool check_sampling(const exr_attr_chlist_t *list, const exr_selection *s
         if (e->x_sampling != 1 || e->y_sampling != 1) {
             char name[64];
             cacao_escape_text(e->name.str, name, sizeof name);
-            set_err(err, err_size, "%s: channel %s is subsampled, which is not supported", path, name);
+            cacao_set_err(err, err_size, "%s: channel %s is subsampled, which is not supported", path, name);
             return false;
         }
     }
@@ -253,7 +245,7 @@ static bool read_part(exr_context_t ctx, const exr_job *job, const char *path, c
                        .channels = (uint32_t)sel.count,
                        .data = calloc(floats, sizeof(float))};
     if (!out->data) {
-        set_err(err, err_size, "%s: out of memory", path);
+        cacao_set_err(err, err_size, "%s: out of memory", path);
         return false;
     }
     rv = decode_all(ctx, &layout, list, &sel, out);
@@ -289,22 +281,22 @@ bool cacao_exr_read_vector(const char *path, cacao_img *out, char *err, size_t e
 static bool check_writable(const char *path, const cacao_img *img, const char *const *names, char *err,
                            size_t err_size) {
     if (!img || !img->data) {
-        set_err(err, err_size, "%s: nothing to write (image or its data is NULL)", path);
+        cacao_set_err(err, err_size, "%s: nothing to write (image or its data is NULL)", path);
         return false;
     }
     if (img->width < 1 || img->height < 1 || img->width > CACAO_IMG_MAX_SIZE || img->height > CACAO_IMG_MAX_SIZE) {
-        set_err(err, err_size, "%s: image size %ux%u is zero or larger than %u", path, img->width, img->height,
+        cacao_set_err(err, err_size, "%s: image size %ux%u is zero or larger than %u", path, img->width, img->height,
                 CACAO_IMG_MAX_SIZE);
         return false;
     }
     if (img->channels < 1 || img->channels > MAX_CHANNELS) {
-        set_err(err, err_size, "%s: cannot write an image with %u channels as EXR (1 to %d)", path, img->channels,
+        cacao_set_err(err, err_size, "%s: cannot write an image with %u channels as EXR (1 to %d)", path, img->channels,
                 MAX_CHANNELS);
         return false;
     }
     for (uint32_t k = 0; k < img->channels; ++k)
         if (!names[k] || !names[k][0]) {
-            set_err(err, err_size, "%s: channel %u has no name", path, k);
+            cacao_set_err(err, err_size, "%s: channel %u has no name", path, k);
             return false;
         }
     return true;
@@ -383,7 +375,7 @@ static exr_result_t write_pixels(exr_context_t ctx, const cacao_img *img, const 
 bool cacao_exr_write(const char *path, const cacao_img *img, char *err, size_t err_size) {
     static const char *const scalar[] = {"Y"}, *const vector[] = {"R", "G", "B"};
     if (img && img->channels != 1 && img->channels != 3) {
-        set_err(err, err_size, "%s: cannot write an image with %u channels as EXR (1 or 3)", path, img->channels);
+        cacao_set_err(err, err_size, "%s: cannot write an image with %u channels as EXR (1 or 3)", path, img->channels);
         return false;
     }
     return cacao_exr_write_named(path, img, img && img->channels == 1 ? scalar : vector, err, err_size);
@@ -394,7 +386,7 @@ bool cacao_exr_write_named(const char *path, const cacao_img *img, const char *c
     if (!check_writable(path, img, names, err, err_size)) return false;
     char *temp = cacao_temp_path_for(path);
     if (!temp) {
-        set_err(err, err_size, "%s: out of memory", path);
+        cacao_set_err(err, err_size, "%s: out of memory", path);
         return false;
     }
     exr_job job = {{0}};

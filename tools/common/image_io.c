@@ -15,14 +15,6 @@ _Static_assert(sizeof(float) == 4, "PFM stores IEEE-754 binary32 floats");
 
 /* ---- Shared helpers ------------------------------------------------------------------------ */
 
-static void set_err(char *err, size_t err_size, const char *fmt, ...) {
-    if (!err || err_size == 0) return;
-    va_list args;
-    va_start(args, fmt);
-    vsnprintf(err, err_size, fmt, args);
-    va_end(args);
-}
-
 void cacao_img_free(cacao_img *img) {
     if (!img) return;
     free(img->data);
@@ -34,16 +26,16 @@ static bool size_in_range(uint32_t n) { return n >= 1 && n <= CACAO_IMG_MAX_SIZE
 /* Checks an image handed to a writer; channel_ok says which channel counts the format takes. */
 static bool check_image(const char *path, const cacao_img *img, bool channel_ok, char *err, size_t err_size) {
     if (!img || !img->data) {
-        set_err(err, err_size, "%s: nothing to write (image or its data is NULL)", path);
+        cacao_set_err(err, err_size, "%s: nothing to write (image or its data is NULL)", path);
         return false;
     }
     if (!size_in_range(img->width) || !size_in_range(img->height)) {
-        set_err(err, err_size, "%s: image size %ux%u is zero or larger than %u", path, img->width, img->height,
+        cacao_set_err(err, err_size, "%s: image size %ux%u is zero or larger than %u", path, img->width, img->height,
                 CACAO_IMG_MAX_SIZE);
         return false;
     }
     if (!channel_ok) {
-        set_err(err, err_size, "%s: cannot write an image with %u channels in this format", path, img->channels);
+        cacao_set_err(err, err_size, "%s: cannot write an image with %u channels in this format", path, img->channels);
         return false;
     }
     return true;
@@ -64,12 +56,12 @@ char *cacao_temp_path_for(const char *path) {
 static FILE *open_temp(const char *path, char **temp_out, char *err, size_t err_size) {
     *temp_out = cacao_temp_path_for(path);
     if (!*temp_out) {
-        set_err(err, err_size, "%s: out of memory", path);
+        cacao_set_err(err, err_size, "%s: out of memory", path);
         return NULL;
     }
     FILE *file = fopen(*temp_out, "wb");
     if (!file) {
-        set_err(err, err_size, "%s: cannot create temporary file %s: %s", path, *temp_out, strerror(errno));
+        cacao_set_err(err, err_size, "%s: cannot create temporary file %s: %s", path, *temp_out, strerror(errno));
         free(*temp_out);
         *temp_out = NULL;
     }
@@ -81,11 +73,11 @@ static FILE *open_temp(const char *path, char **temp_out, char *err, size_t err_
 static bool finish_temp(FILE *file, char *temp, const char *path, bool written_ok, char *err, size_t err_size) {
     bool ok = written_ok;
     if (ok && (fflush(file) != 0 || ferror(file))) {
-        set_err(err, err_size, "%s: write failed: %s", path, strerror(errno));
+        cacao_set_err(err, err_size, "%s: write failed: %s", path, strerror(errno));
         ok = false;
     }
     if (fclose(file) != 0 && ok) {
-        set_err(err, err_size, "%s: closing the written file failed: %s", path, strerror(errno));
+        cacao_set_err(err, err_size, "%s: closing the written file failed: %s", path, strerror(errno));
         ok = false;
     }
     return cacao_commit_temp(temp, path, ok, err, err_size);
@@ -94,61 +86,12 @@ static bool finish_temp(FILE *file, char *temp, const char *path, bool written_o
 bool cacao_commit_temp(char *temp, const char *path, bool written_ok, char *err, size_t err_size) {
     bool ok = written_ok;
     if (ok && rename(temp, path) != 0) {
-        set_err(err, err_size, "%s: cannot rename %s into place: %s", path, temp, strerror(errno));
+        cacao_set_err(err, err_size, "%s: cannot rename %s into place: %s", path, temp, strerror(errno));
         ok = false;
     }
     if (!ok) remove(temp);
     free(temp);
     return ok;
-}
-
-bool cacao_check_input(const char *path, char *err, size_t err_size) {
-    struct stat st;
-    if (stat(path, &st) != 0) {
-        set_err(err, err_size, "%s: cannot open: %s", path, strerror(errno));
-        return false;
-    }
-    if (S_ISDIR(st.st_mode)) {
-        set_err(err, err_size, "%s: is a directory, not a file", path);
-        return false;
-    }
-    if (!S_ISREG(st.st_mode)) {
-        set_err(err, err_size, "%s: is not a regular file (a FIFO, socket or device); give a file", path);
-        return false;
-    }
-    return true;
-}
-
-FILE *cacao_open_input(const char *path, char *err, size_t err_size) {
-    if (!cacao_check_input(path, err, err_size)) return NULL;
-    FILE *file = fopen(path, "rb");
-    if (!file) set_err(err, err_size, "%s: cannot open: %s", path, strerror(errno));
-    return file;
-}
-
-char *cacao_read_whole_file(const char *path, size_t max_bytes, char *err, size_t err_size) {
-    FILE *file = cacao_open_input(path, err, err_size);
-    if (!file) return NULL;
-    /* Sized by the file (a regular file: checked above), not by the limit; a file that grows while
-     * being read is cut at the size it had, and one larger than the limit is refused. */
-    struct stat st;
-    const bool sized = fstat(fileno(file), &st) == 0 && st.st_size >= 0;
-    const size_t capacity = sized && (unsigned long long)st.st_size < max_bytes ? (size_t)st.st_size : max_bytes;
-    char *text = sized ? malloc(capacity + 1) : NULL;
-    const size_t length = text ? fread(text, 1, capacity, file) : 0;
-    const bool too_big = text && (unsigned long long)st.st_size > max_bytes;
-    const bool failed = !text || ferror(file) || too_big;
-    fclose(file);
-    if (failed) {
-        if (too_big)
-            set_err(err, err_size, "%s: larger than %zu bytes", path, max_bytes);
-        else
-            set_err(err, err_size, "%s: cannot read%s", path, text ? "" : " (out of memory)");
-        free(text);
-        return NULL;
-    }
-    text[length] = '\0';
-    return text;
 }
 
 void cacao_escape_text(const char *text, char *out, size_t size) {
@@ -188,7 +131,7 @@ static bool pfm_read_field(FILE *file, const char *path, const char *name, char 
     size_t length = 0;
     while (c != EOF && !is_space(c)) {
         if (length + 1 >= capacity) {
-            set_err(err, err_size, "%s: bad PFM header: %s field is too long", path, name);
+            cacao_set_err(err, err_size, "%s: bad PFM header: %s field is too long", path, name);
             return false;
         }
         field[length++] = (char)c;
@@ -196,7 +139,7 @@ static bool pfm_read_field(FILE *file, const char *path, const char *name, char 
     }
     field[length] = '\0';
     if (c == EOF) {
-        set_err(err, err_size, "%s: truncated: file ends in the PFM header (reading the %s)", path, name);
+        cacao_set_err(err, err_size, "%s: truncated: file ends in the PFM header (reading the %s)", path, name);
         return false;
     }
     return true;
@@ -208,13 +151,13 @@ static bool pfm_parse_size(const char *field, const char *path, const char *name
     size_t length = strlen(field);
     for (size_t i = 0; i < length; i++) {
         if (field[i] < '0' || field[i] > '9') {
-            set_err(err, err_size, "%s: bad PFM header: %s \"%s\" is not a number", path, name, field);
+            cacao_set_err(err, err_size, "%s: bad PFM header: %s \"%s\" is not a number", path, name, field);
             return false;
         }
         if (value <= CACAO_IMG_MAX_SIZE) value = value * 10 + (uint32_t)(field[i] - '0');
     }
     if (!size_in_range(value)) {
-        set_err(err, err_size, "%s: bad PFM header: %s %s is zero or larger than %u", path, name, field,
+        cacao_set_err(err, err_size, "%s: bad PFM header: %s %s is zero or larger than %u", path, name, field,
                 CACAO_IMG_MAX_SIZE);
         return false;
     }
@@ -226,7 +169,7 @@ static bool pfm_read_header(FILE *file, const char *path, pfm_header *header, ch
     int magic[3]; /* read one at a time: initialiser evaluation order is unspecified */
     for (int i = 0; i < 3; i++) magic[i] = getc(file);
     if (magic[0] != 'P' || (magic[1] != 'f' && magic[1] != 'F') || !is_space(magic[2])) {
-        set_err(err, err_size, "%s: bad header: not a PFM file (does not start with \"Pf\" or \"PF\")", path);
+        cacao_set_err(err, err_size, "%s: bad header: not a PFM file (does not start with \"Pf\" or \"PF\")", path);
         return false;
     }
     header->channels = magic[1] == 'F' ? 3 : 1;
@@ -242,11 +185,11 @@ static bool pfm_read_header(FILE *file, const char *path, pfm_header *header, ch
     char *end = NULL;
     double scale = strtod(field, &end);
     if (end == field || *end != '\0') {
-        set_err(err, err_size, "%s: bad PFM header: scale \"%s\" is not a number", path, field);
+        cacao_set_err(err, err_size, "%s: bad PFM header: scale \"%s\" is not a number", path, field);
         return false;
     }
     if (isnan(scale) || isinf(scale) || scale == 0.0) {
-        set_err(err, err_size, "%s: bad PFM header: scale \"%s\" is NaN, infinite or zero (no byte order)", path,
+        cacao_set_err(err, err_size, "%s: bad PFM header: scale \"%s\" is NaN, infinite or zero (no byte order)", path,
                 field);
         return false;
     }
@@ -286,16 +229,16 @@ static bool pfm_read_pixels(FILE *file, const char *path, const pfm_header *head
     size_t row_bytes = row_floats * 4;
     unsigned long long data_bytes = (unsigned long long)row_bytes * header->height;
     if (data_bytes > SIZE_MAX) {
-        set_err(err, err_size, "%s: image of %llu bytes is too large for this machine", path, data_bytes);
+        cacao_set_err(err, err_size, "%s: image of %llu bytes is too large for this machine", path, data_bytes);
         return false;
     }
     long remaining = bytes_remaining(file);
     if (remaining < 0) {
-        set_err(err, err_size, "%s: cannot determine the file size", path);
+        cacao_set_err(err, err_size, "%s: cannot determine the file size", path);
         return false;
     }
     if ((unsigned long long)remaining < data_bytes) {
-        set_err(err, err_size,
+        cacao_set_err(err, err_size,
                 "%s: truncated: header says %ux%u with %u channel(s) (%llu bytes of pixels), "
                 "but only %ld bytes follow the header",
                 path, header->width, header->height, header->channels, data_bytes, remaining);
@@ -305,10 +248,10 @@ static bool pfm_read_pixels(FILE *file, const char *path, const pfm_header *head
     float *data = malloc((size_t)data_bytes);
     unsigned char *row = malloc(row_bytes);
     bool ok = data && row;
-    if (!ok) set_err(err, err_size, "%s: out of memory for %llu bytes", path, data_bytes);
+    if (!ok) cacao_set_err(err, err_size, "%s: out of memory for %llu bytes", path, data_bytes);
     for (uint32_t file_row = 0; ok && file_row < header->height; file_row++) {
         if (fread(row, 1, row_bytes, file) != row_bytes) {
-            set_err(err, err_size, "%s: truncated: file ends in pixel row %u", path, file_row);
+            cacao_set_err(err, err_size, "%s: truncated: file ends in pixel row %u", path, file_row);
             ok = false;
             break;
         }
@@ -337,13 +280,13 @@ bool cacao_pfm_read(const char *path, cacao_img *out, char *err, size_t err_size
 
 static bool pfm_write_rows(FILE *file, const char *path, const cacao_img *img, char *err, size_t err_size) {
     if (fprintf(file, "%s\n%u %u\n-1.0\n", img->channels == 3 ? "PF" : "Pf", img->width, img->height) < 0) {
-        set_err(err, err_size, "%s: write failed: %s", path, strerror(errno));
+        cacao_set_err(err, err_size, "%s: write failed: %s", path, strerror(errno));
         return false;
     }
     size_t row_floats = (size_t)img->width * img->channels;
     unsigned char *row = malloc(row_floats * 4);
     if (!row) {
-        set_err(err, err_size, "%s: out of memory", path);
+        cacao_set_err(err, err_size, "%s: out of memory", path);
         return false;
     }
     bool ok = true;
@@ -351,7 +294,7 @@ static bool pfm_write_rows(FILE *file, const char *path, const cacao_img *img, c
         const float *image_row = img->data + (size_t)(img->height - 1 - file_row) * row_floats;
         for (size_t i = 0; i < row_floats; i++) pfm_encode_float_le(image_row[i], row + 4 * i);
         if (fwrite(row, 4, row_floats, file) != row_floats) {
-            set_err(err, err_size, "%s: write failed: %s", path, strerror(errno));
+            cacao_set_err(err, err_size, "%s: write failed: %s", path, strerror(errno));
             ok = false;
         }
     }
@@ -399,11 +342,11 @@ static void png_job_warning(png_structp png, png_const_charp message) {
 /* Formats a failed job's error as "<prefix>: <error> (<last warning>)". */
 static void png_job_report(const png_job *job, const char *path, const char *prefix, char *err, size_t err_size) {
     if (!job->info)
-        set_err(err, err_size, "%s: %s: cannot initialise libpng", path, prefix);
+        cacao_set_err(err, err_size, "%s: %s: cannot initialise libpng", path, prefix);
     else if (job->warning[0])
-        set_err(err, err_size, "%s: %s: %s (%s)", path, prefix, job->message, job->warning);
+        cacao_set_err(err, err_size, "%s: %s: %s (%s)", path, prefix, job->message, job->warning);
     else
-        set_err(err, err_size, "%s: %s: %s", path, prefix, job->message);
+        cacao_set_err(err, err_size, "%s: %s: %s", path, prefix, job->message);
 }
 
 static void png_job_read(png_structp png, png_bytep bytes, size_t count) {
@@ -494,7 +437,7 @@ bool cacao_png_read(const char *path, cacao_img *out, bool *is16bit, char *err, 
     unsigned char signature[8];
     size_t signature_bytes = fread(signature, 1, sizeof(signature), job.file);
     if (signature_bytes != sizeof(signature) || png_sig_cmp(signature, 0, sizeof(signature)) != 0) {
-        set_err(err, err_size, "%s: bad header: not a PNG file (%s)", path,
+        cacao_set_err(err, err_size, "%s: bad header: not a PNG file (%s)", path,
                 signature_bytes != sizeof(signature) ? "shorter than the PNG signature" : "wrong signature");
         fclose(job.file);
         return false;
@@ -554,7 +497,7 @@ static bool png_encode(png_job *job, const cacao_img *img, int bits) {
 bool cacao_png_write(const char *path, const cacao_img *img, int bits, char *err, size_t err_size) {
     if (!check_image(path, img, img && img->channels >= 1 && img->channels <= 4, err, err_size)) return false;
     if (bits != 8 && bits != 16) {
-        set_err(err, err_size, "%s: PNG bits per sample must be 8 or 16, not %d", path, bits);
+        cacao_set_err(err, err_size, "%s: PNG bits per sample must be 8 or 16, not %d", path, bits);
         return false;
     }
     char *temp;

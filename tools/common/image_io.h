@@ -20,6 +20,8 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "text_file.h"
+
 #define CACAO_IMG_MAX_SIZE 16384u /* largest width or height accepted or written */
 
 /* A float image. data holds width*height*channels floats, top row first, channels interleaved. */
@@ -56,15 +58,7 @@ bool cacao_png_write(const char *path, const cacao_img *img, int bits, char *err
 char *cacao_temp_path_for(const char *path);
 bool cacao_commit_temp(char *temp, const char *path, bool written_ok, char *err, size_t err_size);
 
-/* Input files, shared by every reader. cacao_check_input says why path cannot be read as a file
- * ("cannot open: <system reason>", "is a directory", "is not a regular file" for a FIFO, socket
- * or device, which are refused rather than read so that no reader can block on them); it looks
- * with stat() and opens nothing. cacao_open_input checks, then opens once for binary reading. */
-bool cacao_check_input(const char *path, char *err, size_t err_size);
-FILE *cacao_open_input(const char *path, char *err, size_t err_size);
-
-/* The whole of a (text) file of at most max_bytes, zero-terminated; NULL with err on failure. */
-char *cacao_read_whole_file(const char *path, size_t max_bytes, char *err, size_t err_size);
+/* Input files (cacao_check_input, cacao_open_input, cacao_read_whole_file): text_file.h. */
 
 /* Copies text into out (size bytes, always terminated), writing every byte outside printable
  * ASCII as \xNN, so that names taken from inputs stay on one line and carry no terminal escapes. */

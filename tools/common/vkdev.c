@@ -1,5 +1,6 @@
 /* vkdev.c - headless Vulkan device and one-shot cacao frames (see vkdev.h). */
 #include "vkdev.h"
+#include "text_file.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -9,13 +10,6 @@
 #include <time.h>
 
 #define MAX_TIMESTAMPS (CACAO_PLAN_MAX_STEPS + 1)
-
-static void set_err(char *err, size_t n, const char *fmt, ...) {
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, n, fmt, ap);
-    va_end(ap);
-}
 
 static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                  VkDebugUtilsMessageTypeFlagsEXT type,
@@ -43,7 +37,7 @@ static bool has_layer(const char *name) {
 static bool create_instance(vkdev *dev, bool validation, char *err, size_t n) {
     const char *layer = "VK_LAYER_KHRONOS_validation";
     if (validation && !has_layer(layer)) {
-        set_err(err, n, "--validate: the Vulkan validation layer is not installed (Debian: vulkan-validationlayers)");
+        cacao_set_err(err, n, "--validate: the Vulkan validation layer is not installed (Debian: vulkan-validationlayers)");
         return false;
     }
     const VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
@@ -76,7 +70,7 @@ static bool create_instance(vkdev *dev, bool validation, char *err, size_t n) {
     };
     VkResult vr = vkCreateInstance(&info, NULL, &dev->instance);
     if (vr != VK_SUCCESS) {
-        set_err(err, n, "no usable Vulkan driver: vkCreateInstance failed (VkResult %d); install mesa-vulkan-drivers",
+        cacao_set_err(err, n, "no usable Vulkan driver: vkCreateInstance failed (VkResult %d); install mesa-vulkan-drivers",
                 (int)vr);
         return false;
     }
@@ -86,7 +80,7 @@ static bool create_instance(vkdev *dev, bool validation, char *err, size_t n) {
         VkDebugUtilsMessengerCreateInfoEXT info = messenger;
         info.pNext = NULL; /* the validation features only go to vkCreateInstance */
         if (!create || create(dev->instance, &info, NULL, &dev->messenger) != VK_SUCCESS) {
-            set_err(err, n, "cannot create the validation messenger");
+            cacao_set_err(err, n, "cannot create the validation messenger");
             return false;
         }
     }
@@ -98,7 +92,7 @@ static bool pick_device(vkdev *dev, const char *want, char *err, size_t n) {
     uint32_t count = 0;
     vkEnumeratePhysicalDevices(dev->instance, &count, NULL);
     if (count == 0) {
-        set_err(err, n, "no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
+        cacao_set_err(err, n, "no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
         return false;
     }
     VkPhysicalDevice devices[16];
@@ -120,7 +114,7 @@ static bool pick_device(vkdev *dev, const char *want, char *err, size_t n) {
     }
     if (chosen < 0 && !want) chosen = 0;
     if (chosen < 0) {
-        set_err(err, n, "--device %s: no such Vulkan device (see --list-devices)", want);
+        cacao_set_err(err, n, "--device %s: no such Vulkan device (see --list-devices)", want);
         return false;
     }
     dev->physical_device = devices[chosen];
@@ -152,11 +146,11 @@ static bool create_device(vkdev *dev, bool subgroup_size_control, char *err, siz
     for (uint32_t i = 0; i < families && dev->queue_family == UINT32_MAX; ++i)
         if ((props[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && props[i].timestampValidBits > 0) dev->queue_family = i;
     if (dev->queue_family == UINT32_MAX) {
-        set_err(err, n, "device '%s' has no compute queue with timestamps", dev->device_name);
+        cacao_set_err(err, n, "device '%s' has no compute queue with timestamps", dev->device_name);
         return false;
     }
     if (!has_device_extension(dev->physical_device, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) {
-        set_err(err, n, "device '%s' lacks VK_KHR_push_descriptor, which cacao needs", dev->device_name);
+        cacao_set_err(err, n, "device '%s' lacks VK_KHR_push_descriptor, which cacao needs", dev->device_name);
         return false;
     }
     VkPhysicalDeviceShaderFloat16Int8Features f16 = {
@@ -213,7 +207,7 @@ static bool create_device(vkdev *dev, bool subgroup_size_control, char *err, siz
     };
     VkResult vr = vkCreateDevice(dev->physical_device, &info, NULL, &dev->device);
     if (vr != VK_SUCCESS) {
-        set_err(err, n, "vkCreateDevice failed on '%s' (VkResult %d)", dev->device_name, (int)vr);
+        cacao_set_err(err, n, "vkCreateDevice failed on '%s' (VkResult %d)", dev->device_name, (int)vr);
         return false;
     }
     vkGetDeviceQueue(dev->device, dev->queue_family, 0, &dev->queue);
@@ -227,7 +221,7 @@ static bool create_device(vkdev *dev, bool subgroup_size_control, char *err, siz
     if (vkCreateCommandPool(dev->device, &pool, NULL, &dev->pool) != VK_SUCCESS ||
         vkCreateFence(dev->device, &fence, NULL, &dev->fence) != VK_SUCCESS ||
         vkCreateQueryPool(dev->device, &query, NULL, &dev->timestamps) != VK_SUCCESS) {
-        set_err(err, n, "cannot create command pool, fence or query pool");
+        cacao_set_err(err, n, "cannot create command pool, fence or query pool");
         return false;
     }
     const VkCommandBufferAllocateInfo alloc = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
@@ -235,7 +229,7 @@ static bool create_device(vkdev *dev, bool subgroup_size_control, char *err, siz
                                                .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
                                                .commandBufferCount = 1};
     if (vkAllocateCommandBuffers(dev->device, &alloc, &dev->cmd) != VK_SUCCESS) {
-        set_err(err, n, "cannot allocate a command buffer");
+        cacao_set_err(err, n, "cannot allocate a command buffer");
         return false;
     }
     return true;
@@ -436,7 +430,7 @@ static void record_upload(vkdev *dev, gpu_buffer *staging, VkDeviceSize offset, 
 }
 
 static cacao_result vk_error(char *err, size_t n, const char *what) {
-    set_err(err, n, "%s failed", what);
+    cacao_set_err(err, n, "%s failed", what);
     return CACAO_ERROR_VULKAN;
 }
 
@@ -464,7 +458,7 @@ cacao_result vkdev_run_timed(vkdev *dev, const cacao_settings *settings, const v
     cacao_context *ctx = NULL;
     cacao_result r = vkdev_context_create(dev, &ctx);
     if (r != CACAO_SUCCESS) {
-        set_err(err, n, "cacao_context_create: %s", cacao_result_string(r));
+        cacao_set_err(err, n, "cacao_context_create: %s", cacao_result_string(r));
         return r;
     }
     r = cacao_context_set_settings(ctx, settings);
@@ -473,7 +467,7 @@ cacao_result vkdev_run_timed(vkdev *dev, const cacao_settings *settings, const v
     if (r == CACAO_SUCCESS) r = cacao_context_resize(ctx, frame->width, frame->height, &memory);
     const double setup_ms = now_ms() - setup_start;
     if (r != CACAO_SUCCESS)
-        set_err(err, n, "%s", cacao_context_last_error(ctx));
+        cacao_set_err(err, n, "%s", cacao_context_last_error(ctx));
     else
         r = vkdev_run_context_timed(dev, ctx, frame, warmup, repeat, ao, timings, err, n);
     if (r == CACAO_SUCCESS && timings) {
@@ -497,7 +491,7 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
     if (out_format != VK_FORMAT_R32_SFLOAT) return vk_error(err, n, "vkdev: only R32_SFLOAT readback");
     const cacao_plan *plan = cacao_context_plan(ctx);
     if (!plan || plan->width != w || plan->height != h) {
-        set_err(err, n, "vkdev: the context is not resized to the frame's %ux%u", w, h);
+        cacao_set_err(err, n, "vkdev: the context is not resized to the frame's %ux%u", w, h);
         return CACAO_ERROR_NOT_READY;
     }
     if (repeat == 0) repeat = 1;
@@ -519,7 +513,7 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
         !make_image(dev, out_format, w, h,
                     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                     &output)) {
-        set_err(err, n, "cannot create the frame's images (%ux%u)", w, h);
+        cacao_set_err(err, n, "cannot create the frame's images (%ux%u)", w, h);
         goto done;
     }
     float *host = staging.mapped;
@@ -569,7 +563,7 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
         vkCmdResetQueryPool(dev->cmd, dev->timestamps, 0, steps + 1);
         r = cacao_record(ctx, dev->cmd, &in);
         if (r != CACAO_SUCCESS) {
-            set_err(err, n, "%s", cacao_context_last_error(ctx));
+            cacao_set_err(err, n, "%s", cacao_context_last_error(ctx));
             vkEndCommandBuffer(dev->cmd);
             free(samples);
             goto done;

@@ -11,7 +11,6 @@
  * Everything comes from the embedded table (generated/), reflection of the modules (SPIRV-Cross)
  * and the runtime's own cacao_plan_build: no second copy of any of that logic. */
 #include <cjson/cJSON.h>
-#include <spirv_cross/spirv_cross_c.h>
 #include <glslang/Include/glslang_c_interface.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -83,7 +82,7 @@ static void add_cost(perm_cost *c, double ms, const char *config) {
 /* Reads a cacao-bench --json file into costs[permutation]. */
 static int load_costs(const char *path, perm_cost *costs) {
     char err[1024];
-    char *text = cacao_read_text_file(path, 256u << 20, err, sizeof err);
+    char *text = cacao_read_whole_file(path, 256u << 20, err, sizeof err);
     if (!text) return fail("--costs %s", err);
     cJSON *root = cJSON_Parse(text);
     free(text);
@@ -194,36 +193,11 @@ static int cmd_list(int argc, char **argv) {
 
 /* Uniform block members and sizes as SPIRV-Cross reflects them from the module. */
 static void print_reflection(const cacao_module *m) {
-    spvc_context ctx = NULL;
-    spvc_parsed_ir ir = NULL;
-    spvc_compiler comp = NULL;
-    spvc_resources res = NULL;
-    const spvc_reflected_resource *list = NULL;
-    size_t count = 0;
-    if (spvc_context_create(&ctx) != SPVC_SUCCESS) return;
-    if (spvc_context_parse_spirv(ctx, m->words, m->word_count, &ir) == SPVC_SUCCESS &&
-        spvc_context_create_compiler(ctx, SPVC_BACKEND_NONE, ir, SPVC_CAPTURE_MODE_TAKE_OWNERSHIP, &comp) ==
-            SPVC_SUCCESS &&
-        spvc_compiler_create_shader_resources(comp, &res) == SPVC_SUCCESS &&
-        spvc_resources_get_resource_list_for_type(res, SPVC_RESOURCE_TYPE_UNIFORM_BUFFER, &list, &count) ==
-            SPVC_SUCCESS) {
-        for (size_t r = 0; r < count; ++r) {
-            spvc_type type = spvc_compiler_get_type_handle(comp, list[r].base_type_id);
-            size_t size = 0;
-            spvc_compiler_get_declared_struct_size(comp, type, &size);
-            printf("uniform block '%s' (binding %u), %zu bytes, std140:\n", list[r].name,
-                   spvc_compiler_get_decoration(comp, list[r].id, SpvDecorationBinding), size);
-            for (unsigned i = 0; i < spvc_type_get_num_member_types(type); ++i) {
-                unsigned offset = 0;
-                size_t msize = 0;
-                spvc_compiler_type_struct_member_offset(comp, type, i, &offset);
-                spvc_compiler_get_declared_struct_member_size(comp, type, i, &msize);
-                printf("  %4u  %-40s %3zu bytes\n", offset,
-                       spvc_compiler_get_member_name(comp, list[r].base_type_id, i), msize);
-            }
-        }
-    }
-    spvc_context_destroy(ctx);
+    static sg_block block;
+    if (!sg_uniform_block(m->words, m->word_count, &block)) return;
+    printf("uniform block '%s' (binding %u), %zu bytes, std140:\n", block.name, block.binding, block.size);
+    for (size_t i = 0; i < block.member_count && i < SG_BLOCK_MAX_MEMBERS; ++i)
+        printf("  %4u  %-40s %3u bytes\n", block.members[i].offset, block.members[i].name, block.members[i].size);
 }
 
 static int cmd_show(int argc, char **argv) {
@@ -290,8 +264,7 @@ static int cmd_plan(int argc, char **argv) {
     cacao_plan_print(&plan, stdout);
     int missing = 0;
     for (uint32_t i = 0; i < plan.step_count; ++i) {
-        const cacao_key key = {plan.steps[i].key[0], plan.steps[i].key[1], plan.steps[i].key[2], plan.steps[i].key[3],
-                               plan.steps[i].key[4]};
+        const cacao_key key = cacaoi_plan_step_key(&plan.steps[i]);
         if (!cacaoi_table_find(table, &key)) missing += fprintf(stderr, "note: %s is not embedded in this build\n",
                                                                plan.steps[i].key_name) > 0;
     }
@@ -367,8 +340,7 @@ static int cmd_verify(void) {
                         }
                         ++configs;
                         for (uint32_t i = 0; i < plan.step_count; ++i) {
-                            const cacao_key key = {plan.steps[i].key[0], plan.steps[i].key[1], plan.steps[i].key[2],
-                                                   plan.steps[i].key[3], plan.steps[i].key[4]};
+                            const cacao_key key = cacaoi_plan_step_key(&plan.steps[i]);
                             if (!cacaoi_table_find(table, &key)) {
                                 fprintf(stderr, "missing: %s (quality %s)\n", plan.steps[i].key_name, cacaoi_quality_names[q]);
                                 ++missing;
