@@ -604,12 +604,11 @@ void main()
     float importance = textureLod(importance_in, uv_full, 0.0).r;
 
     /* B: detail AO rescale (raw importance, [quirk] ADAPTIVE-DETAIL-SCALE), then the base taps.
-     * base_from_all_slices != 0: own slice's base ([quirk] BASE-SLICE-VIEW fixed);
-     * == 0: v1.2 under D3D rules, only slice 0 finds its base, the others read (0,0). */
+     * Every slice reads its own slice's base ([quirk] BASE-SLICE-VIEW fixed; v1.2 under D3D
+     * rules finds only slice 0's and reads (0,0) in the others). */
     obsc_sum *= float(CACAO_ADAPTIVE_TAP_BASE_COUNT) / float(CACAO_MAX_TAPS) +
                 importance * float(CACAO_ADAPTIVE_TAP_FLEXIBLE_COUNT) / float(CACAO_MAX_TAPS);
-    vec2 base = vec2(0.0);
-    if (cb.base_from_all_slices != 0 || slice == 0) base = texelFetch(ssao_base, ivec3(xy, layer), 0).rg;
+    vec2 base = texelFetch(ssao_base, ivec3(xy, layer), 0).rg;
     weight_sum += base.g * CACAO_BASE_WEIGHT_SCALE;
     obsc_sum += base.r * weight_sum;
 

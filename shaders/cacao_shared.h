@@ -202,14 +202,18 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
 #endif
 
 /* X-list of members: M(type, name) for scalars/vectors, A(type, name, count) for arrays.
- * Order is chosen so std140 needs no padding that C would not also insert. */
+ * Order is chosen so std140 needs no padding that C would not also insert (test_shared_layout
+ * compares the two layouts); every member is read by some pass. */
 #define CACAO_CONSTANTS_MEMBERS(M, A)                                                              \
     M(VEC2, depth_unpack)               /* view z = (x + depth_unpack_d.x d) / (y + depth_unpack_d.y d) */ \
-    M(VEC2, camera_tan_half_fov)        /* (tanX, tanY), informational */                          \
     M(VEC2, ndc_to_view_mul)            /* (2 tanX, -2 tanY) */                                    \
     M(VEC2, ndc_to_view_add)            /* (-tanX, tanY) */                                        \
     M(VEC2, depth_uv_to_view_mul)                                                                  \
     M(VEC2, depth_uv_to_view_add)                                                                  \
+    M(VEC2, ssao_buffer_inverse_dimensions)                                                        \
+    M(VEC2, depth_buffer_inverse_dimensions)                                                       \
+    M(VEC2, output_buffer_inverse_dimensions)                                                      \
+    M(VEC2, importance_map_inverse_dimensions)                                                     \
     M(FLOAT, effect_radius)                                                                        \
     M(FLOAT, effect_shadow_strength)                                                               \
     M(FLOAT, effect_shadow_pow)                                                                    \
@@ -225,19 +229,9 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(FLOAT, inv_sharpness)                                                                        \
     M(INT, slice_count)                 /* 2 at LOWEST (slices 0 and 3 in layers 0 and 1), else 4 */ \
     M(FLOAT, bilateral_depth_exp2_mul)  /* upsample depth weight exp2(dz^2 x) = exp(-dz^2 / variance) */ \
-    M(FLOAT, pad0)                      /* unused: keeps the members below at their std140 offsets */ \
     M(FLOAT, normals_unpack_mul)                                                                   \
     M(FLOAT, normals_unpack_add)                                                                   \
-    M(FLOAT, detail_ao_strength)                                                                   \
-    M(INT, base_from_all_slices)        /* 1: adaptive pass reads its own slice's base ([quirk] BASE-SLICE-VIEW fixed) */ \
-    M(VEC2, ssao_buffer_dimensions)                                                                \
-    M(VEC2, ssao_buffer_inverse_dimensions)                                                        \
-    M(VEC2, depth_buffer_dimensions)                                                               \
-    M(VEC2, depth_buffer_inverse_dimensions)                                                       \
-    M(VEC2, output_buffer_dimensions)                                                              \
-    M(VEC2, output_buffer_inverse_dimensions)                                                      \
-    M(VEC2, importance_map_dimensions)                                                             \
-    M(VEC2, importance_map_inverse_dimensions)                                                     \
+    M(FLOAT, detail_ao_strength)        /* 9 vec2 + 18 scalars = 144 bytes: the arrays start 16-aligned */ \
     A(VEC4, per_slice_full_res_uv_offset, 4) /* xy = (dx / Sw, dy / Sh) per slice */               \
     A(VEC4, pattern_rot_scale, 20)      /* [slice * 5 + j] = (m0, m1, m2, m3) */                   \
     A(VEC4, sample_pattern, 32)         /* CACAO_SAMPLE_PATTERN_VALUES; in the block because a */  \

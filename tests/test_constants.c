@@ -50,8 +50,6 @@ static void test_worked_example(void) {
     cacao_perspective(65.0, 16.0 / 9.0, 0.05, 100.0, true, pr);
     const cacao_settings s = {.quality = CACAO_QUALITY_HIGHEST};
     cacao_constants c = fill(&s, 960, 540, p, true);
-    CHECK_NEAR(c.camera_tan_half_fov.y, 0.6370702, 1e-6);
-    CHECK_NEAR(c.camera_tan_half_fov.x, 1.1325693, 1e-6);
     CHECK_NEAR(c.ndc_to_view_mul.x, 2.2651386, 1e-6);
     CHECK_NEAR(c.ndc_to_view_mul.y, -1.2741405, 1e-6);
     CHECK_NEAR(c.ndc_to_view_add.x, -1.1325693, 1e-6);
@@ -65,10 +63,10 @@ static void test_worked_example(void) {
     CHECK_NEAR(c.effect_fade_out_add, 1.2, 1e-6);
     CHECK_NEAR(c.effect_sampling_radius_near_limit_rec, 0.4424099, 1e-6);
     CHECK_NEAR(c.inv_sharpness, 0.02, 1e-6);
-    CHECK_NEAR(c.ssao_buffer_dimensions.x, 480, 0);
-    CHECK_NEAR(c.ssao_buffer_dimensions.y, 270, 0);
-    CHECK_NEAR(c.importance_map_dimensions.x, 240, 0);
-    CHECK_NEAR(c.importance_map_dimensions.y, 135, 0);
+    CHECK_NEAR(c.ssao_buffer_inverse_dimensions.x, 1.0 / 480, 1e-7);
+    CHECK_NEAR(c.ssao_buffer_inverse_dimensions.y, 1.0 / 270, 1e-7);
+    CHECK_NEAR(c.importance_map_inverse_dimensions.x, 1.0 / 240, 1e-7);
+    CHECK_NEAR(c.importance_map_inverse_dimensions.y, 1.0 / 135, 1e-7);
     CHECK_NEAR(c.load_counter_avg_div, 1.0893247e-6, 1e-6);
     CHECK(c.slice_count == 4);
     /* Pattern table rows of constants.md section 4: (k=1, j=2) and (k=3, j=4). */
@@ -98,9 +96,9 @@ static void test_worked_example(void) {
     /* Downsampled: S = 240x135, I = 120x68, LoadCounterAvgDiv = 4.3252594e-6. */
     const cacao_settings sd = {.quality = CACAO_QUALITY_HIGHEST, .downsample = true};
     cacao_constants dsc = fill(&sd, 960, 540, p, true);
-    CHECK_NEAR(dsc.ssao_buffer_dimensions.x, 240, 0);
-    CHECK_NEAR(dsc.ssao_buffer_dimensions.y, 135, 0);
-    CHECK_NEAR(dsc.importance_map_dimensions.y, 68, 0);
+    CHECK_NEAR(dsc.ssao_buffer_inverse_dimensions.x, 1.0 / 240, 1e-7);
+    CHECK_NEAR(dsc.ssao_buffer_inverse_dimensions.y, 1.0 / 135, 1e-7);
+    CHECK_NEAR(dsc.importance_map_inverse_dimensions.y, 1.0 / 68, 1e-7);
     CHECK_NEAR(dsc.load_counter_avg_div, 4.3252594e-6, 1e-6);
 
     /* LOWEST with radius 0.75: EffectRadius 0.6, NearLimitRec 0.4719039, two slices. */
@@ -189,10 +187,10 @@ static int compare_with_amd(const char *shared, const char *scene) {
         CHECK_NEAR(c.neg_rec_effect_radius, AMD("NegRecEffectRadius"), 1e-6);
         CHECK_NEAR(c.load_counter_avg_div, AMD("LoadCounterAvgDiv"), 1e-6);
         CHECK_NEAR(c.inv_sharpness, AMD("InvSharpness"), 1e-6);
-        CHECK_NEAR(c.ssao_buffer_dimensions.x, AMD2("SSAOBufferDimensions", 0), 0);
-        CHECK_NEAR(c.ssao_buffer_dimensions.y, AMD2("SSAOBufferDimensions", 1), 0);
-        CHECK_NEAR(c.importance_map_dimensions.x, AMD2("ImportanceMapDimensions", 0), 0);
-        CHECK_NEAR(c.importance_map_dimensions.y, AMD2("ImportanceMapDimensions", 1), 0);
+        CHECK_NEAR(c.ssao_buffer_inverse_dimensions.x, 1.0 / AMD2("SSAOBufferDimensions", 0), 1e-7);
+        CHECK_NEAR(c.ssao_buffer_inverse_dimensions.y, 1.0 / AMD2("SSAOBufferDimensions", 1), 1e-7);
+        CHECK_NEAR(c.importance_map_inverse_dimensions.x, 1.0 / AMD2("ImportanceMapDimensions", 0), 1e-7);
+        CHECK_NEAR(c.importance_map_inverse_dimensions.y, 1.0 / AMD2("ImportanceMapDimensions", 1), 1e-7);
         CHECK_NEAR(c.per_slice_full_res_uv_offset[3].x, AMD2("PerPassFullResUVOffset", 0), 1e-7);
         CHECK_NEAR(c.per_slice_full_res_uv_offset[3].y, AMD2("PerPassFullResUVOffset", 1), 1e-7);
         const cJSON *rot = cJSON_GetObjectItem(k0, "PatternRotScaleMatrices");

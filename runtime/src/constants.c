@@ -228,10 +228,9 @@ void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao
     const float xy_k = v.ortho ? k : 1.0f; /* perspective xy scale with z already */
     c->ndc_to_view_mul = v2(xy_k * v.xy_mul[0], xy_k * v.xy_mul[1]);
     c->ndc_to_view_add = v2(xy_k * v.xy_add[0], xy_k * v.xy_add[1]);
-    c->camera_tan_half_fov = v2(0.5f * v.xy_mul[0], -0.5f * v.xy_mul[1]); /* ortho: half extents */
-    c->depth_uv_to_view_mul = c->ndc_to_view_mul;                         /* depth size == output size */
+    c->depth_uv_to_view_mul = c->ndc_to_view_mul; /* depth size == output size */
     c->depth_uv_to_view_add = c->ndc_to_view_add;
-    const float tan_y = c->camera_tan_half_fov.y;
+    const float tan_y = -0.5f * v.xy_mul[1]; /* tan of half the vertical fov; ortho: half the height */
     /* Depth edges compare depth differences with a fraction of a depth; orthographic pixels all
      * have one footprint, that of a perspective pixel at the depth where a 60-degree fov has it. */
     c->edge_depth = v.ortho ? v2(0.0f, xy_k * tan_y / 0.57735027f) : v2(1.0f, 0.0f);
@@ -271,19 +270,13 @@ void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao
     c->normals_unpack_mul = default_unpack ? 2.0f : in->normals_unpack_mul;
     c->normals_unpack_add = default_unpack ? -1.0f : in->normals_unpack_add;
     c->detail_ao_strength = s->detail_shadow_strength;
-    /* Every slice reads its own base-pass result: the fix of [quirk] BASE-SLICE-VIEW. */
-    c->base_from_all_slices = 1;
 
     const float sw = (float)plan->slice_width, sh = (float)plan->slice_height;
     const float w = (float)plan->width, h = (float)plan->height;
     const float iw = (float)plan->importance_width, ih = (float)plan->importance_height;
-    c->ssao_buffer_dimensions = v2(sw, sh);
     c->ssao_buffer_inverse_dimensions = v2(1.0f / sw, 1.0f / sh);
-    c->depth_buffer_dimensions = v2(w, h);
     c->depth_buffer_inverse_dimensions = v2(1.0f / w, 1.0f / h);
-    c->output_buffer_dimensions = v2(w, h);
     c->output_buffer_inverse_dimensions = v2(1.0f / w, 1.0f / h);
-    c->importance_map_dimensions = v2(iw, ih);
     c->importance_map_inverse_dimensions = v2(1.0f / iw, 1.0f / ih);
     for (int k = 0; k < 4; ++k)
         c->per_slice_full_res_uv_offset[k] = (cacao_vec4){(float)(k % 2) / sw, (float)(k / 2) / sh, 0.0f, 0.0f};

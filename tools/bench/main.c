@@ -482,12 +482,9 @@ static bool run_one(vkdev *dev, const bench_options *o, const bench_scene *s, co
     vkdev_frame frame = {.width = in->depth.width, .height = in->depth.height, .depth = in->depth.data};
     memcpy(frame.projection, in->projection, sizeof frame.projection);
     if (in->normals.data && !set.generate_normals) vkdev_frame_set_view_normals(&frame, in->normals.data);
+    frame.plan_out = &r->plan; /* the plan the context ran, fallbacks included */
     const cacao_result res = vkdev_run_timed(dev, &set, &frame, o->warmup, o->repeat, ao, &r->timings, err, sizeof err);
     if (res != CACAO_SUCCESS) return fail("%s on %s: %s: %s", c->name, s->name, cacao_result_string(res), err);
-    cacao_settings planned = set; /* the runtime's fp16 -> fp32 fallback, as the context applies it */
-    if (planned.precision == CACAO_PRECISION_FP16 && !dev->fp16) planned.precision = CACAO_PRECISION_FP32;
-    if (cacao_plan_build(&planned, frame.width, frame.height, &r->plan, err, sizeof err) != CACAO_SUCCESS)
-        return fail("%s on %s: %s", c->name, s->name, err);
     const size_t pixels = (size_t)frame.width * frame.height;
     for (size_t i = 0; i < pixels; ++i) r->nonfinite += !isfinite(ao[i]);
     const cacao_img image = {frame.width, frame.height, 1, ao};

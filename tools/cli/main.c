@@ -130,22 +130,10 @@ static vkdev_frame make_frame(const cli_inputs *in, const cacao_settings *encode
     return frame;
 }
 
-/* The plan the context builds: the same function on the same settings, with the runtime's
- * documented fallback from fp16 to fp32 where the device lacks shaderFloat16. */
-static bool plan_of_run(const vkdev *dev, const cacao_settings *encoded, uint32_t w, uint32_t h, cacao_plan *plan,
-                        char *err) {
-    cacao_settings s = *encoded;
-    if (s.precision == CACAO_PRECISION_FP16 && !dev->fp16) s.precision = CACAO_PRECISION_FP32;
-    char why[512];
-    if (cacao_plan_build(&s, w, h, plan, why, sizeof why) == CACAO_SUCCESS) return true;
-    cacao_set_err(err, ERR_SIZE, "settings: %s", why);
-    return false;
-}
-
 static bool run_on_device(vkdev *dev, const cli_options *o, const cli_inputs *in, const cacao_settings *encoded,
                           render_result *out, char *err) {
-    const vkdev_frame frame = make_frame(in, encoded, o->frame_index);
-    if (!plan_of_run(dev, encoded, frame.width, frame.height, &out->plan, err)) return false;
+    vkdev_frame frame = make_frame(in, encoded, o->frame_index);
+    frame.plan_out = &out->plan; /* the plan the context ran, fallbacks included */
     char why[ERR_SIZE - 128];
     const cacao_result r = vkdev_run_timed(dev, encoded, &frame, o->warmup, o->repeat ? o->repeat : 1, out->ao.data,
                                            &out->timings, why, sizeof why);

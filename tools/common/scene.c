@@ -2,6 +2,8 @@
  * spec: shared/scenes/README.md, "Conventions" (pixel rays, depth, normals, matrices). */
 #include "scene.h"
 
+#include "camera_json.h"
+
 #include <math.h>
 #include <stddef.h>
 
@@ -59,14 +61,9 @@ void cacao_camera_projection_lens(const cacao_camera *cam, const cacao_lens *len
         out[15] = 1.0f;
         return;
     }
-    double t = tan(cam->fov_y_deg * (PI / 360.0));
-    out[0] = (float)(1.0 / (aspect * t));
-    out[5] = (float)(1.0 / t);
+    cacao_perspective(cam->fov_y_deg, aspect, n, f, reversed, out);
     out[2] = (float)-lens->jitter_ndc[0]; /* clip w = -z_view */
     out[6] = (float)-lens->jitter_ndc[1];
-    out[10] = (float)(reversed ? n / (f - n) : -f / (f - n));
-    out[11] = (float)(reversed ? f * n / (f - n) : -f * n / (f - n));
-    out[14] = -1.0f;
 }
 
 void cacao_camera_view_from_world(const cacao_camera *cam, float out[16]) {

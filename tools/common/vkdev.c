@@ -470,6 +470,7 @@ cacao_result vkdev_run_timed(vkdev *dev, const cacao_settings *settings, const v
         cacao_set_err(err, n, "%s", cacao_context_last_error(ctx));
     else
         r = vkdev_run_context_timed(dev, ctx, frame, warmup, repeat, ao, timings, err, n);
+    if (r == CACAO_SUCCESS && frame->plan_out) *frame->plan_out = *cacao_context_plan(ctx);
     if (r == CACAO_SUCCESS && timings) {
         timings->memory_bytes = memory.total_bytes;
         timings->pipeline_count = memory.pipeline_count;

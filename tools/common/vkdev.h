@@ -62,6 +62,9 @@ typedef struct vkdev_frame {
     void (*after_record)(struct vkdev *dev, cacao_context *ctx, VkCommandBuffer cmd, void *user);
     void (*after_wait)(struct vkdev *dev, cacao_context *ctx, void *user);
     void *user;
+    /* Optional: receives the plan the context ran (after the runtime's fallbacks, e.g. fp16 to
+     * fp32 on a device without shaderFloat16). Filled by vkdev_run_timed and vkdev_run. */
+    cacao_plan *plan_out;
 } vkdev_frame;
 
 /* Gives the frame float normals in the scenes' convention (right-handed view space, camera-facing
