@@ -18,7 +18,7 @@ cacao_precision cacao_context_precision(const cacao_context *ctx) {
 cacao_result cacaoi_fail(cacao_context *ctx, cacao_result result, const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(ctx->last_error, sizeof ctx->last_error, fmt, ap);
+    cacaoi_set_error_v(ctx->last_error, sizeof ctx->last_error, fmt, ap);
     va_end(ap);
     return result;
 }

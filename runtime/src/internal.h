@@ -2,15 +2,20 @@
 #ifndef CACAO_INTERNAL_H
 #define CACAO_INTERNAL_H
 
+#include <stdarg.h>
+
 #include "cacao.h"
 #include "cacao_keys.h"
 #include "cacao_passes.h"
 #include "cacao_shared.h"
 #include "cacao_table.h"
 
-/* printf-style error message into a caller buffer (NULL-safe). */
+/* printf-style error message into a caller buffer (NULL-safe); the one formatter of the runtime's
+ * messages (cacaoi_fail writes the context's last error through it). */
 void cacaoi_set_error(char *error, size_t error_size, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
+void cacaoi_set_error_v(char *error, size_t error_size, const char *fmt, va_list ap)
+    __attribute__((format(printf, 3, 0)));
 
 /* The literal values of resolved settings: CACAO_ZERO -> 0.0f, CACAO_BLUR_NONE -> 0 blur passes.
  * Resolved settings keep those encodings so that resolving them again is the identity. */

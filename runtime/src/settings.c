@@ -5,11 +5,14 @@
 
 #include "internal.h"
 
+void cacaoi_set_error_v(char *error, size_t error_size, const char *fmt, va_list ap) {
+    if (error && error_size > 0) vsnprintf(error, error_size, fmt, ap);
+}
+
 void cacaoi_set_error(char *error, size_t error_size, const char *fmt, ...) {
-    if (!error || error_size == 0) return;
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(error, error_size, fmt, ap);
+    cacaoi_set_error_v(error, error_size, fmt, ap);
     va_end(ap);
 }
 
