@@ -549,6 +549,18 @@ void main()
     /* 4. self-occlusion guard for the R16F depths */
     pc *= cb.depth_precision_offset_mod;
 
+    /* A pixel the fade-out has taken entirely (fade 0 beyond fade_out_to: the sky of most outdoor
+     * scenes, the distance of open worlds) ends as AO 1 whatever its taps give, since its
+     * obscurance is multiplied by 0 below: its detail AO, taps and adaptive taps are skipped (a
+     * subgroup whose pixels are all faded skips the loops). Its edges are still computed: the
+     * blur of a visible neighbour reads them. The Q3 base pass keeps every pixel: its raw values
+     * feed the importance map and the load counter, which steer the adaptive pass elsewhere. */
+#if GEN_BASE == 0
+    bool faded = sat(pc.z * cb.effect_fade_out_mul + cb.effect_fade_out_add) == 0.0;
+#else
+    const bool faded = false;
+#endif
+
     /* 5. depth edges; 6. detail AO */
     vec4 edges = vec4(1.0);
     float obsc_sum = 0.0;
@@ -563,8 +575,11 @@ void main()
         vec3 db = vec3(0.0, px_size.y, 0.0) + v * (zb - pc.z);
         float f4 = CACAO_DETAIL_FALLOFF_MUL * falloff;
         float h = cb.effect_horizon_angle_threshold;
-        vec4 ob = vec4(obscurance(n, dl, f4, h), obscurance(n, dr, f4, h), obscurance(n, dt, f4, h), obscurance(n, db, f4, h));
-        obsc_sum = cb.detail_ao_strength * dot(edges, ob);
+        if (!faded) {
+            vec4 ob = vec4(obscurance(n, dl, f4, h), obscurance(n, dr, f4, h), obscurance(n, dt, f4, h),
+                           obscurance(n, db, f4, h));
+            obsc_sum = cb.detail_ao_strength * dot(edges, ob);
+        }
     }
 #endif
 
@@ -588,9 +603,11 @@ void main()
 
     /* 9. taps */
 #if GEN_TAPS > 0
-    [[unroll]] for (int i = 0; i < GEN_TAPS; ++i)
-        accumulate_tap(pattern_entry(i), true, xy, uvd, inv_s, size, layer, max_level, rot_scale,
-                       mip_offset, pc, n, falloff, obsc_sum, weight_sum);
+    if (!faded) {
+        [[unroll]] for (int i = 0; i < GEN_TAPS; ++i)
+            accumulate_tap(pattern_entry(i), true, xy, uvd, inv_s, size, layer, max_level, rot_scale,
+                           mip_offset, pc, n, falloff, obsc_sum, weight_sum);
+    }
 #endif
 
 #if GEN_BASE == 1
@@ -599,6 +616,7 @@ void main()
 #else
 
 #if CACAO_VARIANT == CACAO_GENERATE_Q3
+  if (!faded) {
     /* adaptive.md A: importance at the (offset) full-res UV ([quirk] FULLRES-UV kept) */
     vec2 uv_full = uvs + cb.per_slice_full_res_uv_offset[slice].xy;
     float importance = textureLod(importance_in, uv_full, 0.0).r;
@@ -623,10 +641,11 @@ void main()
     for (int i = CACAO_ADAPTIVE_TAP_BASE_COUNT; i < tap_end; ++i)
         accumulate_tap(pattern_entry(i), false, xy, uvd, inv_s, size, layer, max_level, rot_scale,
                        mip_offset, pc, n, falloff, obsc_sum, weight_sum);
+  }
 #endif
 
-    /* 10b. final shaping */
-    float obsc = obsc_sum / weight_sum;
+    /* 10b. final shaping (a faded pixel: obscurance 0, which the fade below would make of any) */
+    float obsc = faded ? 0.0 : obsc_sum / weight_sum;
     float fade = sat(pc.z * cb.effect_fade_out_mul + cb.effect_fade_out_add);
 #if GEN_Q >= 1
     float edge_fade = sat((1.0 - edges.x - edges.y) * CACAO_EDGE_FADE) + sat((1.0 - edges.z - edges.w) * CACAO_EDGE_FADE);

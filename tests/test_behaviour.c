@@ -279,6 +279,69 @@ static void test_adaptive(vkdev *dev) {
     scene_buffers_free(&b);
 }
 
+/* Beyond fade_out_to the fade factor is 0, so whatever the taps find there, the obscurance is
+ * multiplied by 0 and AO is exactly 1 (generate skips those pixels' taps; this pins what it must
+ * write). On the corner scene with the fade ending at 2.3 units, every pixel beyond that whose
+ * neighbourhood (8 px: blur, apply and upsample footprints) lies beyond it too must be exactly 1,
+ * at every quality, native and downsampled, blur none and 2; without the fade, more than 100 of
+ * those pixels (the crease) are below 0.9, so the 1s are the fade's doing. */
+static void test_faded_is_one(vkdev *dev) {
+    scene_buffers b;
+    scene_buffers_render(&corner_scene, &b);
+    const uint32_t w = b.width, h = b.height;
+    const size_t n = (size_t)w * h;
+    const double *eye = corner_scene.camera.eye, *target = corner_scene.camera.target;
+    double dir[3] = {target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]};
+    const double len = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    bool *near = calloc(n, sizeof *near), *checked = calloc(n, sizeof *checked);
+    for (size_t i = 0; i < n; ++i) {
+        double p[3];
+        const bool hit = scene_world_position(&corner_scene, &b, i, p);
+        const double z = hit ? ((p[0] - eye[0]) * dir[0] + (p[1] - eye[1]) * dir[1] + (p[2] - eye[2]) * dir[2]) / len : 0;
+        near[i] = !hit || z <= 2.3;
+    }
+    size_t n_checked = 0;
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            bool ok = true;
+            for (int dy = -8; dy <= 8 && ok; ++dy)
+                for (int dx = -8; dx <= 8 && ok; ++dx) {
+                    const int xx = (int)x + dx, yy = (int)y + dy;
+                    if (xx >= 0 && yy >= 0 && xx < (int)w && yy < (int)h) ok = !near[(size_t)yy * w + (size_t)xx];
+                }
+            checked[(size_t)y * w + x] = ok;
+            n_checked += ok;
+        }
+    CHECK(n_checked > n / 4 && n_checked < n - n / 8); /* both regions are there */
+    float *ao = malloc(sizeof(float) * n);
+    for (int q = 0; q < 5; ++q)
+        for (int ds = 0; ds < 2; ++ds)
+            for (int blur = 0; blur < 2; ++blur) {
+                const cacao_settings s = {.quality = all_qualities[q], .downsample = ds, .generate_normals = true,
+                                          .radius = 0.5f, .fade_out_from = 1.5f, .fade_out_to = 2.3f,
+                                          .blur_pass_count = blur ? 2 : CACAO_BLUR_NONE};
+                vkdev_frame f = scene_frame(&b, false, false);
+                if (!run(dev, &s, &f, ao)) continue;
+                size_t not_one = 0, dark_unfaded = 0;
+                for (size_t i = 0; i < n; ++i) not_one += checked[i] && ao[i] != 1.0f;
+                if (not_one)
+                    fprintf(stderr, "faded: %s %s blur %d: %zu pixels beyond the fade are not 1\n",
+                            quality_names[all_qualities[q]], ds ? "downsampled" : "native", blur ? 2 : 0, not_one);
+                CHECK(not_one == 0);
+                /* The same pixels without the fade see the crease: the 1s above are the fade's. */
+                cacao_settings unfaded = s;
+                unfaded.fade_out_from = 0.0f, unfaded.fade_out_to = 0.0f; /* defaults: 50 .. 300 */
+                if (!run(dev, &unfaded, &f, ao)) continue;
+                for (size_t i = 0; i < n; ++i) dark_unfaded += checked[i] && ao[i] < 0.9f;
+                CHECK(dark_unfaded > 100);
+            }
+    printf("faded: %zu of %zu pixels beyond the fade checked exactly 1 in 20 configurations\n", n_checked, n);
+    free(ao);
+    free(near);
+    free(checked);
+    scene_buffers_free(&b);
+}
+
 int main(void) {
     vkdev dev;
     open_device(&dev);
@@ -287,6 +350,7 @@ int main(void) {
     test_blur_reduces_noise(&dev);
     test_grazing_floor(&dev);
     test_adaptive(&dev);
+    test_faded_is_one(&dev);
     vkdev_destroy(&dev);
     CHECK(dev.validation_messages == 0);
     return test_report("test_behaviour");
