@@ -89,12 +89,7 @@ static void check_config(const cacao_settings *s) {
         return;
     }
     ++configs_checked;
-    const cacao_key_config config = {cacaoi_key_quality(plan.settings.quality), plan.settings.downsample,
-                                     plan.settings.precision == CACAO_PRECISION_FP16, !plan.settings.generate_normals,
-                                     plan.settings.blur_pass_count == CACAO_BLUR_NONE
-                                         ? 0u
-                                         : (unsigned)plan.settings.blur_pass_count,
-                                     (unsigned)plan.settings.estimator - 1u};
+    const cacao_key_config config = cacaoi_key_config_of(&plan.settings);
     cacaoi_step steps[CACAOI_SEQUENCE_MAX];
     const size_t count = cacaoi_sequence(&config, steps);
     CHECK(count == plan.step_count);

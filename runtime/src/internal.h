@@ -21,6 +21,9 @@ void cacaoi_set_error_v(char *error, size_t error_size, const char *fmt, va_list
  * Resolved settings keep those encodings so that resolving them again is the identity. */
 void cacaoi_settings_literal(const cacao_settings *resolved, cacao_settings *out);
 
+/* The key-space axes of resolved settings (what cacaoi_sequence takes). */
+cacao_key_config cacaoi_key_config_of(const cacao_settings *resolved);
+
 /* Checks the projection (finite, P(1,1) > 0, P(0,0) > 0, usable depth mapping). */
 cacao_result cacaoi_check_projection(const cacao_inputs *inputs, char *error, size_t error_size);
 

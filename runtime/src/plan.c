@@ -45,6 +45,17 @@ static void finish_step(plan_builder *b, cacao_plan_step *s) {
     b->written_since_barrier |= writes;
 }
 
+cacao_key_config cacaoi_key_config_of(const cacao_settings *s) {
+    return (cacao_key_config){
+        .quality = cacaoi_key_quality(s->quality),
+        .downsampled = s->downsample,
+        .fp16 = s->precision == CACAO_PRECISION_FP16,
+        .normals_from_input = !s->generate_normals,
+        .blur_passes = s->blur_pass_count == CACAO_BLUR_NONE ? 0 : (unsigned)s->blur_pass_count,
+        .estimator = (unsigned)s->estimator - 1u,
+    };
+}
+
 /* The dispatch grid of a step (the pass row's grid rule). */
 static void dispatch_size(const cacao_plan *p, const cacao_key *key, uint32_t out[3]) {
     const cacaoi_pass_row *row = &cacaoi_passes[key->pass];
@@ -113,14 +124,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     plan->settings = s;
     plan->width = width;
     plan->height = height;
-    const cacao_key_config config = {
-        .quality = cacaoi_key_quality(s.quality),
-        .downsampled = s.downsample,
-        .fp16 = s.precision == CACAO_PRECISION_FP16,
-        .normals_from_input = !s.generate_normals,
-        .blur_passes = s.blur_pass_count == CACAO_BLUR_NONE ? 0 : (unsigned)s.blur_pass_count,
-        .estimator = (unsigned)s.estimator - 1u,
-    };
+    const cacao_key_config config = cacaoi_key_config_of(&s);
     if (s.estimator != CACAO_ESTIMATOR_CACAO) { /* one full-resolution "slice" */
         plan->slice_width = width;
         plan->slice_height = height;
@@ -135,12 +139,15 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
 
     cacaoi_step steps[CACAOI_SEQUENCE_MAX];
     const size_t count = cacaoi_sequence(&config, steps);
+    cacaoi_pass_binding bindings[CACAOI_SEQUENCE_MAX][CACAOI_PASS_MAX_BINDINGS];
+    size_t binding_count[CACAOI_SEQUENCE_MAX];
     uint32_t mips[CACAO_RES_COUNT] = {0}; /* levels bound per resource, 0 = untouched */
     for (size_t i = 0; i < count; ++i) {
-        cacaoi_pass_binding bindings[CACAOI_PASS_MAX_BINDINGS];
-        const size_t n = cacaoi_step_bindings(&steps[i], bindings);
-        for (size_t j = 0; j < n; ++j)
-            if (mips[bindings[j].resource] < bindings[j].mip + 1u) mips[bindings[j].resource] = bindings[j].mip + 1u;
+        binding_count[i] = cacaoi_step_bindings(&steps[i], bindings[i]);
+        for (size_t j = 0; j < binding_count[i]; ++j) {
+            const cacaoi_pass_binding *b = &bindings[i][j];
+            if (mips[b->resource] < b->mip + 1u) mips[b->resource] = b->mip + 1u;
+        }
     }
 
     /* Intermediates: only those the steps touch, in resource order; then the buffers. */
@@ -164,17 +171,15 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
         st->key[3] = key->blur_passes;
         st->key[4] = key->fp16;
         dispatch_size(plan, key, st->dispatch);
-        cacaoi_pass_binding bindings[CACAOI_PASS_MAX_BINDINGS];
-        const size_t n = cacaoi_step_bindings(&steps[i], bindings);
-        for (size_t j = 0; j < n; ++j) {
+        for (size_t j = 0; j < binding_count[i]; ++j) {
             /* A level the slice's chain lacks is bound to its last level, which the shader then
              * leaves alone (CACAO_DEPTH_MIP_LEVELS). */
+            const cacaoi_pass_binding *b = &bindings[i][j];
             const cacao_plan_image *im = NULL;
             for (uint32_t k = 0; k < plan->image_count; ++k)
-                if (plan->images[k].resource == bindings[j].resource) im = &plan->images[k];
-            const uint32_t mip = im && bindings[j].mip >= im->mips ? im->mips - 1 : bindings[j].mip;
-            st->bindings[st->binding_count++] =
-                (cacao_plan_binding){bindings[j].slot, bindings[j].resource, (uint8_t)mip, bindings[j].write};
+                if (plan->images[k].resource == b->resource) im = &plan->images[k];
+            const uint32_t mip = im && b->mip >= im->mips ? im->mips - 1 : b->mip;
+            st->bindings[st->binding_count++] = (cacao_plan_binding){b->slot, b->resource, (uint8_t)mip, b->write};
         }
         finish_step(&b, st);
     }
