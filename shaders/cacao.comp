@@ -167,7 +167,7 @@ float load_src_depth_or_zero(ivec2 p)
 layout(set = 0, binding = CACAO_BINDING_SRC_NORMALS) uniform sampler2D src_normals;
 #endif
 
-#if CACAO_PASS == CACAO_PASS_GENERATE || CACAO_PASS == CACAO_PASS_UPSAMPLE
+#if CACAO_PASS == CACAO_PASS_GENERATE || CACAO_PASS == CACAO_PASS_UPSAMPLE || CACAO_PASS == CACAO_PASS_CLASSIFY
 layout(set = 0, binding = CACAO_BINDING_DEPTHS) uniform sampler2DArray depths;
 #endif
 
@@ -207,7 +207,8 @@ layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT3, CACAO_FORMAT_DEPTHS_OUT3) u
 layout(set = 0, binding = CACAO_BINDING_NORMALS_OUT, CACAO_FORMAT_NORMALS_OUT) uniform writeonly image2DArray normals_out;
 #endif
 
-#if CACAO_PASS == CACAO_PASS_GENERATE || CACAO_PASS == CACAO_PASS_BLUR
+#if CACAO_PASS == CACAO_PASS_GENERATE || CACAO_PASS == CACAO_PASS_BLUR || \
+    (CACAO_PASS == CACAO_PASS_FILL && CACAO_VARIANT == CACAO_FILL_SLICES)
 layout(set = 0, binding = CACAO_BINDING_SSAO_OUT, CACAO_FORMAT_SSAO_OUT) uniform writeonly image2DArray ssao_out;
 #endif
 
@@ -216,10 +217,47 @@ layout(set = 0, binding = CACAO_BINDING_SSAO_OUT, CACAO_FORMAT_SSAO_OUT) uniform
 layout(set = 0, binding = CACAO_BINDING_IMPORTANCE_OUT, CACAO_FORMAT_IMPORTANCE_OUT) uniform writeonly image2D importance_out;
 #endif
 
-#if CACAO_PASS == CACAO_PASS_APPLY || CACAO_PASS == CACAO_PASS_UPSAMPLE
+#if CACAO_PASS == CACAO_PASS_APPLY || CACAO_PASS == CACAO_PASS_UPSAMPLE || \
+    (CACAO_PASS == CACAO_PASS_FILL && CACAO_VARIANT == CACAO_FILL_OUTPUT)
 /* No format qualifier: the caller's image format (shaderStorageImageWriteWithoutFormat). */
 layout(set = 0, binding = CACAO_BINDING_OUTPUT) uniform writeonly image2D output_image;
 #endif
+
+/* ---- Tiles (docs/tiles.md; layout in cacao_shared.h) ---- */
+#if CACAO_PASS == CACAO_PASS_CLASSIFY || CACAO_PASS == CACAO_PASS_COMPACT
+layout(std430, set = 0, binding = CACAO_BINDING_TILES) buffer cacao_tiles { uint tiles[]; };
+#elif CACAO_LIST != CACAO_LIST_NONE
+layout(std430, set = 0, binding = CACAO_BINDING_TILES) readonly buffer cacao_tiles { uint tiles[]; };
+#endif
+
+#if CACAO_PASS == CACAO_PASS_CLASSIFY || CACAO_PASS == CACAO_PASS_COMPACT || CACAO_LIST != CACAO_LIST_NONE
+/* First uint of a list's entries: after the header, the classes, and the lists before it. */
+uint list_base(int list)
+{
+    uint t = uint(cb.tiles_x * cb.tiles_y), b = uint(cb.blur_groups_x * cb.blur_groups_y);
+    uint a = uint(cb.apply_groups_x * cb.apply_groups_y);
+    uint base = uint(CACAO_TILE_HEADER) + t; /* the generate list */
+    if (list >= CACAO_LIST_FILL_SLICES) base += t;
+    if (list >= CACAO_LIST_BLUR) base += t;
+    if (list >= CACAO_LIST_APPLY) base += b;
+    if (list >= CACAO_LIST_FILL_OUTPUT) base += a;
+    return base;
+}
+#endif
+
+/* The group this workgroup computes: its list entry when dispatched over a tile list. */
+ivec2 group_xy()
+{
+#if CACAO_LIST != CACAO_LIST_NONE
+    uint e = tiles[list_base(CACAO_LIST) + gl_WorkGroupID.x];
+    return ivec2(int(e & 0xffffu), int(e >> 16));
+#else
+    return ivec2(gl_WorkGroupID.xy);
+#endif
+}
+/* The invocation's texel: a macro, since gl_WorkGroupSize is only known after each pass declares
+ * its local size (glslang takes 1 x 1 x 1 before). */
+#define global_xy() (group_xy() * ivec2(gl_WorkGroupSize.xy) + ivec2(gl_LocalInvocationID.xy))
 
 /* Full-resolution pixel that slice texel t of slice k holds (spec: prepare.md table). */
 ivec2 full_res_pixel(ivec2 t, int slice)
@@ -510,7 +548,7 @@ void accumulate_tap(vec4 s, bool use_pattern_weight, ivec2 xy, vec2 uvd, vec2 in
 
 void main()
 {
-    ivec2 xy = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 xy = global_xy();
     int layer = int(gl_WorkGroupID.z);
     int slice = slice_of_layer(layer);
     ivec2 size = textureSize(depths, 0).xy;
@@ -549,14 +587,16 @@ void main()
     /* 4. self-occlusion guard for the R16F depths */
     pc *= cb.depth_precision_offset_mod;
 
-    /* A pixel the fade-out has taken entirely (fade 0 beyond fade_out_to: the sky of most outdoor
-     * scenes, the distance of open worlds) ends as AO 1 whatever its taps give, since its
-     * obscurance is multiplied by 0 below: its detail AO, taps and adaptive taps are skipped (a
-     * subgroup whose pixels are all faded skips the loops). Its edges are still computed: the
-     * blur of a visible neighbour reads them. The Q3 base pass keeps every pixel: its raw values
-     * feed the importance map and the load counter, which steer the adaptive pass elsewhere. */
+    /* A pixel the fade-out has taken entirely (fade 0 beyond fade_out_to: the distance of open
+     * worlds) ends as AO 1 whatever its taps give, since its obscurance is multiplied by 0 below;
+     * so does background (the far plane, invalid depth: the sky), which has no surface to
+     * occlude. Their detail AO, taps and adaptive taps are skipped (a subgroup whose pixels are
+     * all quiet skips the loops; whole quiet tiles are not dispatched: docs/tiles.md). Edges are
+     * still computed: the blur of a visible neighbour reads them. The Q3 base pass keeps every
+     * pixel: its raw values feed the importance map and the load counter, which steer the
+     * adaptive pass elsewhere. */
 #if GEN_BASE == 0
-    bool faded = sat(pc.z * cb.effect_fade_out_mul + cb.effect_fade_out_add) == 0.0;
+    bool faded = zc >= cb.background_z || sat(pc.z * cb.effect_fade_out_mul + cb.effect_fade_out_add) == 0.0;
 #else
     const bool faded = false;
 #endif
@@ -758,7 +798,7 @@ void main()
 {
     ivec2 s = textureSize(ssao_in, 0).xy;
     int layer = int(gl_WorkGroupID.z);
-    ivec2 tile_origin = ivec2(gl_WorkGroupID.xy) * ivec2(CACAO_BLUR_OUT_X(BLUR_N), CACAO_BLUR_OUT_Y(BLUR_N));
+    ivec2 tile_origin = group_xy() * ivec2(CACAO_BLUR_OUT_X(BLUR_N), CACAO_BLUR_OUT_Y(BLUR_N));
     ivec2 b0 = ivec2(gl_LocalInvocationID.xy) * ivec2(BX, BY); /* block origin in the padded tile */
 
     /* the block: value and edges both from the mirrored texel ([quirk] BLUR-BORDER-EDGES) */
@@ -866,7 +906,7 @@ layout(local_size_x = CACAO_WG_APPLY_X, local_size_y = CACAO_WG_APPLY_Y) in;
 
 void main()
 {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 p = global_xy();
     if (!in_rect(p, imageSize(output_image))) return;
 #if CACAO_VARIANT == CACAO_OUTPUT_SMART
     rfloat ao = smart_apply(p);
@@ -917,7 +957,7 @@ void main()
 {
     ivec2 s = textureSize(ssao_in, 0).xy;
     ivec2 qsize = 2 * s;
-    ivec2 g = ivec2(gl_WorkGroupID.xy);
+    ivec2 g = group_xy();
     vec2 inv_s = cb.ssao_buffer_inverse_dimensions;
 
     /* Step 1: (value, depth) of Q-positions g*SPAN - 2 .. g*SPAN + SPAN + 1, filled by all
@@ -1012,6 +1052,114 @@ void main()
     }
 }
 #endif /* UPSAMPLE */
+
+/* ============================== CLASSIFY ============================== */
+#if CACAO_PASS == CACAO_PASS_CLASSIFY
+/* docs/tiles.md: one group per tile. A texel is quiet where every layer's stored view z is
+ * background or faded (with the margin of cb.quiet_margin, so that generate finds it faded too);
+ * the tile is active when some texel is not quiet, else faded when some texel is not
+ * background, else background. */
+layout(local_size_x = CACAO_TILE, local_size_y = CACAO_TILE) in;
+
+shared uint tile_flags;
+
+void main()
+{
+    if (gl_LocalInvocationIndex == 0u) tile_flags = 0u;
+    barrier();
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    uint flags = cb.tiles_all != 0 ? 1u : 0u; /* 1: not quiet, 2: not background */
+    if (in_rect(p, textureSize(depths, 0).xy)) {
+        for (int layer = 0; layer < cb.slice_count; ++layer) {
+            float z = texelFetch(depths, ivec3(p, layer), 0).r;
+            bool background = z >= cb.background_z;
+            bool faded = (z * cb.depth_precision_offset_mod) * cb.effect_fade_out_mul + cb.effect_fade_out_add <
+                         -cb.quiet_margin;
+            if (!background) flags |= faded ? 2u : 3u;
+        }
+    }
+    if (flags != 0u) atomicOr(tile_flags, flags);
+    barrier();
+    if (gl_LocalInvocationIndex == 0u) {
+        uint f = tile_flags;
+        uint cls = (f & 1u) != 0u ? CACAO_TILE_CLASS_ACTIVE
+                 : (f & 2u) != 0u ? CACAO_TILE_CLASS_FADED : CACAO_TILE_CLASS_BACKGROUND;
+        tiles[CACAO_TILE_HEADER + int(gl_WorkGroupID.y) * cb.tiles_x + int(gl_WorkGroupID.x)] = cls;
+        atomicAdd(tiles[CACAO_TILE_COUNT_ACTIVE + cls], 1u);
+    }
+}
+#endif /* CLASSIFY */
+
+/* ============================== COMPACT ============================== */
+#if CACAO_PASS == CACAO_PASS_COMPACT
+/* docs/tiles.md: one invocation per tile, blur group and apply group, in that order; each goes
+ * into the list that computes it or into the one that fills it with 1. Order within a list is
+ * arbitrary: every group writes only its own texels. */
+layout(local_size_x = CACAO_WG_COMPACT) in;
+
+/* Some tile within one tile of the tiles [t0, t1] is active: a needed tile lies in [t0, t1]. */
+bool touches_needed(ivec2 t0, ivec2 t1)
+{
+    ivec2 last = ivec2(cb.tiles_x, cb.tiles_y) - 1;
+    t0 = clamp(t0 - 1, ivec2(0), last);
+    t1 = clamp(t1 + 1, ivec2(0), last);
+    for (int y = t0.y; y <= t1.y; ++y)
+        for (int x = t0.x; x <= t1.x; ++x)
+            if (tiles[CACAO_TILE_HEADER + y * cb.tiles_x + x] == CACAO_TILE_CLASS_ACTIVE) return true;
+    return false;
+}
+
+void append(int list, ivec2 g)
+{
+    uint i = atomicAdd(tiles[3 * (list - 1)], 1u);
+    tiles[list_base(list) + i] = uint(g.x) | (uint(g.y) << 16);
+}
+
+/* The tiles covering slice texels [lo, hi]. */
+bool texels_touch_needed(ivec2 lo, ivec2 hi) { return touches_needed(lo / CACAO_TILE, hi / CACAO_TILE); }
+
+void main()
+{
+    int i = int(gl_GlobalInvocationID.x);
+    int t = cb.tiles_x * cb.tiles_y, b = cb.blur_groups_x * cb.blur_groups_y;
+    int a = cb.apply_groups_x * cb.apply_groups_y;
+    if (i < t) {
+        ivec2 g = ivec2(i % cb.tiles_x, i / cb.tiles_x);
+        append(touches_needed(g, g) ? CACAO_LIST_GENERATE : CACAO_LIST_FILL_SLICES, g);
+    } else if (i < t + b) {
+        i -= t;
+        ivec2 g = ivec2(i % cb.blur_groups_x, i / cb.blur_groups_x);
+        ivec2 out_size = ivec2(cb.blur_out_x, cb.blur_out_y);
+        if (texels_touch_needed(g * out_size, g * out_size + out_size - 1)) append(CACAO_LIST_BLUR, g);
+    } else if (i < t + b + a) {
+        i -= t + b;
+        ivec2 g = ivec2(i % cb.apply_groups_x, i / cb.apply_groups_x);
+        ivec2 lo = max(g * cb.apply_span - CACAO_APPLY_MARGIN, ivec2(0));
+        ivec2 hi = g * cb.apply_span + cb.apply_span - 1 + CACAO_APPLY_MARGIN;
+        append(texels_touch_needed(lo, hi) ? CACAO_LIST_APPLY : CACAO_LIST_FILL_OUTPUT, g);
+    }
+}
+#endif /* COMPACT */
+
+/* ============================== FILL ============================== */
+#if CACAO_PASS == CACAO_PASS_FILL
+/* docs/tiles.md: AO 1, the value the full computation gives every texel the lists skip. */
+layout(local_size_x = CACAO_TILE, local_size_y = CACAO_TILE) in;
+
+void main()
+{
+#if CACAO_VARIANT == CACAO_FILL_SLICES
+    ivec2 p = global_xy();
+    if (in_rect(p, imageSize(ssao_out).xy)) imageStore(ssao_out, ivec3(p, int(gl_WorkGroupID.z)), vec4(1.0, 1.0, 0.0, 0.0));
+#else
+    ivec2 origin = group_xy() * cb.output_span;
+    ivec2 size = imageSize(output_image);
+    for (int y = int(gl_LocalInvocationID.y); y < cb.output_span; y += CACAO_TILE)
+        for (int x = int(gl_LocalInvocationID.x); x < cb.output_span; x += CACAO_TILE)
+            if (in_rect(origin + ivec2(x, y), size)) imageStore(output_image, origin + ivec2(x, y), vec4(1.0));
+#endif
+}
+#endif /* FILL */
 
 /* ============================== HORIZON-SLICE ESTIMATORS ============================== */
 #if CACAO_PASS == CACAO_PASS_SLICE_PREPARE || CACAO_PASS == CACAO_PASS_SLICE_MAIN || \

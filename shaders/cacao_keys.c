@@ -87,8 +87,9 @@ size_t cacaoi_key_defines(const cacao_key *key, char *buf, size_t buf_size) {
     int len = snprintf(buf, buf_size,
                        "#define CACAO_GLSL 1\n#define CACAO_PASS %u\n#define CACAO_VARIANT %u\n"
                        "#define CACAO_DOWNSAMPLED %u\n#define CACAO_BLUR_PASSES %u\n"
-                       "#define CACAO_FP16 %u\n",
-                       key->pass, key->variant, key->downsampled, key->blur_passes, key->fp16);
+                       "#define CACAO_FP16 %u\n#define CACAO_LIST %u\n",
+                       key->pass, key->variant, key->downsampled, key->blur_passes, key->fp16,
+                       cacaoi_passes[key->pass].lists[key->variant]);
     /* The format qualifier of each storage image the pass row binds, from its resource's row. */
     for (unsigned slot = 0; len > 0 && (size_t)len < buf_size && slot < CACAO_BINDING_COUNT; ++slot) {
         const char *format = cacaoi_resources[expect.resource[slot]].glsl_format;

@@ -93,7 +93,7 @@ typedef struct cacao_key_config {
 } cacao_key_config;
 
 /* Keys one configuration dispatches, in dispatch order (at most CACAO_KEY_CONFIG_MAX). */
-#define CACAO_KEY_CONFIG_MAX 10
+#define CACAO_KEY_CONFIG_MAX 16
 size_t cacaoi_keys_for_config(const cacao_key_config *config, cacao_key out[CACAO_KEY_CONFIG_MAX]);
 
 /* A build-time subset of the configuration space (bit masks; bit i = quality i, bit 0/1 =

@@ -13,12 +13,13 @@ const cacaoi_slot_row cacaoi_slots[CACAO_BINDING_COUNT] = {
     SLOT(DEPTHS_OUT1, STORAGE_IMAGE, NONE),   SLOT(DEPTHS_OUT2, STORAGE_IMAGE, NONE),
     SLOT(DEPTHS_OUT3, STORAGE_IMAGE, NONE),   SLOT(NORMALS_OUT, STORAGE_IMAGE, NONE),
     SLOT(SSAO_OUT, STORAGE_IMAGE, NONE),      SLOT(IMPORTANCE_OUT, STORAGE_IMAGE, NONE),
-    SLOT(OUTPUT, STORAGE_IMAGE, NONE),
+    SLOT(OUTPUT, STORAGE_IMAGE, NONE),        SLOT(TILES, STORAGE_BUFFER, NONE),
 };
 #undef SLOT
 
 #define CALLER(id, name) [CACAO_RES_##id] = {name, CACAOI_SIZE_CALLER, false, false, VK_FORMAT_UNDEFINED, "caller's", "", 0, 0}
 #define BUFFER(id, name, bytes) [CACAO_RES_##id] = {name, CACAOI_SIZE_BUFFER, false, false, VK_FORMAT_UNDEFINED, "buffer", "", 0, bytes}
+#define TILES_BUFFER(id, name) [CACAO_RES_##id] = {name, CACAOI_SIZE_TILES, false, false, VK_FORMAT_UNDEFINED, "buffer", "", 0, 0}
 #define IMAGE(id, name, size, layered, filtered, fmt, glsl, bytes) \
     [CACAO_RES_##id] = {name, CACAOI_SIZE_##size, layered, filtered, VK_FORMAT_##fmt, #fmt, glsl, bytes, 0}
 const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
@@ -27,6 +28,7 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
     CALLER(OUTPUT, "output"),
     BUFFER(CONSTANTS, "constants", sizeof(cacao_constants)),
     BUFFER(LOAD_COUNTER, "load_counter", sizeof(uint32_t)),
+    TILES_BUFFER(TILES, "tiles"),
     /*    resource         name               size        layered filtered format          glsl         bytes */
     IMAGE(DEPTHS,          "depths",          SLICE,      true,  false, R16_SFLOAT,     "r16f",        2),
     IMAGE(NORMALS,         "normals",         SLICE,      true,  false, R8G8B8A8_SNORM, "rgba8_snorm", 4),
@@ -41,6 +43,7 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
 };
 #undef CALLER
 #undef BUFFER
+#undef TILES_BUFFER
 #undef IMAGE
 
 /* Binding rows: R reads, W writes; ALL variants or only those listed (bit mask). */
@@ -52,6 +55,8 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
 #define CONSTANTS R(CONSTANTS, CONSTANTS, ALL)
 #define PASS(id) [CACAO_PASS_##id]
 #define WG(name) {CACAO_WG_##name##_X, CACAO_WG_##name##_Y}
+#define GEN CACAO_LIST_GENERATE
+#define APL CACAO_LIST_APPLY
 
 const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     /* spec: prepare.md. HALF = slices 0 and 3 (LOWEST), FULL = four slices, MIPS = + mips 1..3. */
@@ -68,12 +73,16 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     /* spec: generate.md. Q3 (HIGHEST's adaptive pass) adds its base, the importance map and the
      * load counter; the Q3 base pass writes the second AO buffer. */
     PASS(GENERATE) = {"generate", {"q0", "q1", "q2", "q3", "q3base"}, 5, false, false, false, WG(GENERATE),
-                      CACAOI_GRID_SLICE_LAYERS, 8,
+                      CACAOI_GRID_SLICE_LAYERS, 9,
                       {CONSTANTS, R(LOAD_COUNTER, LOAD_COUNTER, V(CACAO_GENERATE_Q3)), R(DEPTHS, DEPTHS, ALL),
                        R(NORMALS, NORMALS, ALL), R(SSAO_BASE, SSAO_PONG, V(CACAO_GENERATE_Q3)),
                        R(IMPORTANCE_IN, IMPORTANCE, V(CACAO_GENERATE_Q3)),
                        W(SSAO_OUT, SSAO_PING, ALL & ~V(CACAO_GENERATE_Q3_BASE)),
-                       W(SSAO_OUT, SSAO_PONG, V(CACAO_GENERATE_Q3_BASE))}},
+                       W(SSAO_OUT, SSAO_PONG, V(CACAO_GENERATE_Q3_BASE)),
+                       R(TILES, TILES, ALL & ~V(CACAO_GENERATE_Q3_BASE))},
+                      /* the Q3 base pass covers every tile: its values feed the importance map and
+                       * the load counter, which steer the adaptive pass everywhere */
+                      .lists = {GEN, GEN, GEN, GEN, CACAO_LIST_NONE}},
     /* spec: importance.md: the map from the base AO, then two smoothing passes (ping-pong). */
     PASS(IMPORTANCE) = {"importance", {NULL}, 1, false, false, false, WG(IMPORTANCE), CACAOI_GRID_IMPORTANCE, 3,
                         {CONSTANTS, R(SSAO_IN, SSAO_PONG, ALL), W(IMPORTANCE_OUT, IMPORTANCE, ALL)}},
@@ -83,15 +92,18 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                           {CONSTANTS, W(LOAD_COUNTER, LOAD_COUNTER, ALL), R(IMPORTANCE_IN, IMPORTANCE_PONG, ALL),
                            W(IMPORTANCE_OUT, IMPORTANCE, ALL)}},
     /* spec: blur.md: all iterations in one dispatch. */
-    PASS(BLUR) = {"blur", {NULL}, 1, false, true, true, WG(BLUR), CACAOI_GRID_BLUR, 3,
-                  {CONSTANTS, R(SSAO_IN, SSAO_PING, ALL), W(SSAO_OUT, SSAO_PONG, ALL)}},
+    PASS(BLUR) = {"blur", {NULL}, 1, false, true, true, WG(BLUR), CACAOI_GRID_BLUR, 4,
+                  {CONSTANTS, R(SSAO_IN, SSAO_PING, ALL), W(SSAO_OUT, SSAO_PONG, ALL), R(TILES, TILES, ALL)},
+                  .lists = {CACAO_LIST_BLUR}},
     /* spec: apply.md, upsample.md. They read the blur's output where a blur ran (step override). */
-    PASS(APPLY) = {"apply", {"smart", "nonsmart", "half"}, 3, false, false, true, WG(APPLY), CACAOI_GRID_OUTPUT, 3,
-                   {CONSTANTS, R(SSAO_IN, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL)}},
+    PASS(APPLY) = {"apply", {"smart", "nonsmart", "half"}, 3, false, false, true, WG(APPLY), CACAOI_GRID_OUTPUT, 4,
+                   {CONSTANTS, R(SSAO_IN, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL), R(TILES, TILES, ALL)},
+                   .lists = {APL, APL, APL}},
     PASS(UPSAMPLE) = {"upsample", {"smart", "nonsmart", "half"}, 3, false, false, true, WG(UPSAMPLE),
-                      CACAOI_GRID_UPSAMPLE, 5,
+                      CACAOI_GRID_UPSAMPLE, 6,
                       {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), R(DEPTHS, DEPTHS, ALL), R(SSAO_IN, SSAO_PING, ALL),
-                       W(OUTPUT, OUTPUT, ALL)}},
+                       W(OUTPUT, OUTPUT, ALL), R(TILES, TILES, ALL)},
+                      .lists = {APL, APL, APL}},
     /* spec: estimators.md. Full-resolution intermediates, read and written as storage images. */
     PASS(SLICE_PREPARE) = {"slice_prepare", {"depth", "input"}, 2, false, false, false, WG(SLICE), CACAOI_GRID_OUTPUT,
                            5,
@@ -108,6 +120,17 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                            {CONSTANTS, R(DEPTHS_OUT1, AO_RAW, ALL), R(DEPTHS_OUT0, VIEW_DEPTH, ALL),
                             R(NORMALS_OUT, VIEW_NORMALS, ALL), W(SSAO_OUT, AO_PONG, V(CACAO_DENOISE_INTERMEDIATE)),
                             W(OUTPUT, OUTPUT, V(CACAO_DENOISE_FINAL))}},
+    /* docs/tiles.md: classes from the deinterleaved depths (one group per tile), then the lists. */
+    PASS(CLASSIFY) = {"classify", {NULL}, 1, false, false, false, {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE, 3,
+                      {CONSTANTS, R(DEPTHS, DEPTHS, ALL), W(TILES, TILES, ALL)}},
+    PASS(COMPACT) = {"compact", {NULL}, 1, false, false, false, {CACAO_WG_COMPACT, 1}, CACAOI_GRID_COMPACT, 2,
+                     {CONSTANTS, W(TILES, TILES, ALL)}},
+    /* AO 1 into the slices' AO of the tiles generate skips (SSAO_OUT, and the blur's output at
+     * DEPTHS_OUT0 when a blur runs: a step rebinds), or into the output of skipped apply groups. */
+    PASS(FILL) = {"fill", {"slices", "output"}, 2, false, false, false, {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_FILL, 4,
+                  {CONSTANTS, R(TILES, TILES, ALL), W(SSAO_OUT, SSAO_PING, V(CACAO_FILL_SLICES)),
+                   W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT))},
+                  .lists = {CACAO_LIST_FILL_SLICES, CACAO_LIST_FILL_OUTPUT}},
 };
 #undef R
 #undef W
@@ -117,6 +140,8 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
 #undef CONSTANTS
 #undef PASS
 #undef WG
+#undef GEN
+#undef APL
 
 static bool binding_active(const cacaoi_pass_binding *b, unsigned variant) {
     return (b->variants >> variant) & 1u;
@@ -198,6 +223,8 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     const unsigned ds = c->downsampled ? 1 : 0, fp = c->fp16 ? 1 : 0;
     push(out, &n, CACAO_PASS_PREPARE_DEPTHS, cacaoi_depths_variant_for_quality(c->quality), ds, 0, 0);
     push(out, &n, CACAO_PASS_PREPARE_NORMALS, c->normals_from_input ? 1 : 0, ds, 0, 0);
+    push(out, &n, CACAO_PASS_CLASSIFY, 0, 0, 0, 0);
+    push(out, &n, CACAO_PASS_COMPACT, 0, 0, 0, 0);
     if (c->quality == CACAO_KEY_QUALITY_HIGHEST) {
         push(out, &n, CACAO_PASS_GENERATE, CACAO_GENERATE_Q3_BASE, 0, 0, 0);
         push(out, &n, CACAO_PASS_IMPORTANCE, 0, 0, 0, 0);
@@ -205,9 +232,17 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
         push(out, &n, CACAO_PASS_IMPORTANCE_B, 0, 0, 0, 0);
     }
     push(out, &n, CACAO_PASS_GENERATE, cacaoi_generate_variant_for_quality(c->quality), 0, 0, 0);
-    if (c->blur_passes > 0) push(out, &n, CACAO_PASS_BLUR, 0, 0, c->blur_passes, fp);
+    /* The tiles generate skips read as AO 1 in its output and, where a blur runs, in the blur's
+     * (the blur and apply groups next to a needed tile read them). */
+    push(out, &n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0);
+    if (c->blur_passes > 0) {
+        cacaoi_step *f = push(out, &n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0);
+        rebind(f, CACAO_BINDING_SSAO_OUT, CACAO_RES_SSAO_PONG);
+        push(out, &n, CACAO_PASS_BLUR, 0, 0, c->blur_passes, fp);
+    }
     cacaoi_step *s = push(out, &n, c->downsampled ? CACAO_PASS_UPSAMPLE : CACAO_PASS_APPLY,
                           cacaoi_output_variant_for_quality(c->quality, c->downsampled), 0, 0, fp);
     if (c->blur_passes > 0) rebind(s, CACAO_BINDING_SSAO_IN, CACAO_RES_SSAO_PONG);
+    push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT, 0, 0, 0);
     return n;
 }

@@ -53,6 +53,7 @@ extern const cacaoi_slot_row cacaoi_slots[CACAO_BINDING_COUNT];
 #define CACAOI_SIZE_SLICE 2      /* one deinterleaved slice (half or quarter resolution) */
 #define CACAOI_SIZE_IMPORTANCE 3 /* half a slice */
 #define CACAOI_SIZE_FULL 4       /* the output's size */
+#define CACAOI_SIZE_TILES 5      /* the tile buffer: header, classes and lists (cacao_plan.tile_buffer_bytes) */
 
 typedef struct cacaoi_resource_row {
     const char *name;        /* cacao_resource_name() */
@@ -75,6 +76,8 @@ extern const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT];
 #define CACAOI_GRID_BLUR 3         /* slice size / CACAO_BLUR_OUT(n), one z per slice */
 #define CACAOI_GRID_OUTPUT 4       /* output size / workgroup */
 #define CACAOI_GRID_UPSAMPLE 5     /* output size / (2 CACAO_UPSAMPLE_SPAN) */
+#define CACAOI_GRID_COMPACT 6      /* one invocation per tile, blur group and apply group */
+#define CACAOI_GRID_FILL 7         /* slices: the generate grid; output: the apply or upsample grid */
 
 #define CACAOI_ALL_VARIANTS 0xffu
 #define CACAOI_VARIANT(v) (1u << (v))
@@ -87,7 +90,7 @@ typedef struct cacaoi_pass_binding {
     uint8_t variants; /* bit mask of the variants that declare it */
 } cacaoi_pass_binding;
 
-#define CACAOI_PASS_MAX_BINDINGS 8
+#define CACAOI_PASS_MAX_BINDINGS 10
 #define CACAOI_MAX_VARIANTS 5
 
 typedef struct cacaoi_pass_row {
@@ -99,6 +102,8 @@ typedef struct cacaoi_pass_row {
     uint8_t grid;                                    /* CACAOI_GRID_* */
     uint8_t binding_count;
     cacaoi_pass_binding bindings[CACAOI_PASS_MAX_BINDINGS];
+    uint8_t lists[CACAOI_MAX_VARIANTS];              /* per variant: CACAO_LIST_* it dispatches from
+                                                        (indirect), CACAO_LIST_NONE: a direct grid */
 } cacaoi_pass_row;
 
 extern const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT];
@@ -124,7 +129,7 @@ typedef struct cacaoi_step {
     uint8_t override_resource[2];
 } cacaoi_step;
 
-#define CACAOI_SEQUENCE_MAX 10
+#define CACAOI_SEQUENCE_MAX 16
 
 /* The steps one configuration dispatches, in order. */
 size_t cacaoi_sequence(const cacao_key_config *config, cacaoi_step out[CACAOI_SEQUENCE_MAX]);

@@ -26,7 +26,11 @@
 #define CACAO_PASS_SLICE_PREPARE 9       /* view z (R32F) and view normals, one texel per pixel */
 #define CACAO_PASS_SLICE_MAIN 10         /* the estimator: raw visibility per pixel */
 #define CACAO_PASS_SLICE_DENOISE 11      /* 3x3 depth/normal-aware filter (estimators.md section 5) */
-#define CACAO_PASS_COUNT 12
+/* Tile classification (docs/tiles.md): which tiles a frame computes, and the value of the rest. */
+#define CACAO_PASS_CLASSIFY 12           /* one class per tile: active, faded or background */
+#define CACAO_PASS_COMPACT 13            /* the tile lists and indirect dispatch commands */
+#define CACAO_PASS_FILL 14               /* AO 1 where no pass computes it */
+#define CACAO_PASS_COUNT 15
 
 /* Depth-prepare variants (spec: prepare.md). HALF = slices 0 and 3 only (LOWEST), FULL = four
  * slices, MIPS = four slices plus mips 1..3 (HIGH and HIGHEST; MEDIUM never reads mips). */
@@ -61,6 +65,39 @@
 #define CACAO_DENOISE_INTERMEDIATE 0
 #define CACAO_DENOISE_FINAL 1
 
+/* Fill variants: the AO intermediates of quiet tiles, or the output of skipped apply groups. */
+#define CACAO_FILL_SLICES 0
+#define CACAO_FILL_OUTPUT 1
+
+/* ---- Tiles (docs/tiles.md) ----
+ * A tile is CACAO_TILE x CACAO_TILE slice texels (all layers). A texel is quiet when its AO is 1
+ * whatever its neighbourhood: it is background (view z at the far plane or invalid) or the
+ * fade-out has taken it entirely. A tile is active when some texel of it is not quiet, and
+ * needed when a tile within one tile of it is active; generate runs over the needed tiles, blur
+ * and apply over the groups that touch one, and the rest is filled with 1. One tile of margin
+ * covers every blur (at most 8 iterations reach 8 texels) and the apply/upsample footprint.
+ *
+ * The tile buffer: CACAO_TILE_HEADER uints of header, then the tile classes, then the lists.
+ * Header: one VkDispatchIndirectCommand (x, y, z) per list (list l at 3 (l - 1)), then the tile
+ * counts per class. List entries are group coordinates x | y << 16. */
+#define CACAO_TILE 8
+#define CACAO_LIST_NONE 0                /* a direct dispatch */
+#define CACAO_LIST_GENERATE 1            /* needed tiles (one generate group each, z = layers) */
+#define CACAO_LIST_FILL_SLICES 2         /* tiles that are not needed (z = layers) */
+#define CACAO_LIST_BLUR 3                /* blur groups touching a needed tile (z = layers) */
+#define CACAO_LIST_APPLY 4               /* apply/upsample groups touching a needed tile */
+#define CACAO_LIST_FILL_OUTPUT 5         /* the other apply/upsample groups */
+#define CACAO_LIST_COUNT 5
+#define CACAO_TILE_COUNT_ACTIVE 15       /* header: tiles per class */
+#define CACAO_TILE_COUNT_FADED 16
+#define CACAO_TILE_COUNT_BACKGROUND 17
+#define CACAO_TILE_HEADER 32
+#define CACAO_TILE_CLASS_ACTIVE 0
+#define CACAO_TILE_CLASS_FADED 1
+#define CACAO_TILE_CLASS_BACKGROUND 2
+#define CACAO_APPLY_MARGIN 2             /* slice texels an apply/upsample group reads beyond its own */
+#define CACAO_WG_COMPACT 64
+
 /* ---- Descriptor bindings (set 0, pushed with VK_KHR_push_descriptor) ---- */
 #define CACAO_BINDING_CONSTANTS 0        /* uniform block cacao_constants */
 #define CACAO_BINDING_LOAD_COUNTER 1     /* storage buffer, one uint (HIGHEST only) */
@@ -79,7 +116,8 @@
 #define CACAO_BINDING_SSAO_OUT 14        /* image2DArray rg8 */
 #define CACAO_BINDING_IMPORTANCE_OUT 15  /* image2D r8 */
 #define CACAO_BINDING_OUTPUT 16          /* caller's output, image2D, written without format */
-#define CACAO_BINDING_COUNT 17
+#define CACAO_BINDING_TILES 17           /* storage buffer: tile classes, lists, indirect commands */
+#define CACAO_BINDING_COUNT 18
 
 /* ---- Workgroup sizes (x, y); z is always 1 ---- */
 #define CACAO_WG_PREPARE_X 8
@@ -257,7 +295,20 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(INT, slice_ortho)                 /* 1: orthographic (view rays parallel to z) */            \
     M(FLOAT, slice_denoise_sigma)                                                                  \
     M(FLOAT, slice_rotation_cos)        /* cos, sin of pi / slices: from one slice to the next */ \
-    M(FLOAT, slice_rotation_sin)
+    M(FLOAT, slice_rotation_sin)                                                                   \
+    M(FLOAT, background_z)              /* stored view z at or beyond which a texel is background */ \
+    M(FLOAT, quiet_margin)              /* classification: fade argument below -margin is quiet */ \
+    M(INT, tiles_all)                   /* 1: every tile active (no skipping: measurement, tests) */ \
+    M(INT, tiles_x)                                                                                \
+    M(INT, tiles_y)                                                                                \
+    M(INT, blur_groups_x)               /* the blur's full grid and output texels per group */     \
+    M(INT, blur_groups_y)                                                                          \
+    M(INT, blur_out_x)                                                                             \
+    M(INT, blur_out_y)                                                                             \
+    M(INT, apply_groups_x)              /* the apply/upsample full grid and slice texels per group */ \
+    M(INT, apply_groups_y)                                                                         \
+    M(INT, apply_span)                                                                             \
+    M(INT, output_span)                 /* output pixels per apply/upsample group side */
 
 #ifdef CACAO_GLSL
 layout(std140, set = 0, binding = CACAO_BINDING_CONSTANTS) uniform cacao_constants_block {

@@ -132,6 +132,9 @@ typedef struct cacao_settings {
                                        (FALLOFF) or 0.5 R (BINARY) */
     int horizon_slices;             /* GTAO/BITMASK: slices per pixel 1..16; 0 = by quality */
     int horizon_steps;              /* GTAO/BITMASK: steps per side 1..32; 0 = by quality */
+    bool compute_all_tiles;         /* CACAO: true computes every tile (no skipping of background and
+                                       faded tiles: docs/tiles.md); the output is the same, only
+                                       slower. For measurement and tests. */
 } cacao_settings;
 
 /* Fills every defaulted field of *in into *out and checks every field. An explicit zero keeps its
@@ -160,6 +163,7 @@ typedef enum cacao_resource {
     CACAO_RES_VIEW_NORMALS,     /* GTAO/BITMASK: full-resolution view normals, RGBA8 SNORM */
     CACAO_RES_AO_RAW,           /* GTAO/BITMASK: visibility before the last denoise pass, R16F */
     CACAO_RES_AO_PONG,          /* GTAO/BITMASK: denoise ping-pong, R16F */
+    CACAO_RES_TILES,            /* storage + indirect buffer: tile classes, lists, dispatch commands */
     CACAO_RES_COUNT
 } cacao_resource;
 
@@ -174,7 +178,7 @@ typedef struct cacao_plan_image {
     uint64_t bytes;             /* tightly packed size, all layers and mips */
 } cacao_plan_image;
 
-#define CACAO_PLAN_MAX_STEPS 12
+#define CACAO_PLAN_MAX_STEPS 16
 #define CACAO_PLAN_MAX_BINDINGS 10
 
 /* One binding of a step: descriptor binding number -> resource (and mip level for depth writes). */
@@ -188,7 +192,10 @@ typedef struct cacao_plan_binding {
 typedef struct cacao_plan_step {
     char key_name[48];          /* permutation key, e.g. "generate.q2" */
     uint8_t key[5];             /* permutation key: pass, variant, downsampled, blur passes, fp16 */
-    uint32_t dispatch[3];       /* workgroups */
+    uint32_t dispatch[3];       /* workgroups (an indirect step: the most it can dispatch) */
+    uint8_t list;               /* 0: dispatched directly; else the tile list it dispatches
+                                   indirectly (1 generate, 2 fill slices, 3 blur, 4 apply, 5 fill
+                                   output: docs/tiles.md) */
     uint32_t binding_count;
     cacao_plan_binding bindings[CACAO_PLAN_MAX_BINDINGS];
     bool barrier_before;        /* a compute->compute barrier precedes this step */
@@ -206,6 +213,11 @@ typedef struct cacao_plan {
     uint32_t image_count;
     cacao_plan_image images[CACAO_RES_COUNT];
     bool uses_load_counter;
+    bool uses_tiles;            /* CACAO estimator: tile classification (docs/tiles.md) */
+    uint32_t tiles_x, tiles_y;  /* tiles of CACAO_TILE x CACAO_TILE slice texels */
+    uint32_t blur_groups_x, blur_groups_y;   /* the blur's full grid (0 without a blur) */
+    uint32_t apply_groups_x, apply_groups_y; /* the apply or upsample pass's full grid */
+    uint64_t tile_buffer_bytes; /* header, classes and lists */
     uint64_t total_bytes;       /* all intermediates, buffers included */
 } cacao_plan;
 
@@ -334,6 +346,32 @@ typedef struct cacao_inputs {
  *     naming COMPUTE_SHADER / SHADER_WRITE as its source. */
 cacao_result cacao_record(cacao_context *context, VkCommandBuffer command_buffer,
                           const cacao_inputs *inputs);
+
+/* ---- Tiles skipped (docs/tiles.md) ---------------------------------------------------------
+ * The CACAO estimator classifies tiles of 8x8 slice texels (16x16 pixels native, 32x32
+ * downsampled) as active, faded (beyond fade_out_to) or background (far plane, invalid depth),
+ * and computes only what touches an active tile; the rest is AO 1, as the full computation gives
+ * it. The counts live on the device: record a copy after cacao_record, read it once the frame is
+ * done. */
+typedef struct cacao_tile_counts {
+    uint32_t tiles, active, faded, background;   /* the frame's tiles by class */
+    uint32_t generate_run, generate_total;       /* generate groups (tiles) run, of the full grid */
+    uint32_t blur_run, blur_total;               /* blur groups (0 of 0 without a blur) */
+    uint32_t apply_run, apply_total;             /* apply or upsample groups */
+} cacao_tile_counts;
+
+#define CACAO_TILE_COUNTS_BYTES 128
+
+/* Records, after cacao_record in the same command buffer, a copy of this frame's counts
+ * (CACAO_TILE_COUNTS_BYTES bytes) into dst at offset (dst: TRANSFER_DST usage), with the barriers
+ * around it (our writes before the copy; the copy before the caller's later host or transfer
+ * reads, which the caller orders as usual). CACAO_ERROR_INVALID_ARGUMENT for the GTAO/BITMASK
+ * estimators, which have no tiles. */
+cacao_result cacao_record_tile_counts(cacao_context *context, VkCommandBuffer command_buffer, VkBuffer dst,
+                                      VkDeviceSize offset);
+
+/* Decodes the bytes such a copy wrote. */
+cacao_result cacao_tile_counts_decode(const cacao_context *context, const void *bytes, cacao_tile_counts *out);
 
 /* For tools and tests: the handle of one of the context's intermediates (image or buffer, the
  * other is set to VK_NULL_HANDLE), to copy it out after cacao_record. Images are in GENERAL

@@ -209,6 +209,35 @@ static void fill_slice_constants(const cacao_settings *s, const projection_view 
     c->slice_rotation_sin = (float)sin(step);
 }
 
+/* Tile classification (docs/tiles.md). Background: the stored (R16F) view z of the far plane,
+ * less 2^-9 of it to cover the GPU's fp32 z and its rounding to half (geometry that close to the
+ * far plane counts as background); no finite far plane: the invalid-depth value. Quiet by fade:
+ * the fade argument z f_mul + f_add (0 or below: fade 0) below -quiet_margin, a margin far above
+ * the few ulps by which the classify and generate passes can evaluate it differently. */
+static void fill_tile_constants(const cacao_plan *plan, const projection_view *v, float k, cacao_constants *c) {
+    double z_far = 0.0; /* the larger view z of depth 0 and 1; no finite positive z: infinite */
+    for (int d = 0; d <= 1; ++d) {
+        const double z = ((double)v->z_num[0] + v->z_num[1] * d) / ((double)v->z_den[0] + v->z_den[1] * d);
+        z_far = fmax(z_far, isfinite(z) && z > 0.0 ? z : INFINITY);
+    }
+    const double z_stored = fmin(k * z_far, CACAO_MAX_VIEW_Z);
+    c->background_z = (float)(z_stored * (1.0 - 1.0 / 512.0));
+    if (z_stored >= CACAO_MAX_VIEW_Z) c->background_z = (float)CACAO_MAX_VIEW_Z;
+    c->quiet_margin = 1.0e-5f * fmaxf(1.0f, fabsf(c->effect_fade_out_add));
+    c->tiles_all = plan->settings.compute_all_tiles ? 1 : 0;
+    c->tiles_x = (int)plan->tiles_x;
+    c->tiles_y = (int)plan->tiles_y;
+    c->blur_groups_x = (int)plan->blur_groups_x;
+    c->blur_groups_y = (int)plan->blur_groups_y;
+    const int blur = plan->settings.blur_pass_count == CACAO_BLUR_NONE ? 0 : plan->settings.blur_pass_count;
+    c->blur_out_x = CACAO_BLUR_OUT_X(blur);
+    c->blur_out_y = CACAO_BLUR_OUT_Y(blur);
+    c->apply_groups_x = (int)plan->apply_groups_x;
+    c->apply_groups_y = (int)plan->apply_groups_y;
+    c->output_span = plan->settings.downsample ? 2 * CACAO_UPSAMPLE_SPAN_X : CACAO_WG_APPLY_X;
+    c->apply_span = c->output_span / (plan->settings.downsample ? 4 : 2);
+}
+
 void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao_constants *c) {
     cacao_settings literal;
     cacaoi_settings_literal(&plan->settings, &literal);
@@ -258,6 +287,7 @@ void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao
     c->adaptive_sample_count_limit = s->adaptive_quality_limit;
     c->inv_sharpness = fminf(fmaxf(1.0f - s->sharpness, 0.0f), 1.0f);
     c->slice_count = (int)plan->slice_count;
+    fill_tile_constants(plan, &v, k, c);
     /* The upsample's weights as exp2 of precomputed products: no division per weight, and the
      * spatial Gaussian separates, exp(-(dx^2 + dy^2) / v) = exp(-dx^2 / v) exp(-dy^2 / v), so its
      * 6 distinct axis factors (|d| = 0, 0.5, .., 2.5 texels) come from this block. */

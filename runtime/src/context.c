@@ -171,7 +171,7 @@ static void release_images_and_buffers(cacao_context *ctx) {
         if (im->memory) vkFreeMemory(d, im->memory, ctx->alloc);
         memset(im, 0, sizeof *im);
     }
-    for (unsigned b = 0; b < 2; ++b) {
+    for (unsigned b = 0; b < CACAO_BUFFER_COUNT; ++b) {
         if (ctx->buffers[b]) vkDestroyBuffer(d, ctx->buffers[b], ctx->alloc);
         if (ctx->buffer_memory[b]) vkFreeMemory(d, ctx->buffer_memory[b], ctx->alloc);
         ctx->buffers[b] = VK_NULL_HANDLE;
@@ -390,6 +390,9 @@ cacao_result cacao_context_resize(cacao_context *ctx, uint32_t width, uint32_t h
         r = create_buffer(ctx, CACAO_BUFFER_CONSTANTS, sizeof(cacao_constants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     if (r == CACAO_SUCCESS && plan.uses_load_counter)
         r = create_buffer(ctx, CACAO_BUFFER_LOAD_COUNTER, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (r == CACAO_SUCCESS && plan.uses_tiles)
+        r = create_buffer(ctx, CACAO_BUFFER_TILES, plan.tile_buffer_bytes,
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     if (keep_pipelines) ctx->memory.pipeline_count = plan.step_count;
     for (uint32_t i = 0; r == CACAO_SUCCESS && !keep_pipelines && i < plan.step_count; ++i) r = create_pipeline(ctx, i);
     if (r != CACAO_SUCCESS) {
@@ -411,6 +414,8 @@ cacao_result cacao_context_intermediate(const cacao_context *ctx, cacao_resource
         *buffer = ctx->buffers[CACAO_BUFFER_CONSTANTS];
     else if (resource == CACAO_RES_LOAD_COUNTER)
         *buffer = ctx->buffers[CACAO_BUFFER_LOAD_COUNTER];
+    else if (resource == CACAO_RES_TILES)
+        *buffer = ctx->buffers[CACAO_BUFFER_TILES];
     else if ((unsigned)resource < CACAO_RES_COUNT)
         *image = ctx->images[resource].image;
     return (*image || *buffer) ? CACAO_SUCCESS : CACAO_ERROR_INVALID_ARGUMENT;

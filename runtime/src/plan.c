@@ -80,6 +80,19 @@ static void dispatch_size(const cacao_plan *p, const cacao_key *key, uint32_t ou
         out[0] = div_up(p->width, 2 * CACAO_UPSAMPLE_SPAN_X);
         out[1] = div_up(p->height, 2 * CACAO_UPSAMPLE_SPAN_Y);
         return;
+    case CACAOI_GRID_COMPACT:
+        out[0] = div_up(p->tiles_x * p->tiles_y + p->blur_groups_x * p->blur_groups_y +
+                            p->apply_groups_x * p->apply_groups_y,
+                        wx);
+        out[1] = 1;
+        return;
+    case CACAOI_GRID_FILL:
+        if (key->variant == CACAO_FILL_SLICES) {
+            out[0] = p->tiles_x, out[1] = p->tiles_y, out[2] = p->slice_count;
+        } else {
+            out[0] = p->apply_groups_x, out[1] = p->apply_groups_y;
+        }
+        return;
     default: /* CACAOI_GRID_OUTPUT */
         out[0] = div_up(p->width, wx);
         out[1] = div_up(p->height, wy);
@@ -139,6 +152,23 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
 
     cacaoi_step steps[CACAOI_SEQUENCE_MAX];
     const size_t count = cacaoi_sequence(&config, steps);
+    if (s.estimator == CACAO_ESTIMATOR_CACAO) { /* tile grids (docs/tiles.md) */
+        const unsigned blur = config.blur_passes;
+        plan->uses_tiles = true;
+        plan->tiles_x = div_up(plan->slice_width, CACAO_TILE);
+        plan->tiles_y = div_up(plan->slice_height, CACAO_TILE);
+        if (blur > 0) {
+            plan->blur_groups_x = div_up(plan->slice_width, CACAO_BLUR_OUT_X(blur));
+            plan->blur_groups_y = div_up(plan->slice_height, CACAO_BLUR_OUT_Y(blur));
+        }
+        const uint32_t span = s.downsample ? 2 * CACAO_UPSAMPLE_SPAN_X : CACAO_WG_APPLY_X;
+        plan->apply_groups_x = div_up(width, span);
+        plan->apply_groups_y = div_up(height, span);
+        const uint64_t tiles = (uint64_t)plan->tiles_x * plan->tiles_y;
+        const uint64_t groups = (uint64_t)plan->blur_groups_x * plan->blur_groups_y +
+                                2u * (uint64_t)plan->apply_groups_x * plan->apply_groups_y;
+        plan->tile_buffer_bytes = sizeof(uint32_t) * (CACAO_TILE_HEADER + 3u * tiles + groups);
+    }
     cacaoi_pass_binding bindings[CACAOI_SEQUENCE_MAX][CACAOI_PASS_MAX_BINDINGS];
     size_t binding_count[CACAOI_SEQUENCE_MAX];
     uint32_t mips[CACAO_RES_COUNT] = {0}; /* levels bound per resource, 0 = untouched */
@@ -153,12 +183,14 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     /* Intermediates: only those the steps touch, in resource order; then the buffers. */
     for (unsigned res = 0; res < CACAO_RES_COUNT; ++res) {
         const uint8_t size = cacaoi_resources[res].size;
-        if (mips[res] && size != CACAOI_SIZE_CALLER && size != CACAOI_SIZE_BUFFER) add_image(plan, res, mips[res]);
+        if (mips[res] && size != CACAOI_SIZE_CALLER && size != CACAOI_SIZE_BUFFER && size != CACAOI_SIZE_TILES)
+            add_image(plan, res, mips[res]);
     }
     plan->uses_load_counter = mips[CACAO_RES_LOAD_COUNTER] != 0;
     for (unsigned res = 0; res < CACAO_RES_COUNT; ++res)
         if (mips[res] && cacaoi_resources[res].size == CACAOI_SIZE_BUFFER)
             plan->total_bytes += cacaoi_resources[res].buffer_bytes;
+    plan->total_bytes += plan->tile_buffer_bytes;
 
     plan_builder b = {plan, 0, 0};
     for (size_t i = 0; i < count; ++i) {
@@ -171,6 +203,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
         st->key[3] = key->blur_passes;
         st->key[4] = key->fp16;
         dispatch_size(plan, key, st->dispatch);
+        st->list = cacaoi_passes[key->pass].lists[key->variant];
         for (size_t j = 0; j < binding_count[i]; ++j) {
             /* A level the slice's chain lacks is bound to its last level, which the shader then
              * leaves alone (CACAO_DEPTH_MIP_LEVELS). */
@@ -202,7 +235,8 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
     } else {
         fprintf(out, "slices: %u of %ux%u", p->slice_count, p->slice_width, p->slice_height);
         if (p->uses_load_counter) fprintf(out, "; importance map %ux%u", p->importance_width, p->importance_height);
-        fprintf(out, "\n");
+        fprintf(out, "\ntiles: %ux%u of %dx%d slice texels (tile buffer %llu bytes)\n", p->tiles_x, p->tiles_y,
+                CACAO_TILE, CACAO_TILE, (unsigned long long)p->tile_buffer_bytes);
     }
     for (uint32_t i = 0; i < p->step_count; ++i) {
         const cacao_plan_step *s = &p->steps[i];
@@ -212,8 +246,10 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
                 if (s->barrier_resources & (1u << r)) fprintf(out, " %s", cacaoi_resources[r].name);
             fprintf(out, "\n");
         }
-        fprintf(out, "  %2u %-34s dispatch %4u x %4u x %u  reads", i, s->key_name, s->dispatch[0], s->dispatch[1],
-                s->dispatch[2]);
+        static const char *const list_names[] = {"", "needed tiles", "quiet tiles", "blur groups at needed tiles",
+                                                 "groups at needed tiles", "groups at no needed tile"};
+        fprintf(out, "  %2u %-34s dispatch %4u x %4u x %u%s%s  reads", i, s->key_name, s->dispatch[0], s->dispatch[1],
+                s->dispatch[2], s->list ? " at most, indirect over " : "", list_names[s->list]);
         for (uint32_t j = 0; j < s->binding_count; ++j)
             if (!s->bindings[j].write && s->bindings[j].resource != CACAO_RES_CONSTANTS)
                 fprintf(out, " %s", cacaoi_resources[s->bindings[j].resource].name);

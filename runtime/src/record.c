@@ -1,5 +1,7 @@
 /* record.c - cacao_record: walks the plan, recording barriers, pushed descriptors and dispatches
  * into the caller's command buffer. No submission, no waiting, no allocation. */
+#include <string.h>
+
 #include "vulkan_internal.h"
 
 static bool format_in(VkFormat f, const VkFormat *list, size_t n) {
@@ -125,6 +127,15 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
     vkCmdUpdateBuffer(cmd, ctx->buffers[CACAO_BUFFER_CONSTANTS], 0, sizeof constants, &constants);
     if (ctx->plan.uses_load_counter)
         vkCmdFillBuffer(cmd, ctx->buffers[CACAO_BUFFER_LOAD_COUNTER], 0, sizeof(uint32_t), 0);
+    if (ctx->plan.uses_tiles) { /* empty lists; the compact pass appends (docs/tiles.md) */
+        uint32_t header[CACAO_TILE_HEADER] = {0};
+        for (unsigned list = 1; list <= CACAO_LIST_COUNT; ++list) {
+            const bool layered = list != CACAO_LIST_APPLY && list != CACAO_LIST_FILL_OUTPUT;
+            header[3 * (list - 1) + 1] = 1;
+            header[3 * (list - 1) + 2] = layered ? ctx->plan.slice_count : 1;
+        }
+        vkCmdUpdateBuffer(cmd, ctx->buffers[CACAO_BUFFER_TILES], 0, sizeof header, header);
+    }
     const VkMemoryBarrier memory = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
         .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
@@ -148,6 +159,9 @@ static void describe(const cacao_context *ctx, const cacao_inputs *in, const cac
     case CACAO_RES_LOAD_COUNTER:
         info->buffer = (VkDescriptorBufferInfo){ctx->buffers[CACAO_BUFFER_LOAD_COUNTER], 0, sizeof(uint32_t)};
         return;
+    case CACAO_RES_TILES:
+        info->buffer = (VkDescriptorBufferInfo){ctx->buffers[CACAO_BUFFER_TILES], 0, VK_WHOLE_SIZE};
+        return;
     case CACAO_RES_DEPTH_INPUT: info->image = (VkDescriptorImageInfo){0, in->depth.view, in->depth.layout}; return;
     case CACAO_RES_NORMALS_INPUT:
         info->image = (VkDescriptorImageInfo){0, in->normals.view, in->normals.layout};
@@ -165,11 +179,17 @@ static void describe(const cacao_context *ctx, const cacao_inputs *in, const cac
 static void record_step(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in, uint32_t index) {
     const cacao_plan_step *step = &ctx->plan.steps[index];
     if (step->barrier_before) {
-        const VkMemoryBarrier memory = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
-                                        .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT,
-                                        .dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
-                             &memory, 0, NULL, 0, NULL);
+        /* With tiles, every barrier also makes the compact pass's commands visible to the
+         * indirect dispatches after it. */
+        const bool tiles = ctx->plan.uses_tiles;
+        const VkMemoryBarrier memory = {
+            .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+            .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT,
+            .dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                             (tiles ? VK_ACCESS_INDIRECT_COMMAND_READ_BIT : 0)};
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | (tiles ? VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT : 0),
+                             0, 1, &memory, 0, NULL, 0, NULL);
     }
     descriptor_info infos[CACAO_PLAN_MAX_BINDINGS];
     VkWriteDescriptorSet writes[CACAO_PLAN_MAX_BINDINGS];
@@ -189,7 +209,11 @@ static void record_step(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inp
     }
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->pipelines[index]);
     ctx->push_descriptor(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->pipeline_layout, 0, step->binding_count, writes);
-    vkCmdDispatch(cmd, step->dispatch[0], step->dispatch[1], step->dispatch[2]);
+    if (step->list)
+        vkCmdDispatchIndirect(cmd, ctx->buffers[CACAO_BUFFER_TILES],
+                              (VkDeviceSize)(step->list - 1) * sizeof(VkDispatchIndirectCommand));
+    else
+        vkCmdDispatch(cmd, step->dispatch[0], step->dispatch[1], step->dispatch[2]);
 }
 
 cacao_result cacao_record(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in) {
@@ -219,5 +243,53 @@ cacao_result cacao_record(cacao_context *ctx, VkCommandBuffer cmd, const cacao_i
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, NULL, 0,
                          NULL, 1, &done);
     ctx->last_error[0] = '\0';
+    return CACAO_SUCCESS;
+}
+
+cacao_result cacao_record_tile_counts(cacao_context *ctx, VkCommandBuffer cmd, VkBuffer dst, VkDeviceSize offset) {
+    if (!ctx) return CACAO_ERROR_INVALID_ARGUMENT;
+    if (!ctx->ready) return cacaoi_fail(ctx, CACAO_ERROR_NOT_READY, "cacao_context_resize must succeed first");
+    if (!ctx->plan.uses_tiles)
+        return cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "tile counts: the %s estimator has no tiles",
+                           ctx->plan.settings.estimator == CACAO_ESTIMATOR_GTAO ? "GTAO" : "BITMASK");
+    if (!cmd || !dst)
+        return cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "tile counts: %s is NULL",
+                           !cmd ? "command_buffer" : "dst");
+    const VkMemoryBarrier before = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+                                    .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
+                                    .dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before, 0,
+                         NULL, 0, NULL);
+    const VkBufferCopy region = {0, offset, CACAO_TILE_COUNTS_BYTES};
+    vkCmdCopyBuffer(cmd, ctx->buffers[CACAO_BUFFER_TILES], dst, 1, &region);
+    /* The next frame's header reset (a transfer write) waits for this read. */
+    const VkMemoryBarrier after = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+                                   .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
+                                   .dstAccessMask = VK_ACCESS_HOST_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         0, 1, &after, 0, NULL, 0, NULL);
+    return CACAO_SUCCESS;
+}
+
+cacao_result cacao_tile_counts_decode(const cacao_context *ctx, const void *bytes, cacao_tile_counts *out) {
+    if (!ctx || !bytes || !out || !ctx->ready || !ctx->plan.uses_tiles) return CACAO_ERROR_INVALID_ARGUMENT;
+    uint32_t h[CACAO_TILE_COUNTS_BYTES / sizeof(uint32_t)];
+    _Static_assert(CACAO_TILE_COUNTS_BYTES == CACAO_TILE_HEADER * sizeof(uint32_t), "the header is what is copied");
+    memcpy(h, bytes, sizeof h);
+    const cacao_plan *p = &ctx->plan;
+#define LIST_X(list) h[3 * ((list)-1)]
+    *out = (cacao_tile_counts){
+        .tiles = p->tiles_x * p->tiles_y,
+        .active = h[CACAO_TILE_COUNT_ACTIVE],
+        .faded = h[CACAO_TILE_COUNT_FADED],
+        .background = h[CACAO_TILE_COUNT_BACKGROUND],
+        .generate_run = LIST_X(CACAO_LIST_GENERATE),
+        .generate_total = p->tiles_x * p->tiles_y,
+        .blur_run = LIST_X(CACAO_LIST_BLUR),
+        .blur_total = p->blur_groups_x * p->blur_groups_y,
+        .apply_run = LIST_X(CACAO_LIST_APPLY),
+        .apply_total = p->apply_groups_x * p->apply_groups_y,
+    };
+#undef LIST_X
     return CACAO_SUCCESS;
 }

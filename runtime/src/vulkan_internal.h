@@ -15,7 +15,7 @@ typedef struct cacao_intermediate {
     uint32_t layers, mips;
 } cacao_intermediate;
 
-enum { CACAO_BUFFER_CONSTANTS = 0, CACAO_BUFFER_LOAD_COUNTER = 1 };
+enum { CACAO_BUFFER_CONSTANTS = 0, CACAO_BUFFER_LOAD_COUNTER = 1, CACAO_BUFFER_TILES = 2, CACAO_BUFFER_COUNT = 3 };
 
 struct cacao_context {
     VkPhysicalDevice physical_device;
@@ -36,8 +36,8 @@ struct cacao_context {
     VkPipelineLayout pipeline_layout;
     VkPipeline pipelines[CACAO_PLAN_MAX_STEPS]; /* one per plan step */
     cacao_intermediate images[CACAO_RES_COUNT];
-    VkBuffer buffers[2];
-    VkDeviceMemory buffer_memory[2];
+    VkBuffer buffers[CACAO_BUFFER_COUNT];
+    VkDeviceMemory buffer_memory[CACAO_BUFFER_COUNT];
     cacao_memory_info memory;
     char last_error[256];
 };

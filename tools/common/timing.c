@@ -52,6 +52,35 @@ void cacao_timings_print(FILE *out, const cacao_plan *plan, const cacao_timings 
         fprintf(out, "%-34s %10.3f %10.3f %10.3f\n", plan->steps[s].key_name, t->step[s].median_ms, t->step[s].min_ms,
                 t->step[s].max_ms);
     fprintf(out, "%-34s %10.3f %10.3f %10.3f\n", "total", t->total.median_ms, t->total.min_ms, t->total.max_ms);
+    if (t->has_tiles) cacao_tile_counts_print(out, &t->tiles);
+}
+
+static double share(uint32_t part, uint32_t whole) { return whole ? 100.0 * part / whole : 0.0; }
+
+void cacao_tile_counts_print(FILE *out, const cacao_tile_counts *c) {
+    fprintf(out, "tiles: %u: %u active, %u faded, %u background; skipped: generate %u of %u (%.1f%%), ", c->tiles,
+            c->active, c->faded, c->background, c->generate_total - c->generate_run, c->generate_total,
+            share(c->generate_total - c->generate_run, c->generate_total));
+    if (c->blur_total)
+        fprintf(out, "blur %u of %u (%.1f%%), ", c->blur_total - c->blur_run, c->blur_total,
+                share(c->blur_total - c->blur_run, c->blur_total));
+    fprintf(out, "apply %u of %u groups (%.1f%%)\n", c->apply_total - c->apply_run, c->apply_total,
+            share(c->apply_total - c->apply_run, c->apply_total));
+}
+
+void cacao_tile_counts_add_json(cJSON *object, const cacao_tile_counts *c) {
+    cJSON *o = cJSON_AddObjectToObject(object, "tiles");
+    if (!o) return;
+    cJSON_AddNumberToObject(o, "tiles", c->tiles);
+    cJSON_AddNumberToObject(o, "active", c->active);
+    cJSON_AddNumberToObject(o, "faded", c->faded);
+    cJSON_AddNumberToObject(o, "background", c->background);
+    cJSON_AddNumberToObject(o, "generate_run", c->generate_run);
+    cJSON_AddNumberToObject(o, "generate_total", c->generate_total);
+    cJSON_AddNumberToObject(o, "blur_run", c->blur_run);
+    cJSON_AddNumberToObject(o, "blur_total", c->blur_total);
+    cJSON_AddNumberToObject(o, "apply_run", c->apply_run);
+    cJSON_AddNumberToObject(o, "apply_total", c->apply_total);
 }
 
 void cacao_timings_add_json(cJSON *object, const cacao_plan *plan, const cacao_timings *t) {
@@ -71,4 +100,5 @@ void cacao_timings_add_json(cJSON *object, const cacao_plan *plan, const cacao_t
     cJSON_AddNumberToObject(object, "total_ms", t->total.median_ms);
     cJSON_AddNumberToObject(object, "total_min_ms", t->total.min_ms);
     cJSON_AddNumberToObject(object, "total_max_ms", t->total.max_ms);
+    if (t->has_tiles) cacao_tile_counts_add_json(object, &t->tiles);
 }

@@ -26,6 +26,8 @@ typedef struct cacao_timings {
     uint64_t memory_bytes;   /* intermediates the context allocated */
     uint32_t pipeline_count; /* pipelines the context created */
     double setup_ms;         /* wall time of cacao_context_resize (pipelines + intermediates) */
+    bool has_tiles;          /* the CACAO estimator: the last frame's tile counts */
+    cacao_tile_counts tiles;
 } cacao_timings;
 
 /* Summarises samples[step * frames + frame] (frames = warmup + repeat; the total comes from the
@@ -40,5 +42,11 @@ void cacao_timings_print(FILE *out, const cacao_plan *plan, const cacao_timings 
  * median, min_ms, max_ms), "total_ms", "total_min_ms", "total_max_ms" to a cJSON object. */
 struct cJSON;
 void cacao_timings_add_json(struct cJSON *object, const cacao_plan *plan, const cacao_timings *timings);
+
+/* "tiles: N: a active, f faded, b background; skipped: generate ..., blur ..., apply ..." */
+void cacao_tile_counts_print(FILE *out, const cacao_tile_counts *counts);
+/* Adds "tiles": {tiles, active, faded, background, generate_run, generate_total, blur_run,
+ * blur_total, apply_run, apply_total} to a cJSON object. */
+void cacao_tile_counts_add_json(struct cJSON *object, const cacao_tile_counts *counts);
 
 #endif /* CACAO_TIMING_H */

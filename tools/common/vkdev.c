@@ -504,7 +504,9 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
     const VkDeviceSize normals_offset = (pixels * 4 + 15) / 16 * 16; /* RGBA32F copies need 16-byte offsets */
     /* depth R32 (+ normals RGBA32 when given); AO read back into the front. Only what is used is
      * staged: depth alone at 16384x16384 is 1 GiB, within the 4 GiB buffers lavapipe allows. */
-    const VkDeviceSize bytes = frame->normals ? normals_offset + pixels * 16 : pixels * 4;
+    const VkDeviceSize image_bytes = frame->normals ? normals_offset + pixels * 16 : pixels * 4;
+    const VkDeviceSize tiles_offset = (image_bytes + 15) / 16 * 16; /* then the tile counts */
+    const VkDeviceSize bytes = tiles_offset + (plan->uses_tiles ? CACAO_TILE_COUNTS_BYTES : 0);
     r = CACAO_ERROR_VULKAN;
     if (!make_buffer(dev, bytes, &staging) ||
         !make_image(dev, VK_FORMAT_R32_SFLOAT, w, h, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
@@ -582,6 +584,7 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
                                                .dstAccessMask = VK_ACCESS_HOST_READ_BIT};
             vkCmdPipelineBarrier(dev->cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &host_read,
                                  0, NULL, 0, NULL);
+            if (plan->uses_tiles) cacao_record_tile_counts(ctx, dev->cmd, staging.buffer, tiles_offset);
             if (frame->after_record) frame->after_record(dev, ctx, dev->cmd, frame->user);
         }
         if (!submit_and_wait(dev)) {
@@ -599,6 +602,9 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
     if (frame->after_wait) frame->after_wait(dev, ctx, frame->user);
     if (timings) {
         cacao_timings_summarise(samples, steps, warmup, repeat, timings);
+        timings->has_tiles = plan->uses_tiles &&
+                             cacao_tile_counts_decode(ctx, (const char *)staging.mapped + tiles_offset, &timings->tiles) ==
+                                 CACAO_SUCCESS;
     }
     free(samples);
     r = CACAO_SUCCESS;
