@@ -207,8 +207,7 @@ layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT3, CACAO_FORMAT_DEPTHS_OUT3) u
 layout(set = 0, binding = CACAO_BINDING_NORMALS_OUT, CACAO_FORMAT_NORMALS_OUT) uniform writeonly image2DArray normals_out;
 #endif
 
-#if CACAO_PASS == CACAO_PASS_GENERATE || CACAO_PASS == CACAO_PASS_BLUR || \
-    (CACAO_PASS == CACAO_PASS_FILL && CACAO_VARIANT == CACAO_FILL_SLICES)
+#if CACAO_PASS == CACAO_PASS_GENERATE || CACAO_PASS == CACAO_PASS_BLUR || CACAO_PASS == CACAO_PASS_FILL
 layout(set = 0, binding = CACAO_BINDING_SSAO_OUT, CACAO_FORMAT_SSAO_OUT) uniform writeonly image2DArray ssao_out;
 #endif
 
@@ -217,8 +216,7 @@ layout(set = 0, binding = CACAO_BINDING_SSAO_OUT, CACAO_FORMAT_SSAO_OUT) uniform
 layout(set = 0, binding = CACAO_BINDING_IMPORTANCE_OUT, CACAO_FORMAT_IMPORTANCE_OUT) uniform writeonly image2D importance_out;
 #endif
 
-#if CACAO_PASS == CACAO_PASS_APPLY || CACAO_PASS == CACAO_PASS_UPSAMPLE || \
-    (CACAO_PASS == CACAO_PASS_FILL && CACAO_VARIANT == CACAO_FILL_OUTPUT)
+#if CACAO_PASS == CACAO_PASS_APPLY || CACAO_PASS == CACAO_PASS_UPSAMPLE
 /* No format qualifier: the caller's image format (shaderStorageImageWriteWithoutFormat). */
 layout(set = 0, binding = CACAO_BINDING_OUTPUT) uniform writeonly image2D output_image;
 #endif
@@ -234,13 +232,10 @@ layout(std430, set = 0, binding = CACAO_BINDING_TILES) readonly buffer cacao_til
 /* First uint of a list's entries: after the header, the classes, and the lists before it. */
 uint list_base(int list)
 {
-    uint t = uint(cb.tiles_x * cb.tiles_y), b = uint(cb.blur_groups_x * cb.blur_groups_y);
-    uint a = uint(cb.apply_groups_x * cb.apply_groups_y);
+    uint t = uint(cb.tiles_x * cb.tiles_y);
     uint base = uint(CACAO_TILE_HEADER) + t; /* the generate list */
     if (list >= CACAO_LIST_FILL_SLICES) base += t;
     if (list >= CACAO_LIST_BLUR) base += t;
-    if (list >= CACAO_LIST_APPLY) base += b;
-    if (list >= CACAO_LIST_FILL_OUTPUT) base += a;
     return base;
 }
 #endif
@@ -906,7 +901,7 @@ layout(local_size_x = CACAO_WG_APPLY_X, local_size_y = CACAO_WG_APPLY_Y) in;
 
 void main()
 {
-    ivec2 p = global_xy();
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (!in_rect(p, imageSize(output_image))) return;
 #if CACAO_VARIANT == CACAO_OUTPUT_SMART
     rfloat ao = smart_apply(p);
@@ -957,7 +952,7 @@ void main()
 {
     ivec2 s = textureSize(ssao_in, 0).xy;
     ivec2 qsize = 2 * s;
-    ivec2 g = group_xy();
+    ivec2 g = ivec2(gl_WorkGroupID.xy);
     vec2 inv_s = cb.ssao_buffer_inverse_dimensions;
 
     /* Step 1: (value, depth) of Q-positions g*SPAN - 2 .. g*SPAN + SPAN + 1, filled by all
@@ -1055,46 +1050,43 @@ void main()
 
 /* ============================== CLASSIFY ============================== */
 #if CACAO_PASS == CACAO_PASS_CLASSIFY
-/* docs/tiles.md: one group per tile. A texel is quiet where every layer's stored view z is
- * background or faded (with the margin of cb.quiet_margin, so that generate finds it faded too);
- * the tile is active when some texel is not quiet, else faded when some texel is not
- * background, else background. */
-layout(local_size_x = CACAO_TILE, local_size_y = CACAO_TILE) in;
-
-shared uint tile_flags;
+/* docs/tiles.md: one invocation per tile, no barriers. A texel is quiet where every layer's
+ * stored view z is background or faded (with the margin of cb.quiet_margin, so that generate
+ * finds it faded too); the tile is active when some texel is not quiet (the scan stops there),
+ * else faded when some texel is not background, else background. Gathers read 2x2 texels; past
+ * the slice's edge they clamp to texels of the same tile. */
+layout(local_size_x = CACAO_WG_CLASSIFY, local_size_y = CACAO_WG_CLASSIFY) in;
 
 void main()
 {
-    if (gl_LocalInvocationIndex == 0u) tile_flags = 0u;
-    barrier();
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    if (!in_rect(t, ivec2(cb.tiles_x, cb.tiles_y))) return;
+    vec2 inv_s = 1.0 / vec2(textureSize(depths, 0).xy);
     uint flags = cb.tiles_all != 0 ? 1u : 0u; /* 1: not quiet, 2: not background */
-    if (in_rect(p, textureSize(depths, 0).xy)) {
-        for (int layer = 0; layer < cb.slice_count; ++layer) {
-            float z = texelFetch(depths, ivec3(p, layer), 0).r;
-            bool background = z >= cb.background_z;
-            bool faded = (z * cb.depth_precision_offset_mod) * cb.effect_fade_out_mul + cb.effect_fade_out_add <
-                         -cb.quiet_margin;
-            if (!background) flags |= faded ? 2u : 3u;
+    for (int layer = 0; layer < cb.slice_count && flags < 1u; ++layer) {
+        for (int y = 0; y < CACAO_TILE && (flags & 1u) == 0u; y += 2) {
+            for (int x = 0; x < CACAO_TILE; x += 2) {
+                vec4 z = textureGather(depths, vec3(vec2(t * CACAO_TILE + ivec2(x, y) + 1) * inv_s, float(layer)), 0);
+                bvec4 background = greaterThanEqual(z, vec4(cb.background_z));
+                bvec4 faded = lessThan((z * cb.depth_precision_offset_mod) * cb.effect_fade_out_mul +
+                                           cb.effect_fade_out_add, vec4(-cb.quiet_margin));
+                if (!all(background)) flags |= 2u;
+                if (!all(bvec4(uvec4(background) | uvec4(faded)))) flags |= 1u;
+            }
         }
     }
-    if (flags != 0u) atomicOr(tile_flags, flags);
-    barrier();
-    if (gl_LocalInvocationIndex == 0u) {
-        uint f = tile_flags;
-        uint cls = (f & 1u) != 0u ? CACAO_TILE_CLASS_ACTIVE
-                 : (f & 2u) != 0u ? CACAO_TILE_CLASS_FADED : CACAO_TILE_CLASS_BACKGROUND;
-        tiles[CACAO_TILE_HEADER + int(gl_WorkGroupID.y) * cb.tiles_x + int(gl_WorkGroupID.x)] = cls;
-        atomicAdd(tiles[CACAO_TILE_COUNT_ACTIVE + cls], 1u);
-    }
+    uint cls = (flags & 1u) != 0u ? CACAO_TILE_CLASS_ACTIVE
+             : (flags & 2u) != 0u ? CACAO_TILE_CLASS_FADED : CACAO_TILE_CLASS_BACKGROUND;
+    tiles[CACAO_TILE_HEADER + t.y * cb.tiles_x + t.x] = cls;
+    atomicAdd(tiles[CACAO_TILE_COUNT_ACTIVE + cls], 1u);
 }
 #endif /* CLASSIFY */
 
 /* ============================== COMPACT ============================== */
 #if CACAO_PASS == CACAO_PASS_COMPACT
-/* docs/tiles.md: one invocation per tile, blur group and apply group, in that order; each goes
- * into the list that computes it or into the one that fills it with 1. Order within a list is
- * arbitrary: every group writes only its own texels. */
+/* docs/tiles.md: one invocation per tile, then one per blur group; each goes into the list that
+ * computes it (or, a tile, into the one that fills it with 1). Order within a list is arbitrary:
+ * every group writes only its own texels. */
 layout(local_size_x = CACAO_WG_COMPACT) in;
 
 /* Some tile within one tile of the tiles [t0, t1] is active: a needed tile lies in [t0, t1]. */
@@ -1115,14 +1107,10 @@ void append(int list, ivec2 g)
     tiles[list_base(list) + i] = uint(g.x) | (uint(g.y) << 16);
 }
 
-/* The tiles covering slice texels [lo, hi]. */
-bool texels_touch_needed(ivec2 lo, ivec2 hi) { return touches_needed(lo / CACAO_TILE, hi / CACAO_TILE); }
-
 void main()
 {
     int i = int(gl_GlobalInvocationID.x);
     int t = cb.tiles_x * cb.tiles_y, b = cb.blur_groups_x * cb.blur_groups_y;
-    int a = cb.apply_groups_x * cb.apply_groups_y;
     if (i < t) {
         ivec2 g = ivec2(i % cb.tiles_x, i / cb.tiles_x);
         append(touches_needed(g, g) ? CACAO_LIST_GENERATE : CACAO_LIST_FILL_SLICES, g);
@@ -1130,34 +1118,22 @@ void main()
         i -= t;
         ivec2 g = ivec2(i % cb.blur_groups_x, i / cb.blur_groups_x);
         ivec2 out_size = ivec2(cb.blur_out_x, cb.blur_out_y);
-        if (texels_touch_needed(g * out_size, g * out_size + out_size - 1)) append(CACAO_LIST_BLUR, g);
-    } else if (i < t + b + a) {
-        i -= t + b;
-        ivec2 g = ivec2(i % cb.apply_groups_x, i / cb.apply_groups_x);
-        ivec2 lo = max(g * cb.apply_span - CACAO_APPLY_MARGIN, ivec2(0));
-        ivec2 hi = g * cb.apply_span + cb.apply_span - 1 + CACAO_APPLY_MARGIN;
-        append(texels_touch_needed(lo, hi) ? CACAO_LIST_APPLY : CACAO_LIST_FILL_OUTPUT, g);
+        ivec2 lo = g * out_size, hi = lo + out_size - 1; /* its output texels */
+        if (touches_needed(lo / CACAO_TILE, hi / CACAO_TILE)) append(CACAO_LIST_BLUR, g);
     }
 }
 #endif /* COMPACT */
 
 /* ============================== FILL ============================== */
 #if CACAO_PASS == CACAO_PASS_FILL
-/* docs/tiles.md: AO 1, the value the full computation gives every texel the lists skip. */
+/* docs/tiles.md: AO 1, the value the full computation gives every texel of a tile that is not
+ * needed (edges 1: nothing reads them there). */
 layout(local_size_x = CACAO_TILE, local_size_y = CACAO_TILE) in;
 
 void main()
 {
-#if CACAO_VARIANT == CACAO_FILL_SLICES
     ivec2 p = global_xy();
     if (in_rect(p, imageSize(ssao_out).xy)) imageStore(ssao_out, ivec3(p, int(gl_WorkGroupID.z)), vec4(1.0, 1.0, 0.0, 0.0));
-#else
-    ivec2 origin = group_xy() * cb.output_span;
-    ivec2 size = imageSize(output_image);
-    for (int y = int(gl_LocalInvocationID.y); y < cb.output_span; y += CACAO_TILE)
-        for (int x = int(gl_LocalInvocationID.x); x < cb.output_span; x += CACAO_TILE)
-            if (in_rect(origin + ivec2(x, y), size)) imageStore(output_image, origin + ivec2(x, y), vec4(1.0));
-#endif
 }
 #endif /* FILL */
 

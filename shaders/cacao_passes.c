@@ -56,7 +56,6 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
 #define PASS(id) [CACAO_PASS_##id]
 #define WG(name) {CACAO_WG_##name##_X, CACAO_WG_##name##_Y}
 #define GEN CACAO_LIST_GENERATE
-#define APL CACAO_LIST_APPLY
 
 const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     /* spec: prepare.md. HALF = slices 0 and 3 (LOWEST), FULL = four slices, MIPS = + mips 1..3. */
@@ -95,15 +94,16 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     PASS(BLUR) = {"blur", {NULL}, 1, false, true, true, WG(BLUR), CACAOI_GRID_BLUR, 4,
                   {CONSTANTS, R(SSAO_IN, SSAO_PING, ALL), W(SSAO_OUT, SSAO_PONG, ALL), R(TILES, TILES, ALL)},
                   .lists = {CACAO_LIST_BLUR}},
-    /* spec: apply.md, upsample.md. They read the blur's output where a blur ran (step override). */
-    PASS(APPLY) = {"apply", {"smart", "nonsmart", "half"}, 3, false, false, true, WG(APPLY), CACAOI_GRID_OUTPUT, 4,
-                   {CONSTANTS, R(SSAO_IN, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL), R(TILES, TILES, ALL)},
-                   .lists = {APL, APL, APL}},
+    /* spec: apply.md, upsample.md. They read the blur's output where a blur ran (step override).
+     * Dispatched over every group: where no tile near is active they read the fill's 1 and write
+     * 1. (Indirect over the groups near an active tile, with a fill for the rest, was slower on
+     * lavapipe: docs/tiles.md.) */
+    PASS(APPLY) = {"apply", {"smart", "nonsmart", "half"}, 3, false, false, true, WG(APPLY), CACAOI_GRID_OUTPUT, 3,
+                   {CONSTANTS, R(SSAO_IN, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL)}},
     PASS(UPSAMPLE) = {"upsample", {"smart", "nonsmart", "half"}, 3, false, false, true, WG(UPSAMPLE),
-                      CACAOI_GRID_UPSAMPLE, 6,
+                      CACAOI_GRID_UPSAMPLE, 5,
                       {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), R(DEPTHS, DEPTHS, ALL), R(SSAO_IN, SSAO_PING, ALL),
-                       W(OUTPUT, OUTPUT, ALL), R(TILES, TILES, ALL)},
-                      .lists = {APL, APL, APL}},
+                       W(OUTPUT, OUTPUT, ALL)}},
     /* spec: estimators.md. Full-resolution intermediates, read and written as storage images. */
     PASS(SLICE_PREPARE) = {"slice_prepare", {"depth", "input"}, 2, false, false, false, WG(SLICE), CACAOI_GRID_OUTPUT,
                            5,
@@ -120,17 +120,17 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                            {CONSTANTS, R(DEPTHS_OUT1, AO_RAW, ALL), R(DEPTHS_OUT0, VIEW_DEPTH, ALL),
                             R(NORMALS_OUT, VIEW_NORMALS, ALL), W(SSAO_OUT, AO_PONG, V(CACAO_DENOISE_INTERMEDIATE)),
                             W(OUTPUT, OUTPUT, V(CACAO_DENOISE_FINAL))}},
-    /* docs/tiles.md: classes from the deinterleaved depths (one group per tile), then the lists. */
-    PASS(CLASSIFY) = {"classify", {NULL}, 1, false, false, false, {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE, 3,
+    /* docs/tiles.md: classes from the deinterleaved depths (one invocation per tile), then the lists. */
+    PASS(CLASSIFY) = {"classify", {NULL}, 1, false, false, false, {CACAO_WG_CLASSIFY, CACAO_WG_CLASSIFY},
+                      CACAOI_GRID_TILES, 3,
                       {CONSTANTS, R(DEPTHS, DEPTHS, ALL), W(TILES, TILES, ALL)}},
     PASS(COMPACT) = {"compact", {NULL}, 1, false, false, false, {CACAO_WG_COMPACT, 1}, CACAOI_GRID_COMPACT, 2,
                      {CONSTANTS, W(TILES, TILES, ALL)}},
-    /* AO 1 into the slices' AO of the tiles generate skips (SSAO_OUT, and the blur's output at
-     * DEPTHS_OUT0 when a blur runs: a step rebinds), or into the output of skipped apply groups. */
-    PASS(FILL) = {"fill", {"slices", "output"}, 2, false, false, false, {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_FILL, 4,
-                  {CONSTANTS, R(TILES, TILES, ALL), W(SSAO_OUT, SSAO_PING, V(CACAO_FILL_SLICES)),
-                   W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT))},
-                  .lists = {CACAO_LIST_FILL_SLICES, CACAO_LIST_FILL_OUTPUT}},
+    /* AO 1 into the slices' AO of the tiles generate skips (and, a step rebinding SSAO_OUT, into
+     * the blur's output there when a blur runs). */
+    PASS(FILL) = {"fill", {NULL}, 1, false, false, false, {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE_LAYERS, 3,
+                  {CONSTANTS, R(TILES, TILES, ALL), W(SSAO_OUT, SSAO_PING, ALL)},
+                  .lists = {CACAO_LIST_FILL_SLICES}},
 };
 #undef R
 #undef W
@@ -141,7 +141,6 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
 #undef PASS
 #undef WG
 #undef GEN
-#undef APL
 
 static bool binding_active(const cacaoi_pass_binding *b, unsigned variant) {
     return (b->variants >> variant) & 1u;
@@ -234,15 +233,14 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     push(out, &n, CACAO_PASS_GENERATE, cacaoi_generate_variant_for_quality(c->quality), 0, 0, 0);
     /* The tiles generate skips read as AO 1 in its output and, where a blur runs, in the blur's
      * (the blur and apply groups next to a needed tile read them). */
-    push(out, &n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0);
+    push(out, &n, CACAO_PASS_FILL, 0, 0, 0, 0);
     if (c->blur_passes > 0) {
-        cacaoi_step *f = push(out, &n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0);
+        cacaoi_step *f = push(out, &n, CACAO_PASS_FILL, 0, 0, 0, 0);
         rebind(f, CACAO_BINDING_SSAO_OUT, CACAO_RES_SSAO_PONG);
         push(out, &n, CACAO_PASS_BLUR, 0, 0, c->blur_passes, fp);
     }
     cacaoi_step *s = push(out, &n, c->downsampled ? CACAO_PASS_UPSAMPLE : CACAO_PASS_APPLY,
                           cacaoi_output_variant_for_quality(c->quality, c->downsampled), 0, 0, fp);
     if (c->blur_passes > 0) rebind(s, CACAO_BINDING_SSAO_IN, CACAO_RES_SSAO_PONG);
-    push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT, 0, 0, 0);
     return n;
 }

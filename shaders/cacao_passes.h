@@ -77,7 +77,7 @@ extern const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT];
 #define CACAOI_GRID_OUTPUT 4       /* output size / workgroup */
 #define CACAOI_GRID_UPSAMPLE 5     /* output size / (2 CACAO_UPSAMPLE_SPAN) */
 #define CACAOI_GRID_COMPACT 6      /* one invocation per tile, blur group and apply group */
-#define CACAOI_GRID_FILL 7         /* slices: the generate grid; output: the apply or upsample grid */
+#define CACAOI_GRID_TILES 7        /* one invocation per tile */
 
 #define CACAOI_ALL_VARIANTS 0xffu
 #define CACAOI_VARIANT(v) (1u << (v))

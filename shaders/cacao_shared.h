@@ -65,16 +65,12 @@
 #define CACAO_DENOISE_INTERMEDIATE 0
 #define CACAO_DENOISE_FINAL 1
 
-/* Fill variants: the AO intermediates of quiet tiles, or the output of skipped apply groups. */
-#define CACAO_FILL_SLICES 0
-#define CACAO_FILL_OUTPUT 1
-
 /* ---- Tiles (docs/tiles.md) ----
  * A tile is CACAO_TILE x CACAO_TILE slice texels (all layers). A texel is quiet when its AO is 1
  * whatever its neighbourhood: it is background (view z at the far plane or invalid) or the
  * fade-out has taken it entirely. A tile is active when some texel of it is not quiet, and
- * needed when a tile within one tile of it is active; generate runs over the needed tiles, blur
- * and apply over the groups that touch one, and the rest is filled with 1. One tile of margin
+ * needed when a tile within one tile of it is active; generate runs over the needed tiles and the
+ * blur over the groups that touch one; the other tiles' AO is filled with 1. One tile of margin
  * covers every blur (at most 8 iterations reach 8 texels) and the apply/upsample footprint.
  *
  * The tile buffer: CACAO_TILE_HEADER uints of header, then the tile classes, then the lists.
@@ -85,9 +81,7 @@
 #define CACAO_LIST_GENERATE 1            /* needed tiles (one generate group each, z = layers) */
 #define CACAO_LIST_FILL_SLICES 2         /* tiles that are not needed (z = layers) */
 #define CACAO_LIST_BLUR 3                /* blur groups touching a needed tile (z = layers) */
-#define CACAO_LIST_APPLY 4               /* apply/upsample groups touching a needed tile */
-#define CACAO_LIST_FILL_OUTPUT 5         /* the other apply/upsample groups */
-#define CACAO_LIST_COUNT 5
+#define CACAO_LIST_COUNT 3
 #define CACAO_TILE_COUNT_ACTIVE 15       /* header: tiles per class */
 #define CACAO_TILE_COUNT_FADED 16
 #define CACAO_TILE_COUNT_BACKGROUND 17
@@ -95,8 +89,8 @@
 #define CACAO_TILE_CLASS_ACTIVE 0
 #define CACAO_TILE_CLASS_FADED 1
 #define CACAO_TILE_CLASS_BACKGROUND 2
-#define CACAO_APPLY_MARGIN 2             /* slice texels an apply/upsample group reads beyond its own */
 #define CACAO_WG_COMPACT 64
+#define CACAO_WG_CLASSIFY 8              /* 8x8 tiles per group, one invocation each */
 
 /* ---- Descriptor bindings (set 0, pushed with VK_KHR_push_descriptor) ---- */
 #define CACAO_BINDING_CONSTANTS 0        /* uniform block cacao_constants */
@@ -304,11 +298,7 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(INT, blur_groups_x)               /* the blur's full grid and output texels per group */     \
     M(INT, blur_groups_y)                                                                          \
     M(INT, blur_out_x)                                                                             \
-    M(INT, blur_out_y)                                                                             \
-    M(INT, apply_groups_x)              /* the apply/upsample full grid and slice texels per group */ \
-    M(INT, apply_groups_y)                                                                         \
-    M(INT, apply_span)                                                                             \
-    M(INT, output_span)                 /* output pixels per apply/upsample group side */
+    M(INT, blur_out_y)
 
 #ifdef CACAO_GLSL
 layout(std140, set = 0, binding = CACAO_BINDING_CONSTANTS) uniform cacao_constants_block {

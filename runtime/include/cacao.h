@@ -194,8 +194,7 @@ typedef struct cacao_plan_step {
     uint8_t key[5];             /* permutation key: pass, variant, downsampled, blur passes, fp16 */
     uint32_t dispatch[3];       /* workgroups (an indirect step: the most it can dispatch) */
     uint8_t list;               /* 0: dispatched directly; else the tile list it dispatches
-                                   indirectly (1 generate, 2 fill slices, 3 blur, 4 apply, 5 fill
-                                   output: docs/tiles.md) */
+                                   indirectly (1 generate, 2 fill, 3 blur: docs/tiles.md) */
     uint32_t binding_count;
     cacao_plan_binding bindings[CACAO_PLAN_MAX_BINDINGS];
     bool barrier_before;        /* a compute->compute barrier precedes this step */
@@ -216,7 +215,6 @@ typedef struct cacao_plan {
     bool uses_tiles;            /* CACAO estimator: tile classification (docs/tiles.md) */
     uint32_t tiles_x, tiles_y;  /* tiles of CACAO_TILE x CACAO_TILE slice texels */
     uint32_t blur_groups_x, blur_groups_y;   /* the blur's full grid (0 without a blur) */
-    uint32_t apply_groups_x, apply_groups_y; /* the apply or upsample pass's full grid */
     uint64_t tile_buffer_bytes; /* header, classes and lists */
     uint64_t total_bytes;       /* all intermediates, buffers included */
 } cacao_plan;
@@ -349,15 +347,14 @@ cacao_result cacao_record(cacao_context *context, VkCommandBuffer command_buffer
 
 /* ---- Tiles skipped (docs/tiles.md) ---------------------------------------------------------
  * The CACAO estimator classifies tiles of 8x8 slice texels (16x16 pixels native, 32x32
- * downsampled) as active, faded (beyond fade_out_to) or background (far plane, invalid depth),
- * and computes only what touches an active tile; the rest is AO 1, as the full computation gives
- * it. The counts live on the device: record a copy after cacao_record, read it once the frame is
+ * downsampled) as active, faded (beyond fade_out_to) or background (far plane, invalid depth);
+ * generate and blur run only where an active tile is near, and the rest of the AO is 1, as the
+ * full computation gives it. The counts live on the device: record a copy after cacao_record, read it once the frame is
  * done. */
 typedef struct cacao_tile_counts {
     uint32_t tiles, active, faded, background;   /* the frame's tiles by class */
     uint32_t generate_run, generate_total;       /* generate groups (tiles) run, of the full grid */
     uint32_t blur_run, blur_total;               /* blur groups (0 of 0 without a blur) */
-    uint32_t apply_run, apply_total;             /* apply or upsample groups */
 } cacao_tile_counts;
 
 #define CACAO_TILE_COUNTS_BYTES 128

@@ -232,10 +232,6 @@ static void fill_tile_constants(const cacao_plan *plan, const projection_view *v
     const int blur = plan->settings.blur_pass_count == CACAO_BLUR_NONE ? 0 : plan->settings.blur_pass_count;
     c->blur_out_x = CACAO_BLUR_OUT_X(blur);
     c->blur_out_y = CACAO_BLUR_OUT_Y(blur);
-    c->apply_groups_x = (int)plan->apply_groups_x;
-    c->apply_groups_y = (int)plan->apply_groups_y;
-    c->output_span = plan->settings.downsample ? 2 * CACAO_UPSAMPLE_SPAN_X : CACAO_WG_APPLY_X;
-    c->apply_span = c->output_span / (plan->settings.downsample ? 4 : 2);
 }
 
 void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao_constants *c) {

@@ -81,18 +81,14 @@ static void dispatch_size(const cacao_plan *p, const cacao_key *key, uint32_t ou
         out[1] = div_up(p->height, 2 * CACAO_UPSAMPLE_SPAN_Y);
         return;
     case CACAOI_GRID_COMPACT:
-        out[0] = div_up(p->tiles_x * p->tiles_y + p->blur_groups_x * p->blur_groups_y +
-                            p->apply_groups_x * p->apply_groups_y,
-                        wx);
+        out[0] = div_up(p->tiles_x * p->tiles_y + p->blur_groups_x * p->blur_groups_y, wx);
         out[1] = 1;
         return;
-    case CACAOI_GRID_FILL:
-        if (key->variant == CACAO_FILL_SLICES) {
-            out[0] = p->tiles_x, out[1] = p->tiles_y, out[2] = p->slice_count;
-        } else {
-            out[0] = p->apply_groups_x, out[1] = p->apply_groups_y;
-        }
+    case CACAOI_GRID_TILES:
+        out[0] = div_up(p->tiles_x, wx);
+        out[1] = div_up(p->tiles_y, wy);
         return;
+
     default: /* CACAOI_GRID_OUTPUT */
         out[0] = div_up(p->width, wx);
         out[1] = div_up(p->height, wy);
@@ -161,12 +157,8 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
             plan->blur_groups_x = div_up(plan->slice_width, CACAO_BLUR_OUT_X(blur));
             plan->blur_groups_y = div_up(plan->slice_height, CACAO_BLUR_OUT_Y(blur));
         }
-        const uint32_t span = s.downsample ? 2 * CACAO_UPSAMPLE_SPAN_X : CACAO_WG_APPLY_X;
-        plan->apply_groups_x = div_up(width, span);
-        plan->apply_groups_y = div_up(height, span);
         const uint64_t tiles = (uint64_t)plan->tiles_x * plan->tiles_y;
-        const uint64_t groups = (uint64_t)plan->blur_groups_x * plan->blur_groups_y +
-                                2u * (uint64_t)plan->apply_groups_x * plan->apply_groups_y;
+        const uint64_t groups = (uint64_t)plan->blur_groups_x * plan->blur_groups_y;
         plan->tile_buffer_bytes = sizeof(uint32_t) * (CACAO_TILE_HEADER + 3u * tiles + groups);
     }
     cacaoi_pass_binding bindings[CACAOI_SEQUENCE_MAX][CACAOI_PASS_MAX_BINDINGS];
@@ -246,8 +238,7 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
                 if (s->barrier_resources & (1u << r)) fprintf(out, " %s", cacaoi_resources[r].name);
             fprintf(out, "\n");
         }
-        static const char *const list_names[] = {"", "needed tiles", "quiet tiles", "blur groups at needed tiles",
-                                                 "groups at needed tiles", "groups at no needed tile"};
+        static const char *const list_names[] = {"", "needed tiles", "unneeded tiles", "blur groups at needed tiles"};
         fprintf(out, "  %2u %-34s dispatch %4u x %4u x %u%s%s  reads", i, s->key_name, s->dispatch[0], s->dispatch[1],
                 s->dispatch[2], s->list ? " at most, indirect over " : "", list_names[s->list]);
         for (uint32_t j = 0; j < s->binding_count; ++j)

@@ -130,9 +130,8 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
     if (ctx->plan.uses_tiles) { /* empty lists; the compact pass appends (docs/tiles.md) */
         uint32_t header[CACAO_TILE_HEADER] = {0};
         for (unsigned list = 1; list <= CACAO_LIST_COUNT; ++list) {
-            const bool layered = list != CACAO_LIST_APPLY && list != CACAO_LIST_FILL_OUTPUT;
             header[3 * (list - 1) + 1] = 1;
-            header[3 * (list - 1) + 2] = layered ? ctx->plan.slice_count : 1;
+            header[3 * (list - 1) + 2] = ctx->plan.slice_count; /* every list covers all layers */
         }
         vkCmdUpdateBuffer(cmd, ctx->buffers[CACAO_BUFFER_TILES], 0, sizeof header, header);
     }
@@ -287,8 +286,6 @@ cacao_result cacao_tile_counts_decode(const cacao_context *ctx, const void *byte
         .generate_total = p->tiles_x * p->tiles_y,
         .blur_run = LIST_X(CACAO_LIST_BLUR),
         .blur_total = p->blur_groups_x * p->blur_groups_y,
-        .apply_run = LIST_X(CACAO_LIST_APPLY),
-        .apply_total = p->apply_groups_x * p->apply_groups_y,
     };
 #undef LIST_X
     return CACAO_SUCCESS;

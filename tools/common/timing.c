@@ -58,14 +58,15 @@ void cacao_timings_print(FILE *out, const cacao_plan *plan, const cacao_timings 
 static double share(uint32_t part, uint32_t whole) { return whole ? 100.0 * part / whole : 0.0; }
 
 void cacao_tile_counts_print(FILE *out, const cacao_tile_counts *c) {
-    fprintf(out, "tiles: %u: %u active, %u faded, %u background; skipped: generate %u of %u (%.1f%%), ", c->tiles,
+    fprintf(out, "tiles: %u: %u active, %u faded, %u background; skipped: generate %u of %u tiles (%.1f%%), ", c->tiles,
             c->active, c->faded, c->background, c->generate_total - c->generate_run, c->generate_total,
             share(c->generate_total - c->generate_run, c->generate_total));
     if (c->blur_total)
-        fprintf(out, "blur %u of %u (%.1f%%), ", c->blur_total - c->blur_run, c->blur_total,
+        fprintf(out, "blur %u of %u groups (%.1f%%)", c->blur_total - c->blur_run, c->blur_total,
                 share(c->blur_total - c->blur_run, c->blur_total));
-    fprintf(out, "apply %u of %u groups (%.1f%%)\n", c->apply_total - c->apply_run, c->apply_total,
-            share(c->apply_total - c->apply_run, c->apply_total));
+    else
+        fprintf(out, "no blur");
+    fprintf(out, "\n");
 }
 
 void cacao_tile_counts_add_json(cJSON *object, const cacao_tile_counts *c) {
@@ -79,8 +80,6 @@ void cacao_tile_counts_add_json(cJSON *object, const cacao_tile_counts *c) {
     cJSON_AddNumberToObject(o, "generate_total", c->generate_total);
     cJSON_AddNumberToObject(o, "blur_run", c->blur_run);
     cJSON_AddNumberToObject(o, "blur_total", c->blur_total);
-    cJSON_AddNumberToObject(o, "apply_run", c->apply_run);
-    cJSON_AddNumberToObject(o, "apply_total", c->apply_total);
 }
 
 void cacao_timings_add_json(cJSON *object, const cacao_plan *plan, const cacao_timings *t) {

@@ -46,7 +46,7 @@ void cacao_timings_add_json(struct cJSON *object, const cacao_plan *plan, const 
 /* "tiles: N: a active, f faded, b background; skipped: generate ..., blur ..., apply ..." */
 void cacao_tile_counts_print(FILE *out, const cacao_tile_counts *counts);
 /* Adds "tiles": {tiles, active, faded, background, generate_run, generate_total, blur_run,
- * blur_total, apply_run, apply_total} to a cJSON object. */
+ * blur_total} to a cJSON object. */
 void cacao_tile_counts_add_json(struct cJSON *object, const cacao_tile_counts *counts);
 
 #endif /* CACAO_TIMING_H */
