@@ -240,11 +240,27 @@ uint list_base(int list)
 }
 #endif
 
+#if CACAO_LIST != CACAO_LIST_NONE
+/* The list entry of this workgroup (the grid's width is the command's x). */
+uint list_index() { return gl_WorkGroupID.y * tiles[3 * (CACAO_LIST - 1)] + gl_WorkGroupID.x; }
+#endif
+
+/* False for a group past the last entry of its list: it returns at once (uniformly, so also
+ * before a barrier). */
+bool group_listed()
+{
+#if CACAO_LIST != CACAO_LIST_NONE
+    return list_index() < tiles[CACAO_TILE_LIST_COUNT + CACAO_LIST];
+#else
+    return true;
+#endif
+}
+
 /* The group this workgroup computes: its list entry when dispatched over a tile list. */
 ivec2 group_xy()
 {
 #if CACAO_LIST != CACAO_LIST_NONE
-    uint e = tiles[list_base(CACAO_LIST) + gl_WorkGroupID.x];
+    uint e = tiles[list_base(CACAO_LIST) + list_index()];
     return ivec2(int(e & 0xffffu), int(e >> 16));
 #else
     return ivec2(gl_WorkGroupID.xy);
@@ -543,6 +559,7 @@ void accumulate_tap(vec4 s, bool use_pattern_weight, ivec2 xy, vec2 uvd, vec2 in
 
 void main()
 {
+    if (!group_listed()) return;
     ivec2 xy = global_xy();
     int layer = int(gl_WorkGroupID.z);
     int slice = slice_of_layer(layer);
@@ -791,6 +808,7 @@ rfloat blur_store_value(float v)
 
 void main()
 {
+    if (!group_listed()) return; /* the whole group: before any barrier */
     ivec2 s = textureSize(ssao_in, 0).xy;
     int layer = int(gl_WorkGroupID.z);
     ivec2 tile_origin = group_xy() * ivec2(CACAO_BLUR_OUT_X(BLUR_N), CACAO_BLUR_OUT_Y(BLUR_N));
@@ -1101,10 +1119,12 @@ bool touches_needed(ivec2 t0, ivec2 t1)
     return false;
 }
 
+/* Entry i goes to grid row i / width: the command's rows cover every entry. */
 void append(int list, ivec2 g)
 {
-    uint i = atomicAdd(tiles[3 * (list - 1)], 1u);
+    uint i = atomicAdd(tiles[CACAO_TILE_LIST_COUNT + list], 1u);
     tiles[list_base(list) + i] = uint(g.x) | (uint(g.y) << 16);
+    atomicMax(tiles[3 * (list - 1) + 1], i / tiles[3 * (list - 1)] + 1u);
 }
 
 void main()
@@ -1132,6 +1152,7 @@ layout(local_size_x = CACAO_TILE, local_size_y = CACAO_TILE) in;
 
 void main()
 {
+    if (!group_listed()) return;
     ivec2 p = global_xy();
     if (in_rect(p, imageSize(ssao_out).xy)) imageStore(ssao_out, ivec3(p, int(gl_WorkGroupID.z)), vec4(1.0, 1.0, 0.0, 0.0));
 }

@@ -129,9 +129,11 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
         vkCmdFillBuffer(cmd, ctx->buffers[CACAO_BUFFER_LOAD_COUNTER], 0, sizeof(uint32_t), 0);
     if (ctx->plan.uses_tiles) { /* empty lists; the compact pass appends (docs/tiles.md) */
         uint32_t header[CACAO_TILE_HEADER] = {0};
-        for (unsigned list = 1; list <= CACAO_LIST_COUNT; ++list) {
-            header[3 * (list - 1) + 1] = 1;
-            header[3 * (list - 1) + 2] = ctx->plan.slice_count; /* every list covers all layers */
+        const cacao_plan *p = &ctx->plan;
+        for (unsigned list = 1; list <= CACAO_LIST_COUNT; ++list) { /* x: the grid's width; rows 0 */
+            const uint32_t width = list == CACAO_LIST_BLUR ? p->blur_groups_x : p->tiles_x;
+            header[3 * (list - 1)] = width ? width : 1;
+            header[3 * (list - 1) + 2] = p->slice_count; /* every list covers all layers */
         }
         vkCmdUpdateBuffer(cmd, ctx->buffers[CACAO_BUFFER_TILES], 0, sizeof header, header);
     }
@@ -276,7 +278,7 @@ cacao_result cacao_tile_counts_decode(const cacao_context *ctx, const void *byte
     _Static_assert(CACAO_TILE_COUNTS_BYTES == CACAO_TILE_HEADER * sizeof(uint32_t), "the header is what is copied");
     memcpy(h, bytes, sizeof h);
     const cacao_plan *p = &ctx->plan;
-#define LIST_X(list) h[3 * ((list)-1)]
+#define LIST_X(list) h[CACAO_TILE_LIST_COUNT + (list)]
     *out = (cacao_tile_counts){
         .tiles = p->tiles_x * p->tiles_y,
         .active = h[CACAO_TILE_COUNT_ACTIVE],
