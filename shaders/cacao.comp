@@ -240,35 +240,26 @@ uint list_base(int list)
 }
 #endif
 
-#if CACAO_LIST != CACAO_LIST_NONE
-/* The list entry of this workgroup (the grid's width is the command's x). */
-uint list_index() { return gl_WorkGroupID.y * tiles[3 * (CACAO_LIST - 1)] + gl_WorkGroupID.x; }
-#endif
-
-/* False for a group past the last entry of its list: it returns at once (uniformly, so also
- * before a barrier). */
-bool group_listed()
+/* The group this workgroup computes, false for none. Over a list: the entry at y width + x,
+ * where width is the grid's (cb); past the last entry the host's fill left
+ * CACAO_TILE_NO_ENTRY, and the group returns at once (uniformly, so also before a barrier).
+ * One buffer load per invocation (lavapipe loads per lane). */
+bool group_of(out ivec2 g)
 {
 #if CACAO_LIST != CACAO_LIST_NONE
-    return list_index() < tiles[CACAO_TILE_LIST_COUNT + CACAO_LIST];
+    uint width = uint(CACAO_LIST == CACAO_LIST_BLUR ? cb.blur_groups_x : cb.tiles_x);
+    uint e = tiles[list_base(CACAO_LIST) + gl_WorkGroupID.y * width + gl_WorkGroupID.x];
+    g = ivec2(int(e & 0xffffu), int(e >> 16));
+    return e != CACAO_TILE_NO_ENTRY;
 #else
+    g = ivec2(gl_WorkGroupID.xy);
     return true;
 #endif
 }
 
-/* The group this workgroup computes: its list entry when dispatched over a tile list. */
-ivec2 group_xy()
-{
-#if CACAO_LIST != CACAO_LIST_NONE
-    uint e = tiles[list_base(CACAO_LIST) + list_index()];
-    return ivec2(int(e & 0xffffu), int(e >> 16));
-#else
-    return ivec2(gl_WorkGroupID.xy);
-#endif
-}
-/* The invocation's texel: a macro, since gl_WorkGroupSize is only known after each pass declares
- * its local size (glslang takes 1 x 1 x 1 before). */
-#define global_xy() (group_xy() * ivec2(gl_WorkGroupSize.xy) + ivec2(gl_LocalInvocationID.xy))
+/* The invocation's texel in group g: a macro, since gl_WorkGroupSize is only known after each
+ * pass declares its local size (glslang takes 1 x 1 x 1 before). */
+#define texel_of(g) ((g) * ivec2(gl_WorkGroupSize.xy) + ivec2(gl_LocalInvocationID.xy))
 
 /* Full-resolution pixel that slice texel t of slice k holds (spec: prepare.md table). */
 ivec2 full_res_pixel(ivec2 t, int slice)
@@ -559,8 +550,9 @@ void accumulate_tap(vec4 s, bool use_pattern_weight, ivec2 xy, vec2 uvd, vec2 in
 
 void main()
 {
-    if (!group_listed()) return;
-    ivec2 xy = global_xy();
+    ivec2 group;
+    if (!group_of(group)) return;
+    ivec2 xy = texel_of(group);
     int layer = int(gl_WorkGroupID.z);
     int slice = slice_of_layer(layer);
     ivec2 size = textureSize(depths, 0).xy;
@@ -808,10 +800,11 @@ rfloat blur_store_value(float v)
 
 void main()
 {
-    if (!group_listed()) return; /* the whole group: before any barrier */
+    ivec2 group;
+    if (!group_of(group)) return; /* the whole group: before any barrier */
     ivec2 s = textureSize(ssao_in, 0).xy;
     int layer = int(gl_WorkGroupID.z);
-    ivec2 tile_origin = group_xy() * ivec2(CACAO_BLUR_OUT_X(BLUR_N), CACAO_BLUR_OUT_Y(BLUR_N));
+    ivec2 tile_origin = group * ivec2(CACAO_BLUR_OUT_X(BLUR_N), CACAO_BLUR_OUT_Y(BLUR_N));
     ivec2 b0 = ivec2(gl_LocalInvocationID.xy) * ivec2(BX, BY); /* block origin in the padded tile */
 
     /* the block: value and edges both from the mirrored texel ([quirk] BLUR-BORDER-EDGES) */
@@ -1124,7 +1117,8 @@ void append(int list, ivec2 g)
 {
     uint i = atomicAdd(tiles[CACAO_TILE_LIST_COUNT + list], 1u);
     tiles[list_base(list) + i] = uint(g.x) | (uint(g.y) << 16);
-    atomicMax(tiles[3 * (list - 1) + 1], i / tiles[3 * (list - 1)] + 1u);
+    uint width = uint(list == CACAO_LIST_BLUR ? cb.blur_groups_x : cb.tiles_x);
+    atomicMax(tiles[3 * (list - 1) + 1], i / width + 1u);
 }
 
 void main()
@@ -1152,8 +1146,9 @@ layout(local_size_x = CACAO_TILE, local_size_y = CACAO_TILE) in;
 
 void main()
 {
-    if (!group_listed()) return;
-    ivec2 p = global_xy();
+    ivec2 group;
+    if (!group_of(group)) return;
+    ivec2 p = texel_of(group);
     if (in_rect(p, imageSize(ssao_out).xy)) imageStore(ssao_out, ivec3(p, int(gl_WorkGroupID.z)), vec4(1.0, 1.0, 0.0, 0.0));
 }
 #endif /* FILL */

@@ -76,9 +76,9 @@
  * The tile buffer: CACAO_TILE_HEADER uints of header, then the tile classes, then the lists.
  * Header: one VkDispatchIndirectCommand (x, y, z) per list (list l at 3 (l - 1)), the tile
  * counts per class, and the entries per list (list l at CACAO_TILE_LIST_COUNT + l). A list is
- * dispatched as a grid x wide (fixed by the host) and as many rows as its entries fill (lavapipe
- * runs a 1D grid of the same groups about 10% slower); group (x, y) takes entry y x_width + x, and
- * the groups past the last entry return at once. List entries are group coordinates
+ * dispatched as a grid x wide (tiles_x, or blur_groups_x for the blur) and as many rows as its
+ * entries fill (lavapipe runs a 1D grid of the same groups about 10% slower); group (x, y) takes
+ * entry y width + x, and a group past the last entry finds CACAO_TILE_NO_ENTRY and returns. List entries are group coordinates
  * x | y << 16. */
 #define CACAO_TILE 8
 #define CACAO_LIST_NONE 0                /* a direct dispatch */
@@ -90,6 +90,7 @@
 #define CACAO_TILE_COUNT_FADED 16
 #define CACAO_TILE_COUNT_BACKGROUND 17
 #define CACAO_TILE_LIST_COUNT 17         /* + list: entries in that list */
+#define CACAO_TILE_NO_ENTRY 0xffffffffu  /* list slots past the last entry (the host fills them) */
 #define CACAO_TILE_HEADER 32
 #define CACAO_TILE_CLASS_ACTIVE 0
 #define CACAO_TILE_CLASS_FADED 1

@@ -136,6 +136,8 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
             header[3 * (list - 1) + 2] = p->slice_count; /* every list covers all layers */
         }
         vkCmdUpdateBuffer(cmd, ctx->buffers[CACAO_BUFFER_TILES], 0, sizeof header, header);
+        const VkDeviceSize lists = sizeof(uint32_t) * (CACAO_TILE_HEADER + (VkDeviceSize)p->tiles_x * p->tiles_y);
+        vkCmdFillBuffer(cmd, ctx->buffers[CACAO_BUFFER_TILES], lists, VK_WHOLE_SIZE, CACAO_TILE_NO_ENTRY);
     }
     const VkMemoryBarrier memory = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
