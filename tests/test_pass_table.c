@@ -19,7 +19,9 @@
 #include "internal.h"
 #include "test_util.h"
 
-static bool is_buffer(cacao_resource r) { return cacaoi_resources[r].size == CACAOI_SIZE_BUFFER; }
+static bool is_buffer(cacao_resource r) {
+    return cacaoi_resources[r].size == CACAOI_SIZE_BUFFER || cacaoi_resources[r].size == CACAOI_SIZE_TILES;
+}
 
 static void test_rows(void) {
     for (unsigned p = 0; p < CACAO_PASS_COUNT; ++p) {
@@ -52,7 +54,7 @@ static void test_rows(void) {
     for (unsigned r = 0; r < CACAO_RES_COUNT; ++r) {
         const cacaoi_resource_row *row = &cacaoi_resources[r];
         CHECK(strcmp(row->name, cacao_resource_name((cacao_resource)r)) == 0);
-        const bool intermediate = row->size != CACAOI_SIZE_CALLER && row->size != CACAOI_SIZE_BUFFER;
+        const bool intermediate = row->size != CACAOI_SIZE_CALLER && !is_buffer((cacao_resource)r);
         CHECK(intermediate == (row->format != VK_FORMAT_UNDEFINED));
         CHECK(intermediate == (*row->glsl_format != '\0'));
         CHECK(intermediate == (row->texel_bytes > 0));
@@ -120,7 +122,8 @@ static void check_config(const cacao_settings *s) {
             bound[b->binding] = true;
             *(b->write ? &writes : &reads) |= 1u << b->resource;
             const uint8_t size = have->size;
-            CHECK(allocated[b->resource] || size == CACAOI_SIZE_CALLER || size == CACAOI_SIZE_BUFFER);
+            CHECK(allocated[b->resource] || size == CACAOI_SIZE_CALLER || size == CACAOI_SIZE_BUFFER ||
+                  (size == CACAOI_SIZE_TILES && plan.uses_tiles && plan.tile_buffer_bytes > 0));
         }
         CHECK((reads & writes) == 0);
 

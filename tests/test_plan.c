@@ -22,31 +22,45 @@ static cacao_plan build(cacao_settings s, uint32_t w, uint32_t h) {
 }
 
 static void test_steps_per_quality(void) {
-    /* By hand from the spec's pass graph, with blur 2, native, normals from depth. */
-    const char *expected[5][10] = {
-        {"prepare_depths.half.native", "prepare_normals.depth.native", "generate.q0", "blur.2.fp32", "apply.half.fp32"},
-        {"prepare_depths.full.native", "prepare_normals.depth.native", "generate.q0", "blur.2.fp32",
+    /* By hand from the spec's pass graph, with blur 2, native, normals from depth, and the tile
+     * passes of docs/tiles.md: classify and compact after the depths, a fill of the AO and of
+     * the blur's output after generate. */
+#define TILES "classify", "compact"
+#define FILLS "fill", "fill"
+    const char *expected[5][16] = {
+        {"prepare_depths.half.native", "prepare_normals.depth.native", TILES, "generate.q0", FILLS, "blur.2.fp32",
+         "apply.half.fp32"},
+        {"prepare_depths.full.native", "prepare_normals.depth.native", TILES, "generate.q0", FILLS, "blur.2.fp32",
          "apply.nonsmart.fp32"},
-        {"prepare_depths.full.native", "prepare_normals.depth.native", "generate.q1", "blur.2.fp32",
+        {"prepare_depths.full.native", "prepare_normals.depth.native", TILES, "generate.q1", FILLS, "blur.2.fp32",
          "apply.smart.fp32"},
-        {"prepare_depths.mips.native", "prepare_normals.depth.native", "generate.q2", "blur.2.fp32",
+        {"prepare_depths.mips.native", "prepare_normals.depth.native", TILES, "generate.q2", FILLS, "blur.2.fp32",
          "apply.smart.fp32"},
-        {"prepare_depths.mips.native", "prepare_normals.depth.native", "generate.q3base", "importance", "importance_a",
-         "importance_b", "generate.q3", "blur.2.fp32", "apply.smart.fp32"},
+        {"prepare_depths.mips.native", "prepare_normals.depth.native", TILES, "generate.q3base", "importance",
+         "importance_a", "importance_b", "generate.q3", FILLS, "blur.2.fp32", "apply.smart.fp32"},
     };
+#undef TILES
+#undef FILLS
     for (int q = 0; q < 5; ++q) {
         cacao_plan p = build((cacao_settings){.quality = (cacao_quality)(q + 1), .generate_normals = true}, 1920, 1080);
         uint32_t n = 0;
-        while (n < 10 && expected[q][n]) ++n;
+        while (n < 16 && expected[q][n]) ++n;
         CHECK(p.step_count == n);
         for (uint32_t i = 0; i < n && i < p.step_count; ++i) {
             if (strcmp(p.steps[i].key_name, expected[q][i]) != 0)
                 fprintf(stderr, "quality %d step %u: %s, expected %s\n", q, i, p.steps[i].key_name, expected[q][i]);
             CHECK(strcmp(p.steps[i].key_name, expected[q][i]) == 0);
         }
-        /* Prepare depths and normals touch disjoint resources: no barrier between them. */
+        /* Prepare depths and normals touch disjoint resources: no barrier between them; nor
+         * between the two fills (the AO and the blur's output), nor before the Q3 base pass (it
+         * reads the prepared depths and normals, which the barrier before classify already
+         * ordered, not the tiles); every other step depends on the one before. */
         CHECK(!p.steps[0].barrier_before && !p.steps[1].barrier_before);
-        for (uint32_t i = 2; i < p.step_count; ++i) CHECK(p.steps[i].barrier_before);
+        for (uint32_t i = 2; i < p.step_count; ++i) {
+            const bool independent = (strcmp(p.steps[i].key_name, "fill") == 0 && !strcmp(p.steps[i - 1].key_name, "fill")) ||
+                                     strcmp(p.steps[i].key_name, "generate.q3base") == 0;
+            CHECK(p.steps[i].barrier_before == !independent);
+        }
     }
 }
 
@@ -58,12 +72,16 @@ static void test_only_needed_resources(void) {
     CHECK(find_image(&low, CACAO_RES_IMPORTANCE) == NULL); /* importance only at HIGHEST */
     CHECK(!low.uses_load_counter);
     CHECK(find_image(&low, CACAO_RES_DEPTHS)->mips == 1); /* LOW reads no mips */
-    CHECK(low.step_count == 4);                           /* no blur step */
+    CHECK(low.step_count == 7); /* prepare x2, classify, compact, generate, fill, apply: no blur, one fill */
     cacao_plan medium = build((cacao_settings){.quality = CACAO_QUALITY_MEDIUM, .generate_normals = true}, 1920, 1080);
     CHECK(find_image(&medium, CACAO_RES_DEPTHS)->mips == 1); /* MEDIUM never reads mips: none built */
     cacao_plan lowest = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true}, 1920, 1080);
     CHECK(lowest.slice_count == 2 && find_image(&lowest, CACAO_RES_DEPTHS)->layers == 2);
-    CHECK(lowest.steps[2].dispatch[2] == 2); /* generate runs two slices */
+    CHECK(strcmp(lowest.steps[4].key_name, "generate.q0") == 0 && lowest.steps[4].dispatch[2] == 2); /* two slices */
+    CHECK(lowest.steps[4].list == CACAO_LIST_GENERATE); /* indirect, over the needed tiles */
+    /* 1920x1080: slices 960x540, tiles of 8x8 texels 120x68; blur 2 outputs 60x28 per group. */
+    CHECK(lowest.tiles_x == 120 && lowest.tiles_y == 68 && lowest.blur_groups_x == 16 && lowest.blur_groups_y == 20);
+    CHECK(lowest.tile_buffer_bytes == 4u * (32u + 3u * 120u * 68u + 16u * 20u));
     cacao_plan highest =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
     const cacao_plan_image *depths = find_image(&highest, CACAO_RES_DEPTHS);
@@ -74,7 +92,8 @@ static void test_only_needed_resources(void) {
     CHECK(highest.uses_load_counter);
     uint64_t sum = 0;
     for (uint32_t i = 0; i < highest.image_count; ++i) sum += highest.images[i].bytes;
-    CHECK(highest.total_bytes == sum + sizeof(cacao_constants) + sizeof(uint32_t)); /* + constants, counter */
+    /* + constants, counter, tile buffer */
+    CHECK(highest.total_bytes == sum + sizeof(cacao_constants) + sizeof(uint32_t) + highest.tile_buffer_bytes);
     CHECK(highest.total_bytes > low.total_bytes);
 }
 
@@ -82,10 +101,14 @@ static void test_dispatch_sizes(void) {
     /* 1920x1080 native: S = 960x540, I = 480x270. Downsampled: S = 480x270. Odd 1001x37. */
     cacao_plan p = build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
     CHECK(p.steps[0].dispatch[0] == 120 && p.steps[0].dispatch[1] == 68);  /* ceil(960/8), ceil(540/8) */
-    CHECK(p.steps[3].dispatch[0] == 60 && p.steps[3].dispatch[1] == 34);   /* importance: ceil(480/8), ceil(270/8) */
-    CHECK(p.steps[6].dispatch[2] == 4);                                    /* generate: 4 slices */
-    CHECK(p.steps[7].dispatch[0] == 16 && p.steps[7].dispatch[1] == 20);   /* blur, N = 2: ceil(960/60), ceil(540/28) */
-    CHECK(p.steps[8].dispatch[0] == 240 && p.steps[8].dispatch[1] == 135); /* apply: ceil(1920/8) */
+    CHECK(p.steps[2].dispatch[0] == 15 && p.steps[2].dispatch[1] == 9);     /* classify: 120x68 tiles / 8x8 */
+    CHECK(p.steps[3].dispatch[0] == (120 * 68 + 16 * 20 + 63) / 64);         /* compact: tiles + blur groups */
+    CHECK(p.steps[5].dispatch[0] == 60 && p.steps[5].dispatch[1] == 34);    /* importance: ceil(480/8), ceil(270/8) */
+    CHECK(p.steps[8].dispatch[2] == 4);                                     /* generate: 4 slices */
+    CHECK(p.steps[11].dispatch[0] == 16 && p.steps[11].dispatch[1] == 20);  /* blur, N = 2: ceil(960/60), ceil(540/28) */
+    CHECK(p.steps[12].dispatch[0] == 240 && p.steps[12].dispatch[1] == 135); /* apply: ceil(1920/8) */
+    CHECK(p.steps[8].list == CACAO_LIST_GENERATE && p.steps[9].list == CACAO_LIST_FILL_SLICES &&
+          p.steps[11].list == CACAO_LIST_BLUR && p.steps[12].list == CACAO_LIST_NONE && p.steps[4].list == CACAO_LIST_NONE);
     cacao_plan d =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true, .generate_normals = true}, 1001, 37);
     CHECK(d.slice_width == 251 && d.slice_height == 10); /* ceil(ceil(1001/2)/2), ceil(ceil(37/2)/2) */
