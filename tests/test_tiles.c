@@ -1,0 +1,187 @@
+/* test_tiles - tile classification (docs/tiles.md) changes how much runs, never the result:
+ *   - with skipping on, the AO is bit-identical to compute_all_tiles (every tile computed) on the
+ *     embedded scene (sky and ground, a fade-out inside it: tiles of all three classes) at every
+ *     quality, native and downsampled, with no blur,
+ *     2 and 8 blur passes, in standard and reverse Z, also with NaN in the depth;
+ *   - a frame that is all background (depth at the far plane) is exactly 1 everywhere and runs no
+ *     generate and no blur group; compute_all_tiles gives the same 1s with every tile active;
+ *   - a frame with no background (the sky replaced by a far wall, fade-out beyond it) classifies
+ *     no tile as background and skips nothing, with the same output;
+ *   - with a fade-out that takes three quarters of the pixels, more than half of the generate
+ *     tiles are skipped and the output is still the full computation's.
+ * The counts come from the runtime (cacao_record_tile_counts) through vkdev's timings. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gpu_scene.h"
+
+static const cacao_quality qualities[] = {CACAO_QUALITY_LOWEST, CACAO_QUALITY_LOW, CACAO_QUALITY_MEDIUM,
+                                          CACAO_QUALITY_HIGH, CACAO_QUALITY_HIGHEST};
+
+/* One run; false (a test failure) when cacao fails or reports no tile counts. */
+static bool run_counts(vkdev *dev, const cacao_settings *s, const vkdev_frame *f, float *ao, cacao_tile_counts *counts) {
+    char err[512];
+    cacao_timings t;
+    const cacao_result r = vkdev_run(dev, s, f, 1, ao, &t, err, sizeof err);
+    if (r != CACAO_SUCCESS || !t.has_tiles) {
+        fprintf(stderr, "cacao run failed: %s: %s\n", cacao_result_string(r), err);
+        ++test_failures;
+        return false;
+    }
+    *counts = t.tiles;
+    return true;
+}
+
+/* Runs s with skipping and with compute_all_tiles; checks the outputs are identical and the
+ * counts add up. Returns the skipping run's counts in *on. */
+static bool same_as_all_tiles(vkdev *dev, cacao_settings s, const vkdev_frame *f, const char *what,
+                              cacao_tile_counts *on) {
+    const size_t n = (size_t)f->width * f->height;
+    float *a = malloc(n * sizeof(float)), *b = malloc(n * sizeof(float));
+    cacao_tile_counts off;
+    bool ok = run_counts(dev, &s, f, a, on);
+    s.compute_all_tiles = true;
+    ok = ok && run_counts(dev, &s, f, b, &off);
+    if (ok) {
+        size_t differ = 0;
+        for (size_t i = 0; i < n; ++i) differ += memcmp(&a[i], &b[i], sizeof(float)) != 0;
+        if (differ)
+            fprintf(stderr, "%s, quality %d, %s, blur %d: %zu pixels differ from compute_all_tiles\n", what,
+                    (int)s.quality, s.downsample ? "downsampled" : "native", s.blur_pass_count, differ);
+        CHECK(differ == 0);
+        CHECK(on->active + on->faded + on->background == on->tiles);
+        CHECK(on->generate_run >= on->active && on->generate_run <= on->tiles); /* active tiles and a margin */
+        CHECK(off.active == off.tiles && off.generate_run == off.tiles && off.blur_run == off.blur_total);
+        CHECK(on->generate_total == on->tiles && on->blur_run <= on->blur_total);
+    }
+    free(a);
+    free(b);
+    return ok;
+}
+
+static void test_equal_everywhere(vkdev *dev, const scene_buffers *sb) {
+    static const int blurs[] = {CACAO_BLUR_NONE, 2, 8};
+    for (int rev = 0; rev < 2; ++rev) {
+        const vkdev_frame f = scene_frame(sb, rev != 0, false);
+        for (int q = 0; q < 5; ++q)
+            for (int ds = 0; ds < 2; ++ds)
+                for (int bl = 0; bl < 3; ++bl) {
+                    /* a fade-out inside the scene, so that all three classes occur */
+                    const cacao_settings s = {.quality = qualities[q], .downsample = ds, .generate_normals = true,
+                                              .blur_pass_count = blurs[bl], .fade_out_from = 6.0f,
+                                              .fade_out_to = 12.0f};
+                    cacao_tile_counts c;
+                    if (!same_as_all_tiles(dev, s, &f, rev ? "embedded scene, reverse Z" : "embedded scene", &c))
+                        continue;
+                    CHECK(c.background > 0 && c.faded > 0 && c.active > 0);
+                    /* native: 16x16-pixel tiles, some far enough from every active one to skip;
+                     * downsampled at this size has 8x5 tiles of 32x32, all within one of an
+                     * active tile */
+                    if (!ds) CHECK(c.generate_run < c.tiles);
+                }
+    }
+}
+
+static void test_all_background(vkdev *dev, const scene_buffers *sb) {
+    const size_t n = (size_t)sb->width * sb->height;
+    float *sky = malloc(n * sizeof(float)), *ao = malloc(n * sizeof(float));
+    for (int rev = 0; rev < 2; ++rev) {
+        for (size_t i = 0; i < n; ++i) sky[i] = rev ? 0.0f : 1.0f; /* the far plane */
+        vkdev_frame f = scene_frame(sb, rev != 0, false);
+        f.depth = sky;
+        for (int q = 0; q < 5; ++q)
+            for (int ds = 0; ds < 2; ++ds) {
+                /* fade-out beyond the far plane: only the background rule makes the sky quiet */
+                const cacao_settings s = {.quality = qualities[q], .downsample = ds, .generate_normals = true,
+                                          .fade_out_from = 1e6f, .fade_out_to = 2e6f};
+                cacao_tile_counts c;
+                if (!run_counts(dev, &s, &f, ao, &c)) continue;
+                size_t not_one = 0;
+                for (size_t i = 0; i < n; ++i) not_one += ao[i] != 1.0f;
+                CHECK(not_one == 0);
+                CHECK(c.background == c.tiles && c.generate_run == 0 && c.blur_run == 0);
+                cacao_tile_counts unused;
+                same_as_all_tiles(dev, s, &f, "all background", &unused);
+            }
+    }
+    free(sky);
+    free(ao);
+}
+
+static void test_no_background(vkdev *dev, const scene_buffers *sb) {
+    const size_t n = (size_t)sb->width * sb->height;
+    float *walled = malloc(n * sizeof(float));
+    for (size_t i = 0; i < n; ++i) walled[i] = sb->depth[i] >= 1.0f ? 0.999f : sb->depth[i]; /* a far wall */
+    vkdev_frame f = scene_frame(sb, false, false);
+    f.depth = walled;
+    for (int q = 0; q < 5; q += 2) {
+        const cacao_settings s = {.quality = qualities[q], .generate_normals = true, .fade_out_from = 1e6f,
+                                  .fade_out_to = 2e6f};
+        cacao_tile_counts c;
+        if (!same_as_all_tiles(dev, s, &f, "no background", &c)) continue;
+        CHECK(c.background == 0 && c.faded == 0 && c.active == c.tiles && c.generate_run == c.tiles);
+    }
+    free(walled);
+}
+
+static int compare_float(const void *a, const void *b) {
+    const float x = *(const float *)a, y = *(const float *)b;
+    return (x > y) - (x < y);
+}
+
+static void test_mostly_faded(vkdev *dev, const scene_buffers *sb, const cacao_scene *scene) {
+    /* fade_out_to at the view z of the 25th percentile: three quarters of the pixels lie beyond */
+    const size_t n = (size_t)sb->width * sb->height;
+    float *z = malloc(n * sizeof(float));
+    const double nz = scene->camera.near_z, fz = scene->camera.far_z;
+    for (size_t i = 0; i < n; ++i) {
+        const double d = sb->depth[i];
+        z[i] = d >= 1.0 ? INFINITY : (float)(nz * fz / (fz - d * (fz - nz)));
+    }
+    qsort(z, n, sizeof(float), compare_float);
+    const float to = z[n / 4];
+    free(z);
+    CHECK(isfinite(to));
+    const vkdev_frame f = scene_frame(sb, false, false);
+    for (int q = 0; q < 5; ++q) {
+        const cacao_settings s = {.quality = qualities[q], .generate_normals = true, .fade_out_from = 0.5f * to,
+                                  .fade_out_to = to};
+        cacao_tile_counts c;
+        if (!same_as_all_tiles(dev, s, &f, "three quarters faded", &c)) continue;
+        if (c.generate_run * 2 >= c.tiles)
+            fprintf(stderr, "three quarters faded: generate ran %u of %u tiles\n", c.generate_run, c.tiles);
+        CHECK(c.generate_run * 2 < c.tiles);
+    }
+}
+
+static void test_nan_depth(vkdev *dev, const scene_buffers *sb) {
+    const size_t n = (size_t)sb->width * sb->height;
+    float *holes = malloc(n * sizeof(float));
+    for (size_t i = 0; i < n; ++i) holes[i] = (i % 97 == 0 || sb->depth[i] >= 1.0f) ? NAN : sb->depth[i];
+    vkdev_frame f = scene_frame(sb, false, false);
+    f.depth = holes;
+    for (int q = 0; q < 5; q += 2) {
+        const cacao_settings s = {.quality = qualities[q], .generate_normals = true};
+        cacao_tile_counts c;
+        if (same_as_all_tiles(dev, s, &f, "NaN depth", &c)) CHECK(c.background > 0); /* NaN sky is background */
+    }
+    free(holes);
+}
+
+int main(void) {
+    vkdev dev;
+    open_device(&dev);
+    const cacao_scene scene = cacao_default_scene(256, 144);
+    scene_buffers sb;
+    scene_buffers_render(&scene, &sb);
+    test_equal_everywhere(&dev, &sb);
+    test_all_background(&dev, &sb);
+    test_no_background(&dev, &sb);
+    test_mostly_faded(&dev, &sb, &scene);
+    test_nan_depth(&dev, &sb);
+    scene_buffers_free(&sb);
+    vkdev_destroy(&dev);
+    CHECK(dev.validation_messages == 0);
+    return test_report("test_tiles");
+}
