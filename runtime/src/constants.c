@@ -65,14 +65,22 @@ static projection_view projection_view_of(const cacao_inputs *in) {
     return v;
 }
 
+/* View z at raw depth 0 and 1, in double; INFINITY where the projection gives no finite positive
+ * z (an infinite far plane). */
+static void depth_end_z(const projection_view *v, double z_at[2]) {
+    for (int d = 0; d <= 1; ++d) {
+        const double z = ((double)v->z_num[0] + v->z_num[1] * d) / ((double)v->z_den[0] + v->z_den[1] * d);
+        z_at[d] = isfinite(z) && z > 0.0 ? z : INFINITY;
+    }
+}
+
 /* View-space scale that keeps the far plane inside half's range (see cacaoi_fill_constants), but
  * never pushes the near plane into half's subnormals. */
 static float view_scale(const projection_view *v) {
-    double z_far = 0.0, z_near = INFINITY;
-    for (int d = 0; d <= 1; ++d) {
-        const double z = ((double)v->z_num[0] + v->z_num[1] * d) / ((double)v->z_den[0] + v->z_den[1] * d);
-        if (isfinite(z) && z > 0.0) z_far = fmax(z_far, z), z_near = fmin(z_near, z);
-    }
+    double z_at[2], z_far = 0.0, z_near = INFINITY;
+    depth_end_z(v, z_at);
+    for (int d = 0; d <= 1; ++d)
+        if (isfinite(z_at[d])) z_far = fmax(z_far, z_at[d]), z_near = fmin(z_near, z_at[d]);
     const double limit = 60000.0, smallest_normal = 6.2e-5;
     if (!(z_far > limit)) return 1.0f;
     double k = limit / z_far;
@@ -185,10 +193,7 @@ static void fill_slice_constants(const cacao_settings *s, const projection_view 
     /* Background: the far plane's raw depth (the end of [0,1] with the larger view z); an infinite
      * far plane gives no finite z there, which the shader treats as background anyway. */
     double z_at[2];
-    for (int d = 0; d <= 1; ++d) {
-        const double z = ((double)v->z_num[0] + v->z_num[1] * d) / (den0 + v->z_den[1] * d);
-        z_at[d] = isfinite(z) && z > 0.0 ? z : INFINITY;
-    }
+    depth_end_z(v, z_at);
     c->slice_far_depth = z_at[1] >= z_at[0] ? 1.0f : 0.0f;
     const bool gtao = s->estimator == CACAO_ESTIMATOR_GTAO, binary = s->visibility == CACAO_VISIBILITY_BINARY;
     const float radius = k * s->radius;
@@ -215,12 +220,9 @@ static void fill_slice_constants(const cacao_settings *s, const projection_view 
  * the fade argument z f_mul + f_add (0 or below: fade 0) below -quiet_margin, a margin far above
  * the few ulps by which the classify and generate passes can evaluate it differently. */
 static void fill_tile_constants(const cacao_plan *plan, const projection_view *v, float k, cacao_constants *c) {
-    double z_far = 0.0; /* the larger view z of depth 0 and 1; no finite positive z: infinite */
-    for (int d = 0; d <= 1; ++d) {
-        const double z = ((double)v->z_num[0] + v->z_num[1] * d) / ((double)v->z_den[0] + v->z_den[1] * d);
-        z_far = fmax(z_far, isfinite(z) && z > 0.0 ? z : INFINITY);
-    }
-    const double z_stored = fmin(k * z_far, CACAO_MAX_VIEW_Z);
+    double z_at[2];
+    depth_end_z(v, z_at);
+    const double z_stored = fmin(k * fmax(z_at[0], z_at[1]), CACAO_MAX_VIEW_Z);
     c->background_z = (float)(z_stored * (1.0 - 1.0 / 512.0));
     if (z_stored >= CACAO_MAX_VIEW_Z) c->background_z = (float)CACAO_MAX_VIEW_Z;
     c->quiet_margin = 1.0e-5f * fmaxf(1.0f, fabsf(c->effect_fade_out_add));
