@@ -238,6 +238,9 @@ uint list_base(int list)
     if (list >= CACAO_LIST_BLUR) base += t;
     return base;
 }
+
+/* A list's grid width: the host writes it as the command's x (record.c). */
+uint list_width(int list) { return uint(list == CACAO_LIST_BLUR ? cb.blur_groups_x : cb.tiles_x); }
 #endif
 
 /* The group this workgroup computes, false for none. Over a list: the entry at y width + x,
@@ -247,8 +250,7 @@ uint list_base(int list)
 bool group_of(out ivec2 g)
 {
 #if CACAO_LIST != CACAO_LIST_NONE
-    uint width = uint(CACAO_LIST == CACAO_LIST_BLUR ? cb.blur_groups_x : cb.tiles_x);
-    uint e = tiles[list_base(CACAO_LIST) + gl_WorkGroupID.y * width + gl_WorkGroupID.x];
+    uint e = tiles[list_base(CACAO_LIST) + gl_WorkGroupID.y * list_width(CACAO_LIST) + gl_WorkGroupID.x];
     g = ivec2(int(e & 0xffffu), int(e >> 16));
     return e != CACAO_TILE_NO_ENTRY;
 #else
@@ -1117,8 +1119,7 @@ void append(int list, ivec2 g)
 {
     uint i = atomicAdd(tiles[CACAO_TILE_LIST_COUNT + list], 1u);
     tiles[list_base(list) + i] = uint(g.x) | (uint(g.y) << 16);
-    uint width = uint(list == CACAO_LIST_BLUR ? cb.blur_groups_x : cb.tiles_x);
-    atomicMax(tiles[3 * (list - 1) + 1], i / width + 1u);
+    atomicMax(tiles[3 * (list - 1) + 1], i / list_width(list) + 1u);
 }
 
 void main()
