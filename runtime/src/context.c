@@ -152,11 +152,21 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
     return CACAO_SUCCESS;
 }
 
+/* The earlier step of the plan with the same permutation key as step index (it owns the pipeline
+ * both use), or index itself. The tile fill runs twice with one key, for example. */
+static uint32_t pipeline_owner(const cacao_plan *plan, uint32_t index) {
+    for (uint32_t j = 0; j < index; ++j)
+        if (memcmp(plan->steps[j].key, plan->steps[index].key, sizeof plan->steps[index].key) == 0) return j;
+    return index;
+}
+
 static void release_pipelines(cacao_context *ctx) {
     for (uint32_t i = 0; i < CACAO_PLAN_MAX_STEPS; ++i) {
-        if (ctx->pipelines[i]) vkDestroyPipeline(ctx->device, ctx->pipelines[i], ctx->alloc);
-        ctx->pipelines[i] = VK_NULL_HANDLE;
+        bool shared = false;
+        for (uint32_t j = 0; j < i && !shared; ++j) shared = ctx->pipelines[j] == ctx->pipelines[i];
+        if (ctx->pipelines[i] && !shared) vkDestroyPipeline(ctx->device, ctx->pipelines[i], ctx->alloc);
     }
+    memset(ctx->pipelines, 0, sizeof ctx->pipelines);
 }
 
 /* Frees the intermediates and buffers resize created, not the pipelines or the layouts. */
@@ -320,6 +330,11 @@ static bool step_matches_module(const cacao_plan_step *step, const cacao_permuta
 }
 
 static cacao_result create_pipeline(cacao_context *ctx, uint32_t index) {
+    const uint32_t owner = pipeline_owner(&ctx->plan, index);
+    if (owner != index) { /* one pipeline per distinct permutation */
+        ctx->pipelines[index] = ctx->pipelines[owner];
+        return CACAO_SUCCESS;
+    }
     const cacao_plan_step *step = &ctx->plan.steps[index];
     const cacao_key key = cacaoi_plan_step_key(step);
     const cacao_permutation *perm = cacaoi_table_find(&cacaoi_embedded_table, &key);
@@ -393,7 +408,8 @@ cacao_result cacao_context_resize(cacao_context *ctx, uint32_t width, uint32_t h
     if (r == CACAO_SUCCESS && plan.uses_tiles)
         r = create_buffer(ctx, CACAO_BUFFER_TILES, plan.tile_buffer_bytes,
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
-    if (keep_pipelines) ctx->memory.pipeline_count = plan.step_count;
+    if (keep_pipelines)
+        for (uint32_t i = 0; i < plan.step_count; ++i) ctx->memory.pipeline_count += pipeline_owner(&plan, i) == i;
     for (uint32_t i = 0; r == CACAO_SUCCESS && !keep_pipelines && i < plan.step_count; ++i) r = create_pipeline(ctx, i);
     if (r != CACAO_SUCCESS) {
         release_frame_resources(ctx);

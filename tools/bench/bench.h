@@ -10,6 +10,7 @@
 #include "inputs.h"
 #include "outputs.h"
 #include "timing.h"
+#include "vkdev.h"
 
 #define BENCH_MAX_SCENES 16
 #define BENCH_ERR 1024
@@ -67,6 +68,10 @@ typedef struct bench_run {
     const char *reference_name;
     const bench_point *points;
     uint32_t point_count;
+    /* --pipeline-cache: per configuration, pipeline creation without a cache, on an empty one and
+     * on one started from a previous context's data, at the first scene's size; NULL: not asked */
+    const vkdev_cache_timing *cache;
+    uint32_t cache_width, cache_height;
 } bench_run;
 
 /* Writers: every one writes atomically (temporary + rename) and names the file in err. */

@@ -44,6 +44,7 @@ typedef struct bench_options {
     const char *configs; /* comma list of names or globs; NULL = the sweep */
     bool full_sweep, list_configs, help;
     uint32_t warmup, repeat;
+    uint32_t cache_trials; /* --pipeline-cache N; 0: not measured */
     const char *json_path, *csv_path, *plot_path, *reference_path, *save_dir, *plot_from;
     cli_options cli; /* settings flags (and --device, --validate, camera overrides) as `cacao` takes them */
 } bench_options;
@@ -62,6 +63,9 @@ static const char *const help_text =
     "  --list-configs     print the configurations the flags select and exit\n"
     "  --warmup N         untimed frames first (default 2: lavapipe compiles shader variants then)\n"
     "  --repeat N         timed frames (default 7)\n"
+    "  --pipeline-cache N also time pipeline creation per configuration (median of N trials at the first\n"
+    "                     scene's size) without a VkPipelineCache, on an empty one and on one started from\n"
+    "                     the data an earlier context left in it (a warm cache)\n"
     "  --json FILE        every figure, with device, driver, size, settings and load average\n"
     "  --csv FILE         one row per scene and configuration\n"
     "  --plot FILE        .png or .svg: error against time, one panel per scene, Pareto front (gnuplot)\n"
@@ -120,7 +124,7 @@ static bool parse_flags(int argc, char **argv, bench_options *o) {
                             : strcmp(a, "--plot-from") == 0 ? &o->plot_from
                                                             : NULL;
         if (path || strcmp(a, "--scene") == 0 || strcmp(a, "--sweep") == 0 || strcmp(a, "--warmup") == 0 ||
-            strcmp(a, "--repeat") == 0) {
+            strcmp(a, "--repeat") == 0 || strcmp(a, "--pipeline-cache") == 0) {
             if (!v || !v[0]) {
                 ok = fail("%s: needs a value", a);
                 break;
@@ -143,6 +147,8 @@ static bool parse_flags(int argc, char **argv, bench_options *o) {
             ok = parse_count(a, v, 0, &o->warmup);
         else if (strcmp(a, "--repeat") == 0)
             ok = parse_count(a, v, 1, &o->repeat);
+        else if (strcmp(a, "--pipeline-cache") == 0)
+            ok = parse_count(a, v, 1, &o->cache_trials);
         else if (strcmp(a, "--list-configs") == 0)
             o->list_configs = true;
         else if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0)
@@ -506,7 +512,8 @@ static void progress(uint32_t done, uint32_t total, double started, const char *
 }
 
 static bool run_all(const bench_options *o, const bench_config *configs, uint32_t config_count,
-                    const bench_scene *scenes, uint32_t scene_count, bench_result *results, bench_run *run) {
+                    const bench_scene *scenes, uint32_t scene_count, bench_result *results, vkdev_cache_timing *cache,
+                    bench_run *run) {
     char err[BENCH_ERR];
     vkdev dev;
     if (!vkdev_create(&(vkdev_options){.validation = o->cli.validate, .device = o->cli.device}, &dev, err, sizeof err))
@@ -532,6 +539,17 @@ static bool run_all(const bench_options *o, const bench_config *configs, uint32_
             if (show) progress(c * scene_count + s, total, started, configs[c].name);
             ok = run_one(&dev, o, &scenes[s], &configs[c], ao, r);
         }
+    if (ok && cache) {
+        run->cache_width = scenes[0].inputs.depth.width;
+        run->cache_height = scenes[0].inputs.depth.height;
+    }
+    for (uint32_t c = 0; ok && cache && c < config_count; ++c) {
+        const bench_config *config = &configs[c];
+        const cacao_settings set = config_settings(o, config, &scenes[0]);
+        if (vkdev_time_pipeline_cache(&dev, &set, run->cache_width, run->cache_height, o->cache_trials, &cache[c],
+                                      err, sizeof err) != CACAO_SUCCESS)
+            ok = fail("%s: pipeline cache timing: %s", config->name, err);
+    }
     load_average(run->load_after);
     if (ok && show) progress(total, total, started, "done");
     free(ao);
@@ -607,17 +625,20 @@ int main(int argc, char **argv) {
         ok = load_scene(&o, o.scene_count ? o.scenes[loaded] : NULL, &scenes[loaded]);
     ok = ok && plot_possible(&o, scenes, scene_count);
     bench_result *results = ok ? calloc((size_t)config_count * scene_count, sizeof *results) : NULL;
-    if (ok && !results) ok = fail("out of memory");
+    vkdev_cache_timing *cache = ok && o.cache_trials ? calloc(config_count, sizeof *cache) : NULL;
+    if (ok && (!results || (o.cache_trials && !cache))) ok = fail("out of memory");
     if (ok) {
         run.scenes = scenes;
         run.scene_count = scene_count;
         run.results = results;
         run.result_count = config_count * scene_count;
-        ok = run_all(&o, configs, config_count, scenes, scene_count, results, &run) && write_files(&o, &run);
+        run.cache = cache;
+        ok = run_all(&o, configs, config_count, scenes, scene_count, results, cache, &run) && write_files(&o, &run);
         if (ok) bench_print_table(stdout, &run);
     }
     for (uint32_t s = 0; s < loaded; ++s) free_scene(&scenes[s]);
     free(results);
+    free(cache);
     free(points);
     return ok ? 0 : 1;
 }

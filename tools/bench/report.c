@@ -61,6 +61,55 @@ void bench_print_table(FILE *out, const bench_run *run) {
     }
     if (run->scene_count && bench_plot_truth(&run->scenes[0]) < 0 && run->scene_count == 1)
         fprintf(out, "(no ao_gt_falloff.pfm / ao_gt.pfm in the scene: no errors)\n");
+    if (!run->cache) return;
+    fprintf(out, "\npipeline creation at %ux%u (cacao_context_resize), median (min..max) ms of %u trials:\n",
+            run->cache_width, run->cache_height, run->cache[0].trials);
+    fprintf(out, "%-34s %5s %20s %20s %20s %11s\n", "config", "pipes", "no_cache", "empty_cache", "warm_cache",
+            "cache_bytes");
+    for (uint32_t c = 0; c < run->config_count; ++c) {
+        const vkdev_cache_timing *t = &run->cache[c];
+        const cacao_time_stats *s[3] = {&t->no_cache, &t->cold_cache, &t->warm_cache};
+        fprintf(out, "%-34s %5u", run->configs[c].name, t->pipeline_count);
+        for (int k = 0; k < 3; ++k) {
+            char cell[32];
+            snprintf(cell, sizeof cell, "%.1f (%.1f..%.1f)", s[k]->median_ms, s[k]->min_ms, s[k]->max_ms);
+            fprintf(out, " %20s", cell);
+        }
+        fprintf(out, " %11zu\n", t->cache_bytes);
+    }
+    if (run->cache[0].cache_bytes <= VKDEV_PIPELINE_CACHE_HEADER_BYTES)
+        fprintf(out, "(this driver's cache data is only its %u-byte header: it keeps no pipeline)\n",
+                VKDEV_PIPELINE_CACHE_HEADER_BYTES);
+}
+
+static cJSON *time_stats_json(const cacao_time_stats *s) {
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddNumberToObject(o, "median_ms", s->median_ms);
+    cJSON_AddNumberToObject(o, "min_ms", s->min_ms);
+    cJSON_AddNumberToObject(o, "max_ms", s->max_ms);
+    return o;
+}
+
+/* "pipeline_cache": {width, height, trials, configurations: [{config, pipeline_count, no_cache,
+ * empty_cache, warm_cache (each median/min/max ms), cache_bytes, header_valid}]} */
+static void add_cache_json(cJSON *root, const bench_run *run) {
+    cJSON *o = cJSON_AddObjectToObject(root, "pipeline_cache");
+    cJSON_AddNumberToObject(o, "width", run->cache_width);
+    cJSON_AddNumberToObject(o, "height", run->cache_height);
+    cJSON_AddNumberToObject(o, "trials", run->cache[0].trials);
+    cJSON *list = cJSON_AddArrayToObject(o, "configurations");
+    for (uint32_t c = 0; list && c < run->config_count; ++c) {
+        const vkdev_cache_timing *t = &run->cache[c];
+        cJSON *e = cJSON_CreateObject();
+        cJSON_AddStringToObject(e, "config", run->configs[c].name);
+        cJSON_AddNumberToObject(e, "pipeline_count", t->pipeline_count);
+        cJSON_AddItemToObject(e, "no_cache", time_stats_json(&t->no_cache));
+        cJSON_AddItemToObject(e, "empty_cache", time_stats_json(&t->cold_cache));
+        cJSON_AddItemToObject(e, "warm_cache", time_stats_json(&t->warm_cache));
+        cJSON_AddNumberToObject(e, "cache_bytes", (double)t->cache_bytes);
+        cJSON_AddBoolToObject(e, "header_valid", t->header_valid);
+        cJSON_AddItemToArray(list, e);
+    }
 }
 
 /* ---- Text files ------------------------------------------------------------------------------- */
@@ -156,6 +205,7 @@ static cJSON *run_json(const bench_run *run) {
     cJSON *results = cJSON_AddArrayToObject(root, "results");
     for (uint32_t i = 0; results && i < run->result_count; ++i)
         cJSON_AddItemToArray(results, result_json(run, &run->results[i]));
+    if (run->cache) add_cache_json(root, run);
     if (run->point_count) {
         cJSON *ref = cJSON_AddObjectToObject(root, "reference");
         cJSON_AddStringToObject(ref, "name", run->reference_name);

@@ -10,8 +10,7 @@ static int compare_doubles(const void *a, const void *b) {
     return (x > y) - (x < y);
 }
 
-/* Median, min and max of n values (sorted in place). */
-static cacao_time_stats stats_of(double *v, uint32_t n) {
+cacao_time_stats cacao_time_stats_of(double *v, uint32_t n) {
     if (!n) return (cacao_time_stats){0};
     qsort(v, n, sizeof *v, compare_doubles);
     const double median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
@@ -38,9 +37,9 @@ void cacao_timings_summarise(const double *samples, uint32_t steps, uint32_t war
             timed[f] = samples[(size_t)s * frames + warmup + f];
             totals[f] += timed[f];
         }
-        out->step[s] = stats_of(timed, repeat);
+        out->step[s] = cacao_time_stats_of(timed, repeat);
     }
-    out->total = stats_of(totals, repeat);
+    out->total = cacao_time_stats_of(totals, repeat);
     free(timed);
     free(totals);
 }

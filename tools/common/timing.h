@@ -30,6 +30,9 @@ typedef struct cacao_timings {
     cacao_tile_counts tiles;
 } cacao_timings;
 
+/* Median, min and max of n values (sorts v in place; all zero when n is 0). */
+cacao_time_stats cacao_time_stats_of(double *v, uint32_t n);
+
 /* Summarises samples[step * frames + frame] (frames = warmup + repeat; the total comes from the
  * sum over steps of each frame) into out's statistics, discarding the warm-up frames. */
 void cacao_timings_summarise(const double *samples, uint32_t steps, uint32_t warmup, uint32_t repeat,

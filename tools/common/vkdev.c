@@ -448,6 +448,93 @@ cacao_result vkdev_context_create(vkdev *dev, cacao_context **ctx) {
     return cacao_context_create(&desc, ctx);
 }
 
+/* Creates a context on cache (VK_NULL_HANDLE: none), resizes it and times the resize. */
+static cacao_result timed_resize(vkdev *dev, VkPipelineCache cache, const cacao_settings *settings, uint32_t w,
+                                 uint32_t h, double *ms, uint32_t *pipelines, char *err, size_t n) {
+    const cacao_context_desc desc = {.physical_device = dev->physical_device,
+                                     .device = dev->device,
+                                     .shader_float16_enabled = dev->fp16,
+                                     .required_subgroup_size = dev->required_subgroup_size,
+                                     .pipeline_cache = cache};
+    cacao_context *ctx = NULL;
+    cacao_result r = cacao_context_create(&desc, &ctx);
+    if (r != CACAO_SUCCESS) {
+        cacao_set_err(err, n, "cacao_context_create: %s", cacao_result_string(r));
+        return r;
+    }
+    r = cacao_context_set_settings(ctx, settings);
+    cacao_memory_info memory = {0};
+    const double start = now_ms();
+    if (r == CACAO_SUCCESS) r = cacao_context_resize(ctx, w, h, &memory);
+    *ms = now_ms() - start;
+    *pipelines = memory.pipeline_count;
+    if (r != CACAO_SUCCESS) cacao_set_err(err, n, "%s", cacao_context_last_error(ctx));
+    cacao_context_destroy(ctx);
+    return r;
+}
+
+/* Whether data starts with a VK_PIPELINE_CACHE_HEADER_VERSION_ONE header naming this device. */
+static bool cache_header_valid(const vkdev *dev, const uint8_t *data, size_t size) {
+    if (size < VKDEV_PIPELINE_CACHE_HEADER_BYTES) return false;
+    uint32_t words[4];
+    memcpy(words, data, sizeof words);
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(dev->physical_device, &props);
+    return words[0] >= VKDEV_PIPELINE_CACHE_HEADER_BYTES && words[1] == VK_PIPELINE_CACHE_HEADER_VERSION_ONE &&
+           words[2] == props.vendorID && words[3] == props.deviceID &&
+           memcmp(data + 16, props.pipelineCacheUUID, VK_UUID_SIZE) == 0;
+}
+
+cacao_result vkdev_time_pipeline_cache(vkdev *dev, const cacao_settings *settings, uint32_t w, uint32_t h,
+                                       uint32_t trials, vkdev_cache_timing *out, char *err, size_t n) {
+    memset(out, 0, sizeof *out);
+    if (trials == 0) trials = 1;
+    double *ms = calloc(3 * (size_t)trials, sizeof *ms);
+    uint8_t *data = NULL;
+    size_t size = 0;
+    cacao_result r = ms ? CACAO_SUCCESS : CACAO_ERROR_OUT_OF_MEMORY;
+    if (!ms) cacao_set_err(err, n, "out of memory");
+    for (uint32_t t = 0; r == CACAO_SUCCESS && t < trials; ++t) {
+        uint32_t counts[3] = {0};
+        r = timed_resize(dev, VK_NULL_HANDLE, settings, w, h, &ms[t], &counts[0], err, n);
+        for (int warm = 0; r == CACAO_SUCCESS && warm < 2; ++warm) {
+            const VkPipelineCacheCreateInfo info = {.sType = VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO,
+                                                    .initialDataSize = warm ? size : 0,
+                                                    .pInitialData = warm ? data : NULL};
+            VkPipelineCache cache;
+            if (vkCreatePipelineCache(dev->device, &info, NULL, &cache) != VK_SUCCESS) {
+                r = vk_error(err, n, "vkCreatePipelineCache");
+                break;
+            }
+            r = timed_resize(dev, cache, settings, w, h, &ms[(1 + warm) * (size_t)trials + t], &counts[1 + warm],
+                             err, n);
+            if (r == CACAO_SUCCESS && !warm && !data) {
+                if (vkGetPipelineCacheData(dev->device, cache, &size, NULL) != VK_SUCCESS ||
+                    !(data = malloc(size ? size : 1)) ||
+                    vkGetPipelineCacheData(dev->device, cache, &size, data) != VK_SUCCESS)
+                    r = vk_error(err, n, "vkGetPipelineCacheData");
+            }
+            vkDestroyPipelineCache(dev->device, cache, NULL);
+        }
+        if (r == CACAO_SUCCESS && (counts[1] != counts[0] || counts[2] != counts[0])) {
+            cacao_set_err(err, n, "pipeline counts differ with a cache: %u, %u, %u", counts[0], counts[1], counts[2]);
+            r = CACAO_ERROR_VULKAN;
+        }
+        out->pipeline_count = counts[0];
+    }
+    if (r == CACAO_SUCCESS) {
+        out->trials = trials;
+        out->no_cache = cacao_time_stats_of(ms, trials);
+        out->cold_cache = cacao_time_stats_of(ms + trials, trials);
+        out->warm_cache = cacao_time_stats_of(ms + 2 * (size_t)trials, trials);
+        out->cache_bytes = size;
+        out->header_valid = cache_header_valid(dev, data, size);
+    }
+    free(data);
+    free(ms);
+    return r;
+}
+
 cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t repeat, float *ao,
                        cacao_timings *timings, char *err, size_t n) {
     return vkdev_run_timed(dev, settings, frame, 0, repeat, ao, timings, err, n);

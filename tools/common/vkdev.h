@@ -91,6 +91,26 @@ cacao_result vkdev_run_timed(vkdev *dev, const cacao_settings *settings, const v
 /* A cacao context on this device (its fp16 support as the device reports it). */
 cacao_result vkdev_context_create(vkdev *dev, cacao_context **ctx);
 
+/* Pipeline creation with and without the caller's VkPipelineCache (issue 15, docs/tiles.md):
+ * per trial, in this order, a context resized to w x h with these settings and
+ *   - no cache,
+ *   - an empty cache of its own (cold),
+ *   - a cache created from the data the first trial's cold cache held afterwards (warm),
+ * each timed as the wall time of cacao_context_resize, which creates the plan's pipelines. */
+typedef struct vkdev_cache_timing {
+    uint32_t pipeline_count;
+    uint32_t trials;
+    cacao_time_stats no_cache, cold_cache, warm_cache; /* ms over the trials */
+    size_t cache_bytes; /* vkGetPipelineCacheData of the first cold cache after the resize */
+    bool header_valid;  /* its header names this device (version ONE, vendor, device, UUID) */
+} vkdev_cache_timing;
+cacao_result vkdev_time_pipeline_cache(vkdev *dev, const cacao_settings *settings, uint32_t width, uint32_t height,
+                                       uint32_t trials, vkdev_cache_timing *out, char *err, size_t err_size);
+
+/* The size of the header every VkPipelineCache's data starts with (VK_PIPELINE_CACHE_HEADER_VERSION_ONE):
+ * data of this size holds no pipeline. */
+#define VKDEV_PIPELINE_CACHE_HEADER_BYTES 32u
+
 /* vkdev_run_timed without warm-up frames. */
 cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t repeat, float *ao,
                        cacao_timings *timings, char *err, size_t err_size);
