@@ -461,14 +461,13 @@ static double seconds_now(void) {
 /* The settings one configuration runs with on one scene: the flags' settings, the scene's radius
  * unless --radius was given, then the configuration's own fields. */
 static cacao_settings config_settings(const bench_options *o, const bench_config *c, const bench_scene *s) {
-    cacao_settings set = o->cli.settings;
-    if (!o->cli.radius_given && s->inputs.ao_radius_world > 0) set.radius = (float)s->inputs.ao_radius_world;
+    cacao_settings set = cli_inputs_settings(&o->cli, &s->inputs);
     set.estimator = c->estimator;
     set.quality = c->quality;
     set.downsample = c->downsample;
     set.blur_pass_count = c->blur == 0 ? CACAO_BLUR_NONE : c->blur;
     set.precision = c->fp16 ? CACAO_PRECISION_FP16 : CACAO_PRECISION_FP32;
-    if (c->reconstruct_normals || !s->inputs.normals.data) set.generate_normals = true;
+    if (c->reconstruct_normals) set.generate_normals = true;
     return set;
 }
 
@@ -485,9 +484,7 @@ static bool run_one(vkdev *dev, const bench_options *o, const bench_scene *s, co
     if (cacao_settings_resolve(&set, &r->resolved, err, sizeof err) != CACAO_SUCCESS)
         return fail("%s on %s: %s", c->name, s->name, err);
     const cli_inputs *in = &s->inputs;
-    vkdev_frame frame = {.width = in->depth.width, .height = in->depth.height, .depth = in->depth.data};
-    memcpy(frame.projection, in->projection, sizeof frame.projection);
-    if (in->normals.data && !set.generate_normals) vkdev_frame_set_view_normals(&frame, in->normals.data);
+    vkdev_frame frame = cli_inputs_frame(in, &set, o->cli.frame_index);
     frame.plan_out = &r->plan; /* the plan the context ran, fallbacks included */
     const cacao_result res = vkdev_run_timed(dev, &set, &frame, o->warmup, o->repeat, ao, &r->timings, err, sizeof err);
     if (res != CACAO_SUCCESS) return fail("%s on %s: %s: %s", c->name, s->name, cacao_result_string(res), err);

@@ -226,3 +226,21 @@ void cli_inputs_free(cli_inputs *in) {
     cacao_img_free(&in->depth);
     cacao_img_free(&in->normals);
 }
+
+cacao_settings cli_inputs_settings(const cli_options *o, const cli_inputs *in) {
+    cacao_settings s = o->settings;
+    if (!o->radius_given && in->ao_radius_world > 0) s.radius = (float)in->ao_radius_world;
+    if (!in->normals.data) s.generate_normals = true;
+    return s;
+}
+
+vkdev_frame cli_inputs_frame(const cli_inputs *in, const cacao_settings *encoded, uint32_t frame_index) {
+    vkdev_frame frame = {.width = in->depth.width,
+                         .height = in->depth.height,
+                         .depth = in->depth.data,
+                         .depth_reversed = in->depth_reversed,
+                         .frame_index = frame_index};
+    memcpy(frame.projection, in->projection, sizeof frame.projection);
+    if (in->normals.data && !encoded->generate_normals) vkdev_frame_set_view_normals(&frame, in->normals.data);
+    return frame;
+}

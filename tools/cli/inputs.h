@@ -8,6 +8,7 @@
 
 #include "image_io.h"
 #include "options.h"
+#include "vkdev.h"
 
 typedef struct cli_inputs {
     cacao_img depth;          /* 1 channel, raw [0,1] depth in the run's convention */
@@ -23,6 +24,15 @@ typedef struct cli_inputs {
 bool cli_inputs_load(const cli_options *options, cli_inputs *inputs, char *err, size_t err_size);
 
 void cli_inputs_free(cli_inputs *inputs);
+
+/* The settings the runtime gets for these inputs (their encoding, not resolved): the flags', with
+ * the camera's ao_radius_world as the radius unless --radius was given, and normals reconstructed
+ * from depth when the inputs have none. Shared by cacao, cacao-bench and cacao-inspect. */
+cacao_settings cli_inputs_settings(const cli_options *options, const cli_inputs *inputs);
+
+/* A device frame of these inputs (pointing into them) for a run with these encoded settings:
+ * normals passed only where the settings do not reconstruct them. */
+vkdev_frame cli_inputs_frame(const cli_inputs *inputs, const cacao_settings *encoded, uint32_t frame_index);
 
 /* Reads a 1-channel image by extension: .pfm, .exr (channel Z, R, Y or the only one) or .png.
  * PNG must be 16-bit grey unless allow_8bit (values are sample / 65535 or / 255). `role` names

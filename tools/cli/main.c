@@ -80,9 +80,7 @@ static bool check_output_flags(const cli_options *o, char *err) {
  * ao_radius_world is the default radius; without normals they are reconstructed from depth. */
 static bool effective_settings(const cli_options *o, const cli_inputs *in, cacao_settings *encoded,
                                cacao_settings *resolved, char *err) {
-    *encoded = o->settings;
-    if (!o->radius_given && in->ao_radius_world > 0) encoded->radius = (float)in->ao_radius_world;
-    if (!in->normals.data) encoded->generate_normals = true;
+    *encoded = cli_inputs_settings(o, in);
     char why[512];
     if (cacao_settings_resolve(encoded, resolved, why, sizeof why) == CACAO_SUCCESS) return true;
     const char *flag = cli_flag_of_message(why); /* name what the user gave */
@@ -119,20 +117,9 @@ typedef struct render_result {
     char device_name[256];
 } render_result;
 
-static vkdev_frame make_frame(const cli_inputs *in, const cacao_settings *encoded, uint32_t frame_index) {
-    vkdev_frame frame = {.width = in->depth.width,
-                         .height = in->depth.height,
-                         .depth = in->depth.data,
-                         .depth_reversed = in->depth_reversed,
-                         .frame_index = frame_index};
-    memcpy(frame.projection, in->projection, sizeof frame.projection);
-    if (in->normals.data && !encoded->generate_normals) vkdev_frame_set_view_normals(&frame, in->normals.data);
-    return frame;
-}
-
 static bool run_on_device(vkdev *dev, const cli_options *o, const cli_inputs *in, const cacao_settings *encoded,
                           render_result *out, char *err) {
-    vkdev_frame frame = make_frame(in, encoded, o->frame_index);
+    vkdev_frame frame = cli_inputs_frame(in, encoded, o->frame_index);
     frame.plan_out = &out->plan; /* the plan the context ran, fallbacks included */
     char why[ERR_SIZE - 128];
     const cacao_result r = vkdev_run_timed(dev, encoded, &frame, o->warmup, o->repeat ? o->repeat : 1, out->ao.data,

@@ -5,6 +5,9 @@
  *                                                             its measured cost from a cacao-bench run)
  *   cacao-inspect show KEY                                    defines, preprocessed GLSL, reflection, SPIR-V
  *   cacao-inspect plan --size WxH [settings flags]            the pass plan cacao_record would walk
+ *   cacao-inspect plan --scene DIR [settings flags]           the same for one frame of a scene, run on
+ *                                                             the device, with its tiles and the work
+ *                                                             each step skipped (also --depth/--camera)
  *   cacao-inspect stats                                       counts, dedup, bytes per pass
  *   cacao-inspect verify                                      re-validate modules, check plan keys are embedded
  *
@@ -17,6 +20,8 @@
 #include <string.h>
 
 #include "cacao.h"
+#include "cacao_shared.h"
+#include "inputs.h"
 #include "options.h"
 #include "shadergen.h"
 #include "text_file.h"
@@ -232,8 +237,9 @@ static int cmd_show(int argc, char **argv) {
     return 0;
 }
 
-/* `plan` takes --size WxH and the settings flags of the cacao command (the same flag table). */
-static int parse_plan_flags(int argc, char **argv, cacao_settings *s, uint32_t *w, uint32_t *h) {
+/* `plan` takes --size WxH and the settings flags of the cacao command (the same flag table),
+ * or instead of --size the cacao command's inputs (--scene DIR, or --depth FILE --camera FILE ...). */
+static int parse_plan_flags(int argc, char **argv, cli_options *options, uint32_t *w, uint32_t *h) {
     char *rest[64];
     int n = 0;
     rest[n++] = "cacao-inspect plan";
@@ -244,23 +250,102 @@ static int parse_plan_flags(int argc, char **argv, cacao_settings *s, uint32_t *
             ++i;
         } else if (n < 64) {
             rest[n++] = argv[i];
+        } else {
+            return fail("plan: too many flags (from '%s')", argv[i]);
         }
     }
-    cli_options options;
     char err[1024];
-    if (!cli_parse(n, rest, &options, err, sizeof err)) return fail("plan: %s", err);
-    *s = options.settings;
+    if (!cli_parse(n, rest, options, err, sizeof err)) return fail("plan: %s", err);
     return 0;
 }
 
+static double percent(uint32_t part, uint32_t whole) { return whole ? 100.0 * part / whole : 0.0; }
+
+/* What each step of the plan did on the frame whose tile counts are c. */
+static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *c) {
+    printf("tiles: %u (%ux%u of 8x8 slice texels): %u active (%.1f%%), %u faded (%.1f%%), %u background (%.1f%%)\n",
+           c->tiles, plan->tiles_x, plan->tiles_y, c->active, percent(c->active, c->tiles), c->faded,
+           percent(c->faded, c->tiles), c->background, percent(c->background, c->tiles));
+    printf("work each step skips on this frame:\n");
+    const uint32_t generate_skipped = c->generate_total - c->generate_run, blur_skipped = c->blur_total - c->blur_run;
+    for (uint32_t i = 0; i < plan->step_count; ++i) {
+        const cacao_plan_step *st = &plan->steps[i];
+        printf("  %2u %-34s ", i, st->key_name);
+        switch (st->list) {
+        case CACAO_LIST_GENERATE:
+            printf("runs %u of %u tiles, skips %u (%.1f%%)\n", c->generate_run, c->generate_total, generate_skipped,
+                   percent(generate_skipped, c->generate_total));
+            break;
+        case CACAO_LIST_FILL_SLICES:
+            printf("writes AO 1 into the %u skipped tiles (%.1f%% of the tiles)\n", generate_skipped,
+                   percent(generate_skipped, c->generate_total));
+            break;
+        case CACAO_LIST_BLUR:
+            printf("runs %u of %u groups, skips %u (%.1f%%)\n", c->blur_run, c->blur_total, blur_skipped,
+                   percent(blur_skipped, c->blur_total));
+            break;
+        default:
+            printf("runs over everything, skips 0%%\n");
+        }
+    }
+}
+
+/* Runs one frame of the inputs on the device (cacao's --device, default lavapipe) for its tile
+ * counts, then prints them beside the plan that ran. */
+static int plan_on_scene(const cli_options *options) {
+    char err[1024];
+    cli_inputs in;
+    if (!cli_inputs_load(options, &in, err, sizeof err)) return fail("plan: %s", err);
+    const cacao_settings s = cli_inputs_settings(options, &in);
+    int rc = 0;
+    cacao_plan plan;
+    vkdev_frame frame = cli_inputs_frame(&in, &s, options->frame_index);
+    frame.plan_out = &plan;
+    float *ao = malloc(sizeof(float) * in.depth.width * in.depth.height);
+    vkdev dev;
+    cacao_timings timings = {0};
+    if (!ao)
+        rc = fail("plan: out of memory for a %s frame", "");
+    else if (!vkdev_create(&(vkdev_options){.validation = options->validate, .device = options->device}, &dev, err,
+                           sizeof err))
+        rc = fail("plan: %s", err);
+    else {
+        const cacao_result r = vkdev_run(&dev, &s, &frame, 1, ao, &timings, err, sizeof err);
+        if (r != CACAO_SUCCESS) {
+            fprintf(stderr, "cacao-inspect: plan: %s: %s\n", cacao_result_string(r), err);
+            rc = 1;
+        } else {
+            cacao_plan_print(&plan, stdout);
+            printf("frame: %s, on %s\n", options->scene_dir ? options->scene_dir : options->depth_path,
+                   dev.device_name);
+            if (timings.has_tiles)
+                print_skipped_work(&plan, &timings.tiles);
+            else
+                printf("no tile classification in this plan (%s): every step runs over everything\n",
+                       plan.settings.estimator != CACAO_ESTIMATOR_CACAO ? "a horizon-slice estimator"
+                                                                        : "compute_all_tiles");
+        }
+        vkdev_destroy(&dev);
+        if (rc == 0 && dev.validation_messages)
+            rc = fail("plan: the validation layer reported %s message(s)", "");
+    }
+    free(ao);
+    cli_inputs_free(&in);
+    return rc;
+}
+
 static int cmd_plan(int argc, char **argv) {
-    cacao_settings s = {0};
+    cli_options options;
     uint32_t w = 0, h = 0;
-    if (parse_plan_flags(argc, argv, &s, &w, &h)) return 1;
-    if (!w || !h) return fail("plan needs --size WxH%s", "");
+    if (parse_plan_flags(argc, argv, &options, &w, &h)) return 1;
+    const bool on_inputs = options.scene_dir || options.depth_path;
+    if (on_inputs && (w || h)) return fail("--size: not with --scene or --depth (the size is the depth's)%s", "");
+    if (on_inputs) return plan_on_scene(&options);
+    if (!w || !h) return fail("plan needs --size WxH, --scene DIR or --depth FILE%s", "");
     cacao_plan plan;
     char err[256];
-    if (cacao_plan_build(&s, w, h, &plan, err, sizeof err) != CACAO_SUCCESS) return fail("plan: %s", err);
+    if (cacao_plan_build(&options.settings, w, h, &plan, err, sizeof err) != CACAO_SUCCESS)
+        return fail("plan: %s", err);
     cacao_plan_print(&plan, stdout);
     int missing = 0;
     for (uint32_t i = 0; i < plan.step_count; ++i) {
@@ -357,6 +442,8 @@ static void usage(FILE *out) {
                  "       cacao-inspect show KEY\n"
                  "       cacao-inspect plan --size WxH [settings flags of the cacao command, e.g.\n"
                  "                          --quality LEVEL --downsample --blur N --precision fp16 --no-normals]\n"
+                 "       cacao-inspect plan --scene DIR | --depth FILE --camera FILE [settings flags]\n"
+                 "                          (runs one frame on --device, default lavapipe: tiles and skipped work)\n"
                  "       cacao-inspect stats\n"
                  "       cacao-inspect verify\n");
 }
