@@ -695,16 +695,14 @@ void main()
     /* The per-texel shaping pow(sat(1 - strength v), power) (no clamp, no fade) is monotone in v
      * (strength and power are >= 0), so the max and min of the shaped values are the shaped
      * min and max of the raw ones: 2 pow calls per texel instead of 16. */
+    /* The 2x2 texels 2t .. 2t + 1 of each layer (clamped to the edge) in one gather at their
+     * shared corner: half the pass's time on lavapipe of four clamped texel loads. */
     float vmin = 1.0e30, vmax = -1.0e30;
+    vec2 corner = vec2(2 * t + 1) / vec2(s);
     [[unroll]] for (int k = 0; k < 4; ++k) {
-        [[unroll]] for (int b = 0; b < 2; ++b) {
-            [[unroll]] for (int a = 0; a < 2; ++a) {
-                ivec2 p = clamp(2 * t + ivec2(a, b), ivec2(0), s - 1);
-                float v = texelFetch(ssao_in, ivec3(p, k), 0).r;
-                vmin = min(vmin, v);
-                vmax = max(vmax, v);
-            }
-        }
+        vec4 g = textureGather(ssao_in, vec3(corner, float(k)), 0);
+        vmin = min(vmin, min(min(g.x, g.y), min(g.z, g.w)));
+        vmax = max(vmax, max(max(g.x, g.y), max(g.z, g.w)));
     }
     float mx = max(pow(sat(1.0 - cb.effect_shadow_strength * vmin), cb.effect_shadow_pow), 0.0);
     float mn = min(pow(sat(1.0 - cb.effect_shadow_strength * vmax), cb.effect_shadow_pow), 1.0);
