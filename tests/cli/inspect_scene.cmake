@@ -6,14 +6,7 @@
 # classification and says so; --size with --scene and a missing scene are refused with a message
 # naming the flag. Inputs: CACAO, INSPECT, WORK, SCENES.
 include(${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake)
-function(inspect expect_rc)
-  execute_process(COMMAND ${INSPECT} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL expect_rc)
-    message(FATAL_ERROR "cacao-inspect ${ARGN}: exit ${rc}, expected ${expect_rc}\n${out}${err}")
-  endif()
-  set(out "${out}" PARENT_SCOPE)
-  set(err "${err}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../cmake/inspect_common.cmake)
 function(number_after text regex var)
   if(NOT text MATCHES "${regex}")
     message(FATAL_ERROR "no match for '${regex}' in:\n${text}")

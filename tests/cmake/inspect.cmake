@@ -3,14 +3,7 @@
 # block and a disassembly with a GLCompute entry point, `plan` for HIGHEST lists the adaptive
 # passes in spec order, `verify` passes, and unknown keys / commands fail with a message.
 # Inputs: INSPECT.
-function(inspect expect_rc)
-  execute_process(COMMAND ${INSPECT} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL expect_rc)
-    message(FATAL_ERROR "cacao-inspect ${ARGN}: exit ${rc}, expected ${expect_rc}\n${out}${err}")
-  endif()
-  set(out "${out}" PARENT_SCOPE)
-  set(err "${err}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/inspect_common.cmake)
 function(expect text what)
   string(FIND "${text}" "${what}" at)
   if(at LESS 0)

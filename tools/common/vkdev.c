@@ -440,35 +440,46 @@ static double now_ms(void) {
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
 
-cacao_result vkdev_context_create(vkdev *dev, cacao_context **ctx) {
-    const cacao_context_desc desc = {.physical_device = dev->physical_device,
-                                     .device = dev->device,
-                                     .shader_float16_enabled = dev->fp16,
-                                     .required_subgroup_size = dev->required_subgroup_size};
-    return cacao_context_create(&desc, ctx);
-}
-
-/* Creates a context on cache (VK_NULL_HANDLE: none), resizes it and times the resize. */
-static cacao_result timed_resize(vkdev *dev, VkPipelineCache cache, const cacao_settings *settings, uint32_t w,
-                                 uint32_t h, double *ms, uint32_t *pipelines, char *err, size_t n) {
+static cacao_result context_on_cache(vkdev *dev, VkPipelineCache cache, cacao_context **ctx) {
     const cacao_context_desc desc = {.physical_device = dev->physical_device,
                                      .device = dev->device,
                                      .shader_float16_enabled = dev->fp16,
                                      .required_subgroup_size = dev->required_subgroup_size,
                                      .pipeline_cache = cache};
-    cacao_context *ctx = NULL;
-    cacao_result r = cacao_context_create(&desc, &ctx);
+    return cacao_context_create(&desc, ctx);
+}
+
+cacao_result vkdev_context_create(vkdev *dev, cacao_context **ctx) { return context_on_cache(dev, VK_NULL_HANDLE, ctx); }
+
+/* A context on cache (VK_NULL_HANDLE: none) with these settings, resized to w x h; *ms is the wall
+ * time of the resize (pipelines and intermediates). On failure the message is in err; *ctx is
+ * the caller's to destroy either way (NULL when creation failed). */
+static cacao_result context_resized(vkdev *dev, VkPipelineCache cache, const cacao_settings *settings, uint32_t w,
+                                    uint32_t h, cacao_context **ctx, cacao_memory_info *memory, double *ms, char *err,
+                                    size_t n) {
+    *ctx = NULL;
+    *memory = (cacao_memory_info){0};
+    *ms = 0;
+    cacao_result r = context_on_cache(dev, cache, ctx);
     if (r != CACAO_SUCCESS) {
         cacao_set_err(err, n, "cacao_context_create: %s", cacao_result_string(r));
         return r;
     }
-    r = cacao_context_set_settings(ctx, settings);
-    cacao_memory_info memory = {0};
+    r = cacao_context_set_settings(*ctx, settings);
     const double start = now_ms();
-    if (r == CACAO_SUCCESS) r = cacao_context_resize(ctx, w, h, &memory);
+    if (r == CACAO_SUCCESS) r = cacao_context_resize(*ctx, w, h, memory);
     *ms = now_ms() - start;
+    if (r != CACAO_SUCCESS) cacao_set_err(err, n, "%s", cacao_context_last_error(*ctx));
+    return r;
+}
+
+/* Times the resize of a new context on cache; its pipeline count in *pipelines. */
+static cacao_result timed_resize(vkdev *dev, VkPipelineCache cache, const cacao_settings *settings, uint32_t w,
+                                 uint32_t h, double *ms, uint32_t *pipelines, char *err, size_t n) {
+    cacao_context *ctx;
+    cacao_memory_info memory;
+    const cacao_result r = context_resized(dev, cache, settings, w, h, &ctx, &memory, ms, err, n);
     *pipelines = memory.pipeline_count;
-    if (r != CACAO_SUCCESS) cacao_set_err(err, n, "%s", cacao_context_last_error(ctx));
     cacao_context_destroy(ctx);
     return r;
 }
@@ -542,21 +553,12 @@ cacao_result vkdev_run(vkdev *dev, const cacao_settings *settings, const vkdev_f
 
 cacao_result vkdev_run_timed(vkdev *dev, const cacao_settings *settings, const vkdev_frame *frame, uint32_t warmup,
                              uint32_t repeat, float *ao, cacao_timings *timings, char *err, size_t n) {
-    cacao_context *ctx = NULL;
-    cacao_result r = vkdev_context_create(dev, &ctx);
-    if (r != CACAO_SUCCESS) {
-        cacao_set_err(err, n, "cacao_context_create: %s", cacao_result_string(r));
-        return r;
-    }
-    r = cacao_context_set_settings(ctx, settings);
-    cacao_memory_info memory = {0};
-    const double setup_start = now_ms();
-    if (r == CACAO_SUCCESS) r = cacao_context_resize(ctx, frame->width, frame->height, &memory);
-    const double setup_ms = now_ms() - setup_start;
-    if (r != CACAO_SUCCESS)
-        cacao_set_err(err, n, "%s", cacao_context_last_error(ctx));
-    else
-        r = vkdev_run_context_timed(dev, ctx, frame, warmup, repeat, ao, timings, err, n);
+    cacao_context *ctx;
+    cacao_memory_info memory;
+    double setup_ms;
+    cacao_result r =
+        context_resized(dev, VK_NULL_HANDLE, settings, frame->width, frame->height, &ctx, &memory, &setup_ms, err, n);
+    if (r == CACAO_SUCCESS) r = vkdev_run_context_timed(dev, ctx, frame, warmup, repeat, ao, timings, err, n);
     if (r == CACAO_SUCCESS && frame->plan_out) *frame->plan_out = *cacao_context_plan(ctx);
     if (r == CACAO_SUCCESS && timings) {
         timings->memory_bytes = memory.total_bytes;
