@@ -19,13 +19,10 @@ static const cacao_quality qualities[] = {CACAO_QUALITY_LOWEST, CACAO_QUALITY_LO
 /* Runs one frame on a new context created on cache (VK_NULL_HANDLE: none). */
 static bool run_on_cache(vkdev *dev, VkPipelineCache cache, const cacao_settings *s, const vkdev_frame *f, float *ao,
                          uint32_t *pipelines) {
-    const cacao_context_desc desc = {.physical_device = dev->physical_device,
-                                     .device = dev->device,
-                                     .shader_float16_enabled = dev->fp16,
-                                     .pipeline_cache = cache};
     cacao_context *ctx = NULL;
     cacao_memory_info memory = {0};
-    bool ok = cacao_context_create(&desc, &ctx) == CACAO_SUCCESS && cacao_context_set_settings(ctx, s) == CACAO_SUCCESS &&
+    bool ok = vkdev_context_create_on_cache(dev, cache, &ctx) == CACAO_SUCCESS &&
+              cacao_context_set_settings(ctx, s) == CACAO_SUCCESS &&
               cacao_context_resize(ctx, f->width, f->height, &memory) == CACAO_SUCCESS;
     char err[512] = "";
     if (ok) ok = vkdev_run_context(dev, ctx, f, 1, ao, NULL, err, sizeof err) == CACAO_SUCCESS;

@@ -440,7 +440,7 @@ static double now_ms(void) {
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
 
-static cacao_result context_on_cache(vkdev *dev, VkPipelineCache cache, cacao_context **ctx) {
+cacao_result vkdev_context_create_on_cache(vkdev *dev, VkPipelineCache cache, cacao_context **ctx) {
     const cacao_context_desc desc = {.physical_device = dev->physical_device,
                                      .device = dev->device,
                                      .shader_float16_enabled = dev->fp16,
@@ -449,7 +449,9 @@ static cacao_result context_on_cache(vkdev *dev, VkPipelineCache cache, cacao_co
     return cacao_context_create(&desc, ctx);
 }
 
-cacao_result vkdev_context_create(vkdev *dev, cacao_context **ctx) { return context_on_cache(dev, VK_NULL_HANDLE, ctx); }
+cacao_result vkdev_context_create(vkdev *dev, cacao_context **ctx) {
+    return vkdev_context_create_on_cache(dev, VK_NULL_HANDLE, ctx);
+}
 
 /* A context on cache (VK_NULL_HANDLE: none) with these settings, resized to w x h; *ms is the wall
  * time of the resize (pipelines and intermediates). On failure the message is in err; *ctx is
@@ -460,7 +462,7 @@ static cacao_result context_resized(vkdev *dev, VkPipelineCache cache, const cac
     *ctx = NULL;
     *memory = (cacao_memory_info){0};
     *ms = 0;
-    cacao_result r = context_on_cache(dev, cache, ctx);
+    cacao_result r = vkdev_context_create_on_cache(dev, cache, ctx);
     if (r != CACAO_SUCCESS) {
         cacao_set_err(err, n, "cacao_context_create: %s", cacao_result_string(r));
         return r;

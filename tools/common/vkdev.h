@@ -90,6 +90,8 @@ cacao_result vkdev_run_timed(vkdev *dev, const cacao_settings *settings, const v
 
 /* A cacao context on this device (its fp16 support as the device reports it). */
 cacao_result vkdev_context_create(vkdev *dev, cacao_context **ctx);
+/* The same, creating its pipelines through the caller's cache (VK_NULL_HANDLE: none). */
+cacao_result vkdev_context_create_on_cache(vkdev *dev, VkPipelineCache cache, cacao_context **ctx);
 
 /* Pipeline creation with and without the caller's VkPipelineCache (issue 15, docs/tiles.md):
  * per trial, in this order, a context resized to w x h with these settings and

@@ -305,7 +305,8 @@ static int plan_on_scene(const cli_options *options) {
     vkdev dev;
     cacao_timings timings = {0};
     if (!ao)
-        rc = fail("plan: out of memory for a %s frame", "");
+        rc = fail("plan: out of memory for the frame of %s",
+                  options->scene_dir ? options->scene_dir : options->depth_path);
     else if (!vkdev_create(&(vkdev_options){.validation = options->validate, .device = options->device}, &dev, err,
                            sizeof err))
         rc = fail("plan: %s", err);
@@ -326,8 +327,11 @@ static int plan_on_scene(const cli_options *options) {
                                                                         : "compute_all_tiles");
         }
         vkdev_destroy(&dev);
-        if (rc == 0 && dev.validation_messages)
-            rc = fail("plan: the validation layer reported %s message(s)", "");
+        if (rc == 0 && dev.validation_messages) {
+            char count[32];
+            snprintf(count, sizeof count, "%u", dev.validation_messages);
+            rc = fail("plan: --validate: the validation layer reported %s message(s)", count);
+        }
     }
     free(ao);
     cli_inputs_free(&in);
