@@ -149,17 +149,22 @@ ivec2 mirror_coord(ivec2 c, ivec2 n) { return ivec2(mirror_coord(c.x, n.x), mirr
     (CACAO_PASS == CACAO_PASS_PREPARE_NORMALS && CACAO_VARIANT == 0) || CACAO_PASS == CACAO_PASS_UPSAMPLE
 layout(set = 0, binding = CACAO_BINDING_SRC_DEPTH) uniform sampler2D src_depth;
 
-/* Integer load of the caller's depth with clamp-to-edge (what AMD's gathers/samples read). */
-float load_src_depth_clamped(ivec2 p)
+/* The caller's depth at pixel p through the nearest clamp-to-edge sampler at the pixel centre
+ * (LOD 0: the view's base level, as a fetch): on lavapipe a sample costs less than a texelFetch,
+ * and the sampler's clamp is the clamp-to-edge the readers want. */
+float sample_src_depth(ivec2 p)
 {
-    ivec2 size = textureSize(src_depth, 0);
-    return texelFetch(src_depth, clamp(p, ivec2(0), size - 1), 0).r;
+    return textureLod(src_depth, (vec2(p) + 0.5) * cb.depth_buffer_inverse_dimensions, 0.0).r;
 }
 
-/* Integer load of the caller's depth, out of bounds -> raw 0 (D3D load rule). */
+/* The caller's depth with clamp-to-edge (what AMD's gathers/samples read). */
+float load_src_depth_clamped(ivec2 p) { return sample_src_depth(p); }
+
+/* The caller's depth, out of bounds -> raw 0 (D3D load rule). */
 float load_src_depth_or_zero(ivec2 p)
 {
-    return in_rect(p, textureSize(src_depth, 0)) ? texelFetch(src_depth, p, 0).r : 0.0;
+    float d = sample_src_depth(p);
+    return in_rect(p, textureSize(src_depth, 0)) ? d : 0.0;
 }
 #endif
 
