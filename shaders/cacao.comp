@@ -149,21 +149,18 @@ ivec2 mirror_coord(ivec2 c, ivec2 n) { return ivec2(mirror_coord(c.x, n.x), mirr
     (CACAO_PASS == CACAO_PASS_PREPARE_NORMALS && CACAO_VARIANT == 0) || CACAO_PASS == CACAO_PASS_UPSAMPLE
 layout(set = 0, binding = CACAO_BINDING_SRC_DEPTH) uniform sampler2D src_depth;
 
-/* The caller's depth at pixel p through the nearest clamp-to-edge sampler at the pixel centre
- * (LOD 0: the view's base level, as a fetch): on lavapipe a sample costs less than a texelFetch,
- * and the sampler's clamp is the clamp-to-edge the readers want. */
-float sample_src_depth(ivec2 p)
+/* The caller's depth at pixel p with clamp-to-edge (what AMD's gathers/samples read): the
+ * nearest clamp-to-edge sampler at the pixel centre, LOD 0 (the view's base level, as a fetch).
+ * On lavapipe a sample costs less than a texelFetch. */
+float load_src_depth_clamped(ivec2 p)
 {
     return textureLod(src_depth, (vec2(p) + 0.5) * cb.depth_buffer_inverse_dimensions, 0.0).r;
 }
 
-/* The caller's depth with clamp-to-edge (what AMD's gathers/samples read). */
-float load_src_depth_clamped(ivec2 p) { return sample_src_depth(p); }
-
 /* The caller's depth, out of bounds -> raw 0 (D3D load rule). */
 float load_src_depth_or_zero(ivec2 p)
 {
-    float d = sample_src_depth(p);
+    float d = load_src_depth_clamped(p);
     return in_rect(p, textureSize(src_depth, 0)) ? d : 0.0;
 }
 #endif

@@ -10,21 +10,15 @@ counts). Same binary, same run: the ratio is the figure, never the absolute mill
 usage: tools/tiles-report.py [--cacao build/tools/cli/cacao] [--shared ../shared] [--reps 3]
                              [--out docs/tiles-measured.md]
 """
-import argparse, json, os, re, statistics, struct, subprocess, sys, tempfile
+import argparse, importlib.util, json, os, re, statistics, struct, subprocess, sys, tempfile
+
+# The PFM reader of accuracy-report.py (a numpy array, rows top to bottom).
+_spec = importlib.util.spec_from_file_location(
+    'accuracy_report', os.path.join(os.path.dirname(os.path.abspath(__file__)), 'accuracy-report.py'))
+acc = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(acc)
 
 QUALITIES = ['lowest', 'low', 'medium', 'high', 'highest']
-
-
-def read_pfm(path):
-    with open(path, 'rb') as f:
-        kind = f.readline().strip()
-        w, h = map(int, f.readline().split())
-        scale = float(f.readline())
-        channels = 3 if kind == b'PF' else 1
-        data = f.read()
-    fmt = ('<' if scale < 0 else '>') + 'f' * (w * h * channels)
-    values = struct.unpack(fmt, data)
-    return w, h, values[::channels]
 
 
 def write_pfm(path, w, h, values):
@@ -72,7 +66,8 @@ def main():
         d = os.path.join(scenes_dir, name)
         cases.append((name, ['--scene', d]))
     # All background: the far plane everywhere (street_track's camera).
-    w, h, depth = read_pfm(os.path.join(street, 'depth.pfm'))
+    depth = acc.read_pfm(os.path.join(street, 'depth.pfm'))
+    h, w = depth.shape
     sky = os.path.join(work, 'sky.pfm')
     write_pfm(sky, w, h, [1.0] * (w * h))
     cam = os.path.join(street, 'camera.json')
@@ -80,7 +75,7 @@ def main():
     # Three quarters beyond the fade-out: fade_out_to at the 25th percentile of view z.
     c = json.load(open(cam))
     near, far = c['near'], c['far']
-    z = sorted(near * far / (far - d * (far - near)) if d < 1.0 else float('inf') for d in depth)
+    z = sorted(near * far / (far - d * (far - near)) if d < 1.0 else float('inf') for d in depth.ravel().tolist())
     to = z[len(z) // 4]
     cases.append(('3/4 faded (street_track, fade-out %.1f..%.1f)' % (to / 2, to),
                   ['--scene', street, '--fade-out', '%g,%g' % (to / 2, to)]))
