@@ -134,6 +134,10 @@ rvec4 unpack_edges(float packed_value) { return unpack_edge_bits(edges_bits(pack
 
 bool in_rect(ivec2 p, ivec2 size) { return all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, size)); }
 
+/* The slice (deinterleaved depths at level 0, normals, AO) in texels. The depth image can be
+ * larger: at HIGH and HIGHEST it is the atlas of the mip chain (cacao_shared.h). */
+ivec2 slice_size() { return ivec2(cb.slice_width, cb.slice_height); }
+
 /* Mirror addressing (-1 -> 0, -2 -> 1, n -> n-1, ...), clamped for padding wider than n. */
 int mirror_coord(int c, int n)
 {
@@ -197,12 +201,8 @@ layout(std430, set = 0, binding = CACAO_BINDING_LOAD_COUNTER) buffer cacao_load_
 #endif
 
 #if CACAO_PASS == CACAO_PASS_PREPARE_DEPTHS
+/* The slice's depths; with mips (CACAO_DEPTHS_MIPS) the atlas of levels 0..3 (cacao_shared.h). */
 layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT0, CACAO_FORMAT_DEPTHS_OUT0) uniform writeonly image2DArray depths_out0;
-#if CACAO_VARIANT == CACAO_DEPTHS_MIPS
-layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT1, CACAO_FORMAT_DEPTHS_OUT1) uniform writeonly image2DArray depths_out1;
-layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT2, CACAO_FORMAT_DEPTHS_OUT2) uniform writeonly image2DArray depths_out2;
-layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT3, CACAO_FORMAT_DEPTHS_OUT3) uniform writeonly image2DArray depths_out3;
-#endif
 #endif
 
 #if CACAO_PASS == CACAO_PASS_PREPARE_NORMALS
@@ -303,22 +303,22 @@ float smart_average(float d0, float d1, float d2, float d3)
     return dot(w, d) / dot(w, vec4(1.0));
 }
 
-/* Levels above the slice's chain (CACAO_DEPTH_MIP_LEVELS) are bound to its last level: skip them. */
+/* Texel p of level 1..3 into its place in the atlas (cacao_shared.h); levels beyond the slice's
+ * chain (CACAO_DEPTH_MIP_LEVELS) are not stored. */
 void store_mip(int level, ivec2 p, int layer, float z)
 {
-    ivec2 s0 = imageSize(depths_out0).xy;
+    ivec2 s0 = slice_size();
     if (level >= CACAO_DEPTH_MIP_LEVELS(max(s0.x, s0.y))) return;
-    if (level == 1) { if (in_rect(p, imageSize(depths_out1).xy)) imageStore(depths_out1, ivec3(p, layer), vec4(z)); }
-    else if (level == 2) { if (in_rect(p, imageSize(depths_out2).xy)) imageStore(depths_out2, ivec3(p, layer), vec4(z)); }
-    else { if (in_rect(p, imageSize(depths_out3).xy)) imageStore(depths_out3, ivec3(p, layer), vec4(z)); }
+    ivec2 e = ivec2(CACAO_DEPTH_LEVEL_EXTENT(s0.x, level), CACAO_DEPTH_LEVEL_EXTENT(s0.y, level));
+    ivec2 origin = ivec2(s0.x, CACAO_DEPTH_ATLAS_Y(s0.y, level));
+    if (in_rect(p, e)) imageStore(depths_out0, ivec3(origin + p, layer), vec4(z));
 }
 #endif
 
 void main()
 {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 s = imageSize(depths_out0).xy;
-    bool t_in = in_rect(t, s);
+    bool t_in = in_rect(t, slice_size());
 
 #if CACAO_VARIANT == CACAO_DEPTHS_HALF
     /* LOWEST: slices 0 and 3 in layers 0 and 1; integer loads, OOB -> raw 0 (z = M/A). */
@@ -510,27 +510,49 @@ vec3 load_normal_or_zero(ivec2 p, ivec2 s, int layer)
     return in_rect(p, s) ? v : vec3(0.0);
 }
 
+#if GEN_Q >= 2
+/* The depth atlas (cacao_shared.h), per level l = 0..3: (width, height, x, y) of the level in
+ * texels, as floats; the last level of the slice's chain; the atlas's inverse size. Set once per
+ * invocation in main. */
+vec4 g_level[4];
+float g_top_level;
+vec2 g_inv_atlas;
+
+void init_atlas(ivec2 s0, vec2 inv_atlas)
+{
+    for (int l = 0; l < 4; ++l)
+        g_level[l] = vec4(CACAO_DEPTH_LEVEL_EXTENT(s0.x, l), CACAO_DEPTH_LEVEL_EXTENT(s0.y, l),
+                          l == 0 ? 0 : s0.x, CACAO_DEPTH_ATLAS_Y(s0.y, l));
+    g_top_level = float(CACAO_DEPTH_MIP_LEVELS(max(s0.x, s0.y)) - 1);
+    g_inv_atlas = inv_atlas;
+}
+#endif
+
 /* The two mirrored samples of one tap (generate.md step 9 / adaptive.md D). */
 void accumulate_tap(vec4 s, bool use_pattern_weight, vec2 uvd, vec2 inv_s, int layer, vec4 rot_scale,
                     float mip_offset, vec3 pc, vec3 n, float falloff, inout float obsc_sum, inout float weight_sum)
 {
     vec2 off = vec2(rot_scale.x * s.x + rot_scale.y * s.y, rot_scale.z * s.x + rot_scale.w * s.y);
     ivec2 o = ivec2(roundEven(off)); /* snap to whole slice texels */
-    /* ViewspaceDepthTap: the point sampler (nearest texel, nearest mip, clamp to edge) at the
-     * tap's texel-centre UV and explicit LOD, as the spec states it (Q0, Q1: LOD 0). The sampler
-     * selects the mip and its texel; the max maps a -inf LOD (radius 0) and NaN to level 0, and
-     * the sampler clamps above to the last level. On lavapipe this is 11-20% faster per generate
-     * pass than emulating the selection with integer math and texelFetch (docs/speed.md), with
-     * byte-identical output on the shared scenes. */
+    /* ViewspaceDepthTap: a point sample (nearest texel, nearest mip, clamp to edge) at the tap's
+     * texel-centre UV and explicit LOD, as the spec states it (Q0, Q1: LOD 0, the sampler does it).
+     * Q2, Q3 choose the level and texel here, as lavapipe's sampler does (the level is the LOD
+     * rounded to nearest even, at most the last; the texel is the truncated UV times the level's
+     * size, clamped to the level), and read the texel from the atlas at its centre. The max maps a
+     * -inf LOD (radius 0) and NaN to level 0. */
 #if GEN_Q >= 2
-    float lod = max(s.w + mip_offset, 0.0);
-#else
-    const float lod = 0.0;
+    float level = min(roundEven(max(s.w + mip_offset, 0.0)), g_top_level);
+    vec4 lv = level < 0.5 ? g_level[0] : level < 1.5 ? g_level[1] : level < 2.5 ? g_level[2] : g_level[3];
 #endif
     [[unroll]] for (int side = 0; side < 2; ++side) {
         ivec2 os = side == 0 ? o : -o;
         vec2 uv = uvd + vec2(os) * inv_s;
-        float z = textureLod(depths, vec3(uv, float(layer)), lod).r;
+#if GEN_Q >= 2
+        ivec2 t = clamp(ivec2(uv * lv.xy), ivec2(0), ivec2(lv.xy) - 1);
+        float z = textureLod(depths, vec3((vec2(t) + lv.zw + 0.5) * g_inv_atlas, float(layer)), 0.0).r;
+#else
+        float z = textureLod(depths, vec3(uv, float(layer)), 0.0).r;
+#endif
         vec3 delta = vec3((cb.depth_uv_to_view_mul * uv + cb.depth_uv_to_view_add) * view_xy_scale(z), z) - pc;
         float ob = obscurance(n, delta, falloff, cb.effect_horizon_angle_threshold);
         float w = 1.0;
@@ -551,23 +573,28 @@ void main()
     ivec2 xy = texel_of(group);
     int layer = int(gl_WorkGroupID.z);
     int slice = slice_of_layer(layer);
-    ivec2 size = textureSize(depths, 0).xy;
+    ivec2 size = slice_size();
     if (!in_rect(xy, size)) return; /* no LDS, no barriers, no atomics: safe to leave */
-    vec2 inv_s = cb.ssao_buffer_inverse_dimensions; /* = deinterleaved-depth inverse size */
+    vec2 inv_s = cb.ssao_buffer_inverse_dimensions; /* = 1 / slice size */
+    vec2 inv_d = 1.0 / vec2(textureSize(depths, 0).xy); /* the depth image's: the atlas at Q2, Q3 */
+#if GEN_Q >= 2
+    init_atlas(size, inv_d);
+#endif
 
     /* 1. centre, neighbours (mirror), view position, normal, pixel size */
     vec2 uvd = (vec2(xy) + 0.5) * inv_s;
-    /* Centre and its 4 neighbours from two 2x2 gathers at the texel corners before and after xy
-     * (exactly representable UVs). For a neighbour one texel away, the sampler's clamp-to-edge
-     * gives what mirror addressing gives (-1 -> 0, n -> n - 1). Gather order: x = (0,1),
+    /* Centre and its 4 neighbours from two 2x2 gathers at the texel corners before and after xy.
+     * For a neighbour one texel away, clamping to the edge gives what mirror addressing gives
+     * (-1 -> 0, n -> n - 1): the sampler's clamp at the left and top; at the right and bottom the
+     * atlas can continue past the slice, so the clamp is done here. Gather order: x = (0,1),
      * y = (1,1), z = (1,0), w = (0,0). */
-    vec4 g_ul = textureGather(depths, vec3(vec2(xy) * inv_s, float(layer)), 0);
-    vec4 g_br = textureGather(depths, vec3(vec2(xy + 1) * inv_s, float(layer)), 0);
+    vec4 g_ul = textureGather(depths, vec3(vec2(xy) * inv_d, float(layer)), 0);
+    vec4 g_br = textureGather(depths, vec3(vec2(xy + 1) * inv_d, float(layer)), 0);
     float zc = g_ul.y;
     float zl = g_ul.x;
     float zt = g_ul.z;
-    float zr = g_br.z;
-    float zb = g_br.x;
+    float zr = xy.x + 1 < size.x ? g_br.z : zc;
+    float zb = xy.y + 1 < size.y ? g_br.x : zc;
     vec2 uvs = uvd; /* slice UV used as screen UV ([quirk] SLICE-SUBPIXEL) */
     vec3 pc = view_pos(uvs, zc);
     vec3 n = load_normal(xy, layer);
@@ -937,7 +964,7 @@ shared float up_depth[UP_TABLE_X * UP_TABLE_Y];
 /* Deinterleaved depth (mip 0) at slice texel c of a layer; OOB -> 0 (D3D load rule). */
 float load_depth_or_zero(ivec2 c, int layer)
 {
-    return in_rect(c, textureSize(depths, 0).xy) ? texelFetch(depths, ivec3(c, layer), 0).r : 0.0;
+    return in_rect(c, slice_size()) ? texelFetch(depths, ivec3(c, layer), 0).r : 0.0;
 }
 
 /* exp(-(i/2)^2 / spatial variance) for i = 0..5 (a constant index after unrolling). */
@@ -1065,12 +1092,19 @@ void main()
 {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
     if (!in_rect(t, ivec2(cb.tiles_x, cb.tiles_y))) return;
-    vec2 inv_s = 1.0 / vec2(textureSize(depths, 0).xy);
+    ivec2 size = slice_size();
+    ivec2 image_size = textureSize(depths, 0).xy;
+    vec2 inv_d = 1.0 / vec2(image_size);
+    /* The largest gather corner: the slice's edge, where the sampler clamps; or where the atlas
+     * continues past the slice (cacao_shared.h), one texel inside it (the gather then also reads
+     * texel n - 2, of this tile or its neighbour: at most a tile more is computed). */
+    ivec2 corner_max = size - ivec2(greaterThan(image_size, size));
     uint flags = cb.tiles_all != 0 ? 1u : 0u; /* 1: not quiet, 2: not background */
     for (int layer = 0; layer < cb.slice_count && flags < 1u; ++layer) {
         for (int y = 0; y < CACAO_TILE && (flags & 1u) == 0u; y += 2) {
             for (int x = 0; x < CACAO_TILE; x += 2) {
-                vec4 z = textureGather(depths, vec3(vec2(t * CACAO_TILE + ivec2(x, y) + 1) * inv_s, float(layer)), 0);
+                ivec2 corner = min(t * CACAO_TILE + ivec2(x, y) + 1, corner_max);
+                vec4 z = textureGather(depths, vec3(vec2(corner) * inv_d, float(layer)), 0);
                 bvec4 background = greaterThanEqual(z, vec4(cb.background_z));
                 bvec4 faded = lessThan((z * cb.depth_precision_offset_mod) * cb.effect_fade_out_mul +
                                            cb.effect_fade_out_add, vec4(-cb.quiet_margin));

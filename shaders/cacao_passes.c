@@ -49,7 +49,7 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
 /* Binding rows: R reads, W writes; ALL variants or only those listed (bit mask). */
 #define R(slot, res, variants) {CACAO_BINDING_##slot, CACAO_RES_##res, 0, false, variants}
 #define W(slot, res, variants) {CACAO_BINDING_##slot, CACAO_RES_##res, 0, true, variants}
-#define W_MIP(slot, res, mip, variants) {CACAO_BINDING_##slot, CACAO_RES_##res, mip, true, variants}
+#define W_LEVELS(slot, res, levels, variants) {CACAO_BINDING_##slot, CACAO_RES_##res, levels, true, variants}
 #define ALL CACAOI_ALL_VARIANTS
 #define V(v) CACAOI_VARIANT(v)
 #define CONSTANTS R(CONSTANTS, CONSTANTS, ALL)
@@ -58,13 +58,13 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
 #define GEN CACAO_LIST_GENERATE
 
 const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
-    /* spec: prepare.md. HALF = slices 0 and 3 (LOWEST), FULL = four slices, MIPS = + mips 1..3. */
+    /* spec: prepare.md. HALF = slices 0 and 3 (LOWEST), FULL = four slices, MIPS = + mips 1..3,
+     * all levels in one atlas image (cacao_shared.h). */
     PASS(PREPARE_DEPTHS) = {"prepare_depths", {"half", "full", "mips"}, 3, true, false, false, WG(PREPARE),
-                            CACAOI_GRID_SLICE, 6,
-                            {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), W_MIP(DEPTHS_OUT0, DEPTHS, 0, ALL),
-                             W_MIP(DEPTHS_OUT1, DEPTHS, 1, V(CACAO_DEPTHS_MIPS)),
-                             W_MIP(DEPTHS_OUT2, DEPTHS, 2, V(CACAO_DEPTHS_MIPS)),
-                             W_MIP(DEPTHS_OUT3, DEPTHS, 3, V(CACAO_DEPTHS_MIPS))}},
+                            CACAOI_GRID_SLICE, 4,
+                            {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL),
+                             W(DEPTHS_OUT0, DEPTHS, V(CACAO_DEPTHS_HALF) | V(CACAO_DEPTHS_FULL)),
+                             W_LEVELS(DEPTHS_OUT0, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS))}},
     PASS(PREPARE_NORMALS) = {"prepare_normals", {"depth", "input"}, 2, true, false, false, WG(PREPARE),
                              CACAOI_GRID_SLICE, 4,
                              {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, V(0)), R(SRC_NORMALS, NORMALS_INPUT, V(1)),
@@ -134,7 +134,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
 };
 #undef R
 #undef W
-#undef W_MIP
+#undef W_LEVELS
 #undef ALL
 #undef V
 #undef CONSTANTS

@@ -5,7 +5,7 @@
  *                       kind, sampler, name used in the GLSL defines);
  *   - cacaoi_resources: one row per resource (format, size rule, layers, filtering);
  *   - cacaoi_passes:    one row per pass (key axes, variant names, workgroup size, dispatch grid and
- *                       its bindings: slot, resource, mip, access, which variants use it);
+ *                       its bindings: slot, resource, levels, access, which variants use it);
  *   - cacaoi_sequence:  the steps one configuration dispatches, in order.
  *
  * Everything else is derived from them: the keys a configuration needs (cacaoi_keys_for_config,
@@ -85,7 +85,7 @@ extern const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT];
 typedef struct cacaoi_pass_binding {
     uint8_t slot;     /* CACAO_BINDING_* */
     uint8_t resource; /* cacao_resource bound unless the step names another of the same format */
-    uint8_t mip;      /* storage images: the mip level written or read */
+    uint8_t levels;   /* the depths: mip levels the image holds as an atlas (cacao_shared.h), 0 = 1 */
     bool write;
     uint8_t variants; /* bit mask of the variants that declare it */
 } cacaoi_pass_binding;

@@ -147,10 +147,20 @@
  * gets each storage image's qualifier as CACAO_FORMAT_<binding> from the generator. ---- */
 #define CACAO_DEPTH_MIP_COUNT 4
 /* Depth mip levels for a slice whose larger side is n: the full chain, at most
- * CACAO_DEPTH_MIP_COUNT (Vulkan allows floor(log2(n)) + 1 levels; slices narrower than 8 texels,
- * i.e. images below 15 pixels native or 29 downsampled, get fewer). The plan binds the missing
- * levels' outputs to the last level, which the prepare pass then does not write. */
+ * CACAO_DEPTH_MIP_COUNT (the levels a mip chain of that size has: floor(log2(n)) + 1; slices
+ * narrower than 8 texels, i.e. images below 15 pixels native or 29 downsampled, get fewer). */
 #define CACAO_DEPTH_MIP_LEVELS(n) ((n) >= 8 ? 4 : (n) >= 4 ? 3 : (n) >= 2 ? 2 : 1)
+/* The depth atlas (HIGH, HIGHEST: the qualities whose taps read mips). Each layer holds the whole
+ * chain in one single-level image: level 0 (the slice, w x h) at the origin, levels 1.. stacked
+ * downwards to its right, level l at (w, y(l)) with y(1) = 0, y(l + 1) = y(l) + h(l). The atlas is
+ * w + w(1) wide and max(h, y(levels)) tall. One level per image makes every tap a single-level
+ * sample; the level and its texel are chosen in the shader (docs/speed-notes.md: lavapipe's
+ * sampler looks up each lane's level with per-lane loads, which costs 30% of the HIGH generate
+ * pass). Extent of level l of a side of n texels, and the row where level l starts: */
+#define CACAO_DEPTH_LEVEL_EXTENT(n, l) (((n) >> (l)) > 0 ? ((n) >> (l)) : 1)
+#define CACAO_DEPTH_ATLAS_Y(h, l)                                                                  \
+    (((l) >= 2 ? CACAO_DEPTH_LEVEL_EXTENT(h, 1) : 0) + ((l) >= 3 ? CACAO_DEPTH_LEVEL_EXTENT(h, 2) : 0) + \
+     ((l) >= 4 ? CACAO_DEPTH_LEVEL_EXTENT(h, 3) : 0))
 
 /* ---- Algorithm constants (spec: constants.md section 2 and 3) ---- */
 #define CACAO_MAX_TAPS 32
@@ -304,7 +314,9 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(INT, blur_groups_x)               /* the blur's full grid and output texels per group */     \
     M(INT, blur_groups_y)                                                                          \
     M(INT, blur_out_x)                                                                             \
-    M(INT, blur_out_y)
+    M(INT, blur_out_y)                                                                             \
+    M(INT, slice_width)                 /* the slice (deinterleaved image, level 0) in texels */   \
+    M(INT, slice_height)
 
 #ifdef CACAO_GLSL
 layout(std140, set = 0, binding = CACAO_BINDING_CONSTANTS) uniform cacao_constants_block {

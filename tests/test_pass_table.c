@@ -44,7 +44,10 @@ static void test_rows(void) {
                 CHECK(buffer_slot == is_buffer(b->resource));
                 if (cacaoi_slots[b->slot].sampler == CACAOI_SAMPLER_LINEAR) CHECK(cacaoi_resources[b->resource].filtered);
                 if (kind == CACAO_RESOURCE_SAMPLED_IMAGE) CHECK(!b->write); /* sampled = read */
-                if (b->mip) CHECK(b->resource == CACAO_RES_DEPTHS && b->mip < CACAO_DEPTH_MIP_COUNT);
+                /* only the depths hold levels (an atlas), written by prepare's MIPS variant */
+                if (b->levels > 1)
+                    CHECK(b->resource == CACAO_RES_DEPTHS && b->levels <= CACAO_DEPTH_MIP_COUNT && b->write &&
+                          b->slot == CACAO_BINDING_DEPTHS_OUT0);
             }
             CHECK(seen[CACAO_BINDING_CONSTANTS] == 1); /* every pass reads the constant block */
             for (unsigned s = 0; s < CACAO_BINDING_COUNT; ++s) CHECK(seen[s] <= 1);

@@ -85,9 +85,10 @@ static void test_only_needed_resources(void) {
     cacao_plan highest =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
     const cacao_plan_image *depths = find_image(&highest, CACAO_RES_DEPTHS);
-    CHECK(depths->mips == 4 && depths->layers == 4 && depths->width == 960 && depths->height == 540);
-    /* 960x540 + 480x270 + 240x135 + 120x67 texels, 4 layers, 2 bytes. */
-    CHECK(depths->bytes == (uint64_t)(960 * 540 + 480 * 270 + 240 * 135 + 120 * 67) * 4 * 2);
+    /* The atlas: 960x540 with 480x270, 240x135 and 120x67 stacked to its right (270 + 135 + 67 =
+     * 472 rows, fewer than 540): 1440x540 texels, 4 layers, 2 bytes. */
+    CHECK(depths->mips == 4 && depths->layers == 4 && depths->width == 1440 && depths->height == 540);
+    CHECK(depths->bytes == (uint64_t)1440 * 540 * 4 * 2);
     CHECK(find_image(&highest, CACAO_RES_IMPORTANCE)->width == 480);
     CHECK(highest.uses_load_counter);
     uint64_t sum = 0;
@@ -117,24 +118,30 @@ static void test_dispatch_sizes(void) {
     CHECK(d.steps[d.step_count - 1].dispatch[0] == 32 && d.steps[d.step_count - 1].dispatch[1] == 2); /* /32 */
 }
 
-/* Small sizes: the depth mip chain is what Vulkan allows for the slice (floor(log2(max side)) + 1
- * levels, at most 4), and the prepare pass's outputs for the missing levels alias the last one. */
+/* Small sizes: the depth mip chain is the one a mip-mapped image of the slice's size would have
+ * (floor(log2(max side)) + 1 levels, at most 4), laid out as an atlas: the slice, then levels 1..
+ * stacked to its right, each max(1, side >> level), by hand below. */
 static void test_small_mip_chain(void) {
     static const struct {
-        uint32_t w, h, slice_w, slice_h, mips;
-    } cases[] = {{1, 1, 1, 1, 1},  {3, 1, 2, 1, 2},  {1, 9, 1, 5, 3},
-                 {14, 5, 7, 3, 3}, {15, 2, 8, 1, 4}, {64, 64, 32, 32, 4}};
+        uint32_t w, h, slice_w, slice_h, mips, atlas_w, atlas_h;
+    } cases[] = {
+        {1, 1, 1, 1, 1, 1, 1},          /* one level: the slice alone */
+        {3, 1, 2, 1, 2, 3, 1},          /* 2x1 + 1x1 */
+        {1, 9, 1, 5, 3, 2, 5},          /* 1x5 + 1x2, 1x1 (3 rows) */
+        {14, 5, 7, 3, 3, 10, 3},        /* 7x3 + 3x1, 1x1 */
+        {15, 2, 8, 1, 4, 12, 3},        /* 8x1 + 4x1, 2x1, 1x1: the chain is taller than the slice */
+        {64, 64, 32, 32, 4, 48, 32}};   /* 32x32 + 16x16, 8x8, 4x4 (28 rows) */
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
         cacao_plan p =
             build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .generate_normals = true}, cases[c].w, cases[c].h);
         CHECK(p.slice_width == cases[c].slice_w && p.slice_height == cases[c].slice_h);
         const cacao_plan_image *depths = find_image(&p, CACAO_RES_DEPTHS);
         CHECK(depths && depths->mips == cases[c].mips);
-        for (uint32_t m = 0; m < CACAO_DEPTH_MIP_COUNT; ++m) {
-            const cacao_plan_binding *b = &p.steps[0].bindings[2 + m]; /* constants, source depth, then mips */
-            CHECK(b->binding == CACAO_BINDING_DEPTHS_OUT0 + m && b->write);
-            CHECK(b->mip == (m < cases[c].mips ? m : cases[c].mips - 1));
-        }
+        CHECK(depths->width == cases[c].atlas_w && depths->height == cases[c].atlas_h);
+        CHECK(depths->bytes == (uint64_t)cases[c].atlas_w * cases[c].atlas_h * 4 * 2);
+        const cacao_plan_binding *b = &p.steps[0].bindings[2]; /* constants, source depth, the atlas */
+        CHECK(p.steps[0].binding_count == 3 && b->binding == CACAO_BINDING_DEPTHS_OUT0 && b->write &&
+              b->resource == CACAO_RES_DEPTHS);
     }
 }
 

@@ -40,7 +40,7 @@ int main(void) {
     CHECK(!sg_check_row(&m));
 
     CHECK(reflect_key("prepare_depths.mips.native", &m));
-    m.image_format[CACAO_BINDING_DEPTHS_OUT2] = m.image_format[CACAO_BINDING_DEPTHS_OUT2] + 1; /* other format */
+    m.image_format[CACAO_BINDING_DEPTHS_OUT0] = m.image_format[CACAO_BINDING_DEPTHS_OUT0] + 1; /* other format */
     CHECK(!sg_check_row(&m));
 
     CHECK(reflect_key("blur.3.fp16", &m));

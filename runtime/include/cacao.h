@@ -153,7 +153,7 @@ typedef enum cacao_resource {
     CACAO_RES_OUTPUT,           /* caller's AO output image */
     CACAO_RES_CONSTANTS,        /* uniform buffer, updated in the command buffer each frame */
     CACAO_RES_LOAD_COUNTER,     /* storage buffer (HIGHEST) */
-    CACAO_RES_DEPTHS,           /* deinterleaved view-space depth, R16F, mips at HIGH+ */
+    CACAO_RES_DEPTHS,           /* deinterleaved view-space depth, R16F, a mip atlas at HIGH+ */
     CACAO_RES_NORMALS,          /* deinterleaved normals, RGBA8 SNORM */
     CACAO_RES_SSAO_PING,        /* AO + edges, RG8 */
     CACAO_RES_SSAO_PONG,        /* Q3 base result / blur output, RG8 */
@@ -174,18 +174,19 @@ const char *cacao_resource_name(cacao_resource resource);
 typedef struct cacao_plan_image {
     cacao_resource resource;
     VkFormat format;
-    uint32_t width, height, layers, mips;
-    uint64_t bytes;             /* tightly packed size, all layers and mips */
+    uint32_t width, height, layers; /* of the Vulkan image, which has one mip level */
+    uint32_t mips;              /* depth mip levels it holds: more than 1 only for the depths at HIGH+,
+                                   level 0 (the slice) with the others stacked to its right */
+    uint64_t bytes;             /* tightly packed size, all layers */
 } cacao_plan_image;
 
 #define CACAO_PLAN_MAX_STEPS 16
 #define CACAO_PLAN_MAX_BINDINGS 10
 
-/* One binding of a step: descriptor binding number -> resource (and mip level for depth writes). */
+/* One binding of a step: descriptor binding number -> resource. */
 typedef struct cacao_plan_binding {
     uint8_t binding;            /* descriptor binding number in the pass's shader */
     uint8_t resource;           /* cacao_resource */
-    uint8_t mip;                /* mip level for per-mip storage views */
     uint8_t write;              /* 1 if the pass writes it */
 } cacao_plan_binding;
 

@@ -303,6 +303,8 @@ void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao
     const float w = (float)plan->width, h = (float)plan->height;
     const float iw = (float)plan->importance_width, ih = (float)plan->importance_height;
     c->ssao_buffer_inverse_dimensions = v2(1.0f / sw, 1.0f / sh);
+    c->slice_width = (int)plan->slice_width;
+    c->slice_height = (int)plan->slice_height;
     c->depth_buffer_inverse_dimensions = v2(1.0f / w, 1.0f / h);
     c->output_buffer_inverse_dimensions = v2(1.0f / w, 1.0f / h);
     c->importance_map_inverse_dimensions = v2(1.0f / iw, 1.0f / ih);

@@ -174,8 +174,6 @@ static void release_images_and_buffers(cacao_context *ctx) {
     VkDevice d = ctx->device;
     for (unsigned r = 0; r < CACAO_RES_COUNT; ++r) {
         cacao_intermediate *im = &ctx->images[r];
-        for (unsigned m = 0; m < CACAO_DEPTH_MIP_COUNT; ++m)
-            if (im->mip_views[m]) vkDestroyImageView(d, im->mip_views[m], ctx->alloc);
         if (im->view) vkDestroyImageView(d, im->view, ctx->alloc);
         if (im->image) vkDestroyImage(d, im->image, ctx->alloc);
         if (im->memory) vkFreeMemory(d, im->memory, ctx->alloc);
@@ -264,7 +262,7 @@ static cacao_result create_image(cacao_context *ctx, const cacao_plan_image *pi)
         .imageType = VK_IMAGE_TYPE_2D,
         .format = pi->format,
         .extent = {pi->width, pi->height, 1},
-        .mipLevels = pi->mips,
+        .mipLevels = 1, /* the depth mips, where there are, are an atlas (cacao_shared.h) */
         .arrayLayers = pi->layers,
         .samples = VK_SAMPLE_COUNT_1_BIT,
         .tiling = VK_IMAGE_TILING_OPTIMAL,
@@ -288,17 +286,11 @@ static cacao_result create_image(cacao_context *ctx, const cacao_plan_image *pi)
         .image = im->image,
         .viewType = array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D,
         .format = pi->format,
-        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, pi->mips, 0, pi->layers},
+        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, pi->layers},
     };
     vr = vkCreateImageView(ctx->device, &view, ctx->alloc, &im->view);
-    for (uint32_t m = 0; vr == VK_SUCCESS && m < pi->mips; ++m) {
-        view.subresourceRange.baseMipLevel = m;
-        view.subresourceRange.levelCount = 1;
-        vr = vkCreateImageView(ctx->device, &view, ctx->alloc, &im->mip_views[m]);
-    }
     if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateImageView");
     im->layers = pi->layers;
-    im->mips = pi->mips;
     ctx->memory.image_count++;
     return CACAO_SUCCESS;
 }

@@ -96,21 +96,23 @@ static void dispatch_size(const cacao_plan *p, const cacao_key *key, uint32_t ou
     }
 }
 
-/* An intermediate sized by its row's rule, with the mips the steps bind (clamped to the chain the
- * slice has: CACAO_DEPTH_MIP_LEVELS). */
-static void add_image(cacao_plan *p, cacao_resource res, uint32_t mips_bound) {
+/* An intermediate sized by its row's rule. With more than one mip level bound (the depths at
+ * HIGH+), the levels of the chain the slice has (CACAO_DEPTH_MIP_LEVELS) in one atlas image:
+ * level 0 with levels 1.. stacked to its right (cacao_shared.h). */
+static void add_image(cacao_plan *p, cacao_resource res, uint32_t levels_bound) {
     const cacaoi_resource_row *row = &cacaoi_resources[res];
     uint32_t w = p->width, h = p->height, layers = 1;
     if (row->size == CACAOI_SIZE_SLICE) w = p->slice_width, h = p->slice_height;
     if (row->size == CACAOI_SIZE_IMPORTANCE) w = p->importance_width, h = p->importance_height;
     if (row->layered) layers = p->slice_count;
     const uint32_t chain = CACAO_DEPTH_MIP_LEVELS(w > h ? w : h);
-    const uint32_t mips = mips_bound < chain ? mips_bound : chain;
-    uint64_t bytes = 0;
-    for (uint32_t m = 0; m < mips; ++m) {
-        uint64_t mw = w >> m ? w >> m : 1, mh = h >> m ? h >> m : 1;
-        bytes += mw * mh * layers * row->texel_bytes;
+    const uint32_t mips = levels_bound < chain ? levels_bound : chain;
+    if (mips > 1) {
+        const uint32_t chain_h = CACAO_DEPTH_ATLAS_Y(h, mips);
+        w += CACAO_DEPTH_LEVEL_EXTENT(w, 1);
+        h = h > chain_h ? h : chain_h;
     }
+    const uint64_t bytes = (uint64_t)w * h * layers * row->texel_bytes;
     p->images[p->image_count++] = (cacao_plan_image){res, row->format, w, h, layers, mips, bytes};
     p->total_bytes += bytes;
 }
@@ -168,7 +170,8 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
         binding_count[i] = cacaoi_step_bindings(&steps[i], bindings[i]);
         for (size_t j = 0; j < binding_count[i]; ++j) {
             const cacaoi_pass_binding *b = &bindings[i][j];
-            if (mips[b->resource] < b->mip + 1u) mips[b->resource] = b->mip + 1u;
+            const uint32_t levels = b->levels > 1 ? b->levels : 1;
+            if (mips[b->resource] < levels) mips[b->resource] = levels;
         }
     }
 
@@ -197,14 +200,8 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
         dispatch_size(plan, key, st->dispatch);
         st->list = cacaoi_passes[key->pass].lists[key->variant];
         for (size_t j = 0; j < binding_count[i]; ++j) {
-            /* A level the slice's chain lacks is bound to its last level, which the shader then
-             * leaves alone (CACAO_DEPTH_MIP_LEVELS). */
             const cacaoi_pass_binding *b = &bindings[i][j];
-            const cacao_plan_image *im = NULL;
-            for (uint32_t k = 0; k < plan->image_count; ++k)
-                if (plan->images[k].resource == b->resource) im = &plan->images[k];
-            const uint32_t mip = im && b->mip >= im->mips ? im->mips - 1 : b->mip;
-            st->bindings[st->binding_count++] = (cacao_plan_binding){b->slot, b->resource, (uint8_t)mip, b->write};
+            st->bindings[st->binding_count++] = (cacao_plan_binding){b->slot, b->resource, b->write};
         }
         finish_step(&b, st);
     }
@@ -246,20 +243,15 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
                 fprintf(out, " %s", cacaoi_resources[s->bindings[j].resource].name);
         fprintf(out, "  writes");
         for (uint32_t j = 0; j < s->binding_count; ++j)
-            if (s->bindings[j].write) {
-                if (s->bindings[j].resource == CACAO_RES_DEPTHS)
-                    fprintf(out, " depths[mip %u]", s->bindings[j].mip);
-                else
-                    fprintf(out, " %s", cacaoi_resources[s->bindings[j].resource].name);
-            }
+            if (s->bindings[j].write) fprintf(out, " %s", cacaoi_resources[s->bindings[j].resource].name);
         fprintf(out, "\n");
     }
     fprintf(out, "intermediates:\n");
     for (uint32_t i = 0; i < p->image_count; ++i) {
         const cacao_plan_image *im = &p->images[i];
-        fprintf(out, "  %-16s %4ux%-4u x%u layers, %u mips, %-14s %llu bytes\n", cacaoi_resources[im->resource].name,
-                im->width, im->height, im->layers, im->mips, cacaoi_resources[im->resource].format_name,
-                (unsigned long long)im->bytes);
+        fprintf(out, "  %-16s %4ux%-4u x%u layers, %u mips%s, %-14s %llu bytes\n", cacaoi_resources[im->resource].name,
+                im->width, im->height, im->layers, im->mips, im->mips > 1 ? " (atlas)" : "",
+                cacaoi_resources[im->resource].format_name, (unsigned long long)im->bytes);
     }
     fprintf(out, "total intermediate memory: %llu bytes\n", (unsigned long long)p->total_bytes);
 }

@@ -172,8 +172,7 @@ static void describe(const cacao_context *ctx, const cacao_inputs *in, const cac
     case CACAO_RES_OUTPUT: info->image = (VkDescriptorImageInfo){0, in->output.view, VK_IMAGE_LAYOUT_GENERAL}; return;
     default: {
         const cacao_intermediate *im = &ctx->images[b->resource];
-        const bool storage = cacaoi_binding_type(b->binding) == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-        info->image = (VkDescriptorImageInfo){0, storage ? im->mip_views[b->mip] : im->view, VK_IMAGE_LAYOUT_GENERAL};
+        info->image = (VkDescriptorImageInfo){0, im->view, VK_IMAGE_LAYOUT_GENERAL};
         return;
     }
     }
