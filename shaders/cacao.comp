@@ -281,17 +281,22 @@ ivec2 full_res_pixel(ivec2 t, int slice)
 /* spec: prepare.md "Which full-resolution pixels each slice keeps", "Depth mips" */
 layout(local_size_x = CACAO_WG_PREPARE_X, local_size_y = CACAO_WG_PREPARE_Y) in;
 
+/* HALF and FULL: one slice texel per invocation. MIPS: a 2x2 quad of slice texels per invocation
+ * (2u .. 2u + 1, all slices; the pass row halves its grid), so a group covers 2T x 2T texels: the
+ * first mip level comes from registers, and only levels 2 and 3 go through shared memory and
+ * barriers, which lavapipe runs slowly (shared loads lane by lane, barriers by switching between
+ * the group's invocations): 47% faster than one texel per invocation with all three levels in
+ * shared memory (docs/speed-notes.md). */
 #if CACAO_VARIANT == CACAO_DEPTHS_MIPS
-/* Per-slice tiles of mips 0..2 of this group, fp32 (AMD does not re-quantise between levels).
- * The group's tile is T x T slice texels; mips 1..3 of it are T/2, T/4 and T/8 = 1 texel wide, and
- * the reduction below gives each step's texels to the first threads: written for T = 8. */
+/* Per-slice tiles of levels 1 and 2 of this group, fp32 (AMD does not re-quantise between levels).
+ * Levels 1..3 of the group's tile are T, T/2 and T/4 texels wide, and the reduction below gives
+ * each step's texels to the first threads: written for T = 8. */
 #define PREP_T CACAO_WG_PREPARE_X
 #if CACAO_WG_PREPARE_X != 8 || CACAO_WG_PREPARE_Y != 8
-#error "prepare_depths.mips reduces an 8x8 workgroup tile to mips 1..3 (one texel at mip 3): rewrite its reduction for another CACAO_WG_PREPARE size"
+#error "prepare_depths.mips reduces a 16x16 tile of an 8x8 workgroup to mips 1..3 (2x2 texels at mip 3): rewrite its reduction for another CACAO_WG_PREPARE size"
 #endif
-shared float lds_mip0[4][PREP_T * PREP_T];
-shared float lds_mip1[4][(PREP_T / 2) * (PREP_T / 2)];
-shared float lds_mip2[4][(PREP_T / 4) * (PREP_T / 4)];
+shared float lds_mip1[4][PREP_T * PREP_T];
+shared float lds_mip2[4][(PREP_T / 2) * (PREP_T / 2)];
 
 /* Depth-aware average; F = -1 ([quirk] MIP-WEIGHT-PRECEDENCE kept). */
 float smart_average(float d0, float d1, float d2, float d3)
@@ -313,69 +318,83 @@ void store_mip(int level, ivec2 p, int layer, float z)
     ivec2 origin = ivec2(s0.x, CACAO_DEPTH_ATLAS_Y(s0.y, level));
     if (in_rect(p, e)) imageStore(depths_out0, ivec3(origin + p, layer), vec4(z));
 }
+
+/* The 2x2 level-l texels 2q .. 2q + 1 of tile[k] (row-major, w wide) reduced to one texel of
+ * level l + 1; the argument order is the one every level uses: (0,0), (0,1), (1,0), (1,1). */
+#define REDUCE_QUAD(tile, k, q, w)                                                                 \
+    smart_average(tile[k][(2 * (q).y) * (w) + 2 * (q).x], tile[k][(2 * (q).y + 1) * (w) + 2 * (q).x], \
+                  tile[k][(2 * (q).y) * (w) + 2 * (q).x + 1], tile[k][(2 * (q).y + 1) * (w) + 2 * (q).x + 1])
 #endif
 
-void main()
+/* View z of slice texel t in the four slices, from clamp-to-edge reads (the footprint AMD's
+ * gather / point samples intend). */
+vec4 slice_depths(ivec2 t)
 {
-    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
-    bool t_in = in_rect(t, slice_size());
-
-#if CACAO_VARIANT == CACAO_DEPTHS_HALF
-    /* LOWEST: slices 0 and 3 in layers 0 and 1; integer loads, OOB -> raw 0 (z = M/A). */
-    if (!t_in) return;
-    imageStore(depths_out0, ivec3(t, 0), vec4(view_z(load_src_depth_or_zero(full_res_pixel(t, 0)))));
-    imageStore(depths_out0, ivec3(t, 1), vec4(view_z(load_src_depth_or_zero(full_res_pixel(t, 3)))));
-#else
-    /* Four slices; clamp-to-edge reads (the footprint AMD's gather / point samples intend). */
-    float z[4];
 #if CACAO_DOWNSAMPLED == 0
     /* Native: slice k holds pixel 2t + (k & 1, k >> 1), so the four are one 2x2 gather, taken at
      * the texels' shared corner (see prepare_normals). Gather order: x = (0,1), y = (1,1),
      * z = (1,0), w = (0,0). */
-    vec4 g4 = textureGather(src_depth, vec2(2 * t + 1) * cb.depth_buffer_inverse_dimensions, 0);
-    vec4 raw = g4.wzxy;
-#endif
-    [[unroll]] for (int k = 0; k < 4; ++k) {
-#if CACAO_DOWNSAMPLED == 0
-        z[k] = view_z(raw[k]);
+    vec4 raw = textureGather(src_depth, vec2(2 * t + 1) * cb.depth_buffer_inverse_dimensions, 0).wzxy;
+    return vec4(view_z(raw.x), view_z(raw.y), view_z(raw.z), view_z(raw.w));
 #else
-        z[k] = view_z(load_src_depth_clamped(full_res_pixel(t, k)));
+    return vec4(view_z(load_src_depth_clamped(full_res_pixel(t, 0))), view_z(load_src_depth_clamped(full_res_pixel(t, 1))),
+                view_z(load_src_depth_clamped(full_res_pixel(t, 2))), view_z(load_src_depth_clamped(full_res_pixel(t, 3))));
 #endif
-        if (t_in) imageStore(depths_out0, ivec3(t, k), vec4(z[k]));
+}
+
+void store_slices(ivec2 t, vec4 z)
+{
+    [[unroll]] for (int k = 0; k < 4; ++k) imageStore(depths_out0, ivec3(t, k), vec4(z[k]));
+}
+
+void main()
+{
+    ivec2 s = slice_size();
+#if CACAO_VARIANT == CACAO_DEPTHS_HALF
+    /* LOWEST: slices 0 and 3 in layers 0 and 1; integer loads, OOB -> raw 0 (z = M/A). */
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    if (!in_rect(t, s)) return;
+    imageStore(depths_out0, ivec3(t, 0), vec4(view_z(load_src_depth_or_zero(full_res_pixel(t, 0)))));
+    imageStore(depths_out0, ivec3(t, 1), vec4(view_z(load_src_depth_or_zero(full_res_pixel(t, 3)))));
+#elif CACAO_VARIANT == CACAO_DEPTHS_FULL
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    if (!in_rect(t, s)) return;
+    store_slices(t, slice_depths(t));
+#else
+    /* The quad 2u .. 2u + 1; every texel of it is computed, also past the slice's edge (clamped
+     * values), since the levels above average them. z[q][k]: texel 2u + (q & 1, q >> 1), slice k. */
+    ivec2 u = ivec2(gl_GlobalInvocationID.xy);
+    vec4 z[4];
+    [[unroll]] for (int q = 0; q < 4; ++q) {
+        ivec2 t = 2 * u + ivec2(q & 1, q >> 1);
+        z[q] = slice_depths(t);
+        if (in_rect(t, s)) store_slices(t, z[q]);
     }
 
-#if CACAO_VARIANT == CACAO_DEPTHS_MIPS
-    /* Every thread of the group contributes, including out-of-range ones (clamped values). */
     int li = int(gl_LocalInvocationIndex);
     ivec2 g = ivec2(gl_WorkGroupID.xy);
-    for (int k = 0; k < 4; ++k) lds_mip0[k][li] = z[k];
-    barrier();
-
-    { /* mip 1: 4 slices x 4x4 texels = 64 work items, one per thread */
-        int k = li / 16, j = li % 16, a = j % 4, b = j / 4;
-        float m = smart_average(lds_mip0[k][(2 * b) * PREP_T + 2 * a], lds_mip0[k][(2 * b + 1) * PREP_T + 2 * a],
-                                lds_mip0[k][(2 * b) * PREP_T + 2 * a + 1],
-                                lds_mip0[k][(2 * b + 1) * PREP_T + 2 * a + 1]);
-        lds_mip1[k][b * 4 + a] = m;
-        store_mip(1, g * 4 + ivec2(a, b), k, m);
+    /* level 1: texel u of each slice, from this thread's quad */
+    [[unroll]] for (int k = 0; k < 4; ++k) {
+        float m = smart_average(z[0][k], z[2][k], z[1][k], z[3][k]);
+        lds_mip1[k][li] = m;
+        store_mip(1, u, k, m);
     }
     barrier();
 
-    if (li < 16) { /* mip 2: 4 slices x 2x2 texels */
-        int k = li / 4, j = li % 4, a = j % 2, b = j / 2;
-        float m = smart_average(lds_mip1[k][(2 * b) * 4 + 2 * a], lds_mip1[k][(2 * b + 1) * 4 + 2 * a],
-                                lds_mip1[k][(2 * b) * 4 + 2 * a + 1], lds_mip1[k][(2 * b + 1) * 4 + 2 * a + 1]);
-        lds_mip2[k][b * 2 + a] = m;
-        store_mip(2, g * 2 + ivec2(a, b), k, m);
+    { /* level 2: 4 slices x 4x4 texels = 64 work items, one per thread */
+        int k = li / 16;
+        ivec2 q = ivec2(li % 4, (li % 16) / 4);
+        float m = REDUCE_QUAD(lds_mip1, k, q, PREP_T);
+        lds_mip2[k][q.y * (PREP_T / 2) + q.x] = m;
+        store_mip(2, g * (PREP_T / 2) + q, k, m);
     }
     barrier();
 
-    if (li < 4) { /* mip 3: 4 slices x 1 texel */
-        int k = li;
-        float m = smart_average(lds_mip2[k][0], lds_mip2[k][2], lds_mip2[k][1], lds_mip2[k][3]);
-        store_mip(3, g, k, m);
+    if (li < 16) { /* level 3: 4 slices x 2x2 texels */
+        int k = li / 4;
+        ivec2 q = ivec2(li % 2, (li % 4) / 2);
+        store_mip(3, g * (PREP_T / 4) + q, k, REDUCE_QUAD(lds_mip2, k, q, PREP_T / 2));
     }
-#endif
 #endif
 }
 #endif /* PREPARE_DEPTHS */
@@ -387,10 +406,9 @@ layout(local_size_x = CACAO_WG_PREPARE_X, local_size_y = CACAO_WG_PREPARE_Y) in;
 
 void main()
 {
+#if CACAO_VARIANT == 1
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
     if (!in_rect(t, imageSize(normals_out).xy)) return; /* no side effects: no LDS, no atomics */
-
-#if CACAO_VARIANT == 1
     /* Transform the caller's normal; not renormalised ([quirk] NORMALS-NOT-NORMALIZED). */
     ivec2 size = textureSize(src_normals, 0);
     [[unroll]] for (int layer = 0; layer < 4; ++layer) {
@@ -402,19 +420,26 @@ void main()
         imageStore(normals_out, ivec3(t, layer), vec4(clamp(nv, vec3(-1.0), vec3(1.0)), 1.0));
     }
 #else
-    /* 4x4 neighbourhood without corners; pos[j][i] = column i, row j. */
-    vec3 pos[4][4];
+    /* From depth, for the 2x2 quad of slice texels 2u .. 2u + 1 (the pass row halves the grid).
+     * Each texel's normals need a 4x4 block of full-res depths without its corners; the quad's
+     * blocks overlap in one 6x6 block (without its corners): 32 reads instead of 4 x 12, and about
+     * a third less work per texel (docs/speed-notes.md). pos[j][i] = column i, row j; the
+     * full-res pixel of entry (i, j) is 4u - 1 + (i, j) native, 8u + 2 (i - 1, j - 1) downsampled. */
+    ivec2 u = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(normals_out).xy;
+    if (!in_rect(2 * u, size)) return; /* no side effects: no LDS, no atomics */
+    vec3 pos[6][6];
 #if CACAO_DOWNSAMPLED == 0
-    /* Native: the 4x4 block of full-res depths at 2t - 1 .. 2t + 2 in four gathers (one sampler
-     * operation per 2x2, clamp-to-edge like load_src_depth_clamped), not twelve loads. Each gather
-     * is taken at the shared corner of its 2x2 texels, exactly representable, so the texels are
-     * the intended ones. Gather order: x = (0,1), y = (1,1), z = (1,0), w = (0,0). */
-    float dz[4][4];
+    /* Native: in nine gathers (one sampler operation per 2x2, clamp-to-edge like
+     * load_src_depth_clamped), not 32 loads. Each gather is taken at the shared corner of its 2x2
+     * texels, exactly representable, so the texels are the intended ones. Gather order: x = (0,1),
+     * y = (1,1), z = (1,0), w = (0,0). */
+    float dz[6][6];
     {
         vec2 inv = cb.depth_buffer_inverse_dimensions;
-        [[unroll]] for (int gj = 0; gj < 2; ++gj) {
-            [[unroll]] for (int gi = 0; gi < 2; ++gi) {
-                vec4 g4 = textureGather(src_depth, vec2(2 * t + 2 * ivec2(gi, gj)) * inv, 0);
+        [[unroll]] for (int gj = 0; gj < 3; ++gj) {
+            [[unroll]] for (int gi = 0; gi < 3; ++gi) {
+                vec4 g4 = textureGather(src_depth, vec2(4 * u + 2 * ivec2(gi, gj)) * inv, 0);
                 dz[2 * gj][2 * gi] = g4.w;
                 dz[2 * gj][2 * gi + 1] = g4.z;
                 dz[2 * gj + 1][2 * gi] = g4.x;
@@ -425,34 +450,40 @@ void main()
 #endif
     /* fully unrolled: with constant indices the array lives in registers (a dynamically indexed
      * local array is copied to memory on lavapipe) */
-    [[unroll]] for (int j = 0; j < 4; ++j) {
-        [[unroll]] for (int i = 0; i < 4; ++i) {
+    [[unroll]] for (int j = 0; j < 6; ++j) {
+        [[unroll]] for (int i = 0; i < 6; ++i) {
             pos[j][i] = vec3(0.0);
-            if ((i == 0 || i == 3) && (j == 0 || j == 3)) continue;
+            if ((i == 0 || i == 5) && (j == 0 || j == 5)) continue;
             ivec2 o = ivec2(i - 1, j - 1);
 #if CACAO_DOWNSAMPLED == 1
             /* integer loads: OOB -> raw 0 ([quirk] DOWNSAMPLED-NORMAL-OOB kept) */
-            float d = load_src_depth_or_zero(4 * t + 2 * o);
-            vec2 uv = (vec2(4 * t) + 0.5 + 2.0 * vec2(o)) * cb.depth_buffer_inverse_dimensions;
+            float d = load_src_depth_or_zero(8 * u + 2 * o);
+            vec2 uv = (vec2(8 * u) + 0.5 + 2.0 * vec2(o)) * cb.depth_buffer_inverse_dimensions;
 #else
             float d = dz[j][i];
-            vec2 uv = (vec2(2 * t) + 0.5 + vec2(o)) * cb.depth_buffer_inverse_dimensions;
+            vec2 uv = (vec2(4 * u) + 0.5 + vec2(o)) * cb.depth_buffer_inverse_dimensions;
 #endif
             pos[j][i] = view_pos(uv, view_z(d));
         }
     }
 
-    [[unroll]] for (int k = 0; k < 4; ++k) {
-        if (cb.slice_count == 2 && (k == 1 || k == 2)) continue; /* LOWEST: slices 0 and 3 */
-        int layer = cb.slice_count == 2 ? k / 3 : k;
-        int ci = 1 + (k & 1), cj = 1 + (k >> 1); /* centre (1,1) slice 0 ... (2,2) slice 3 */
-        vec3 pc = pos[cj][ci];
-        vec3 pl = pos[cj][ci - 1], pr = pos[cj][ci + 1];
-        vec3 pt = pos[cj - 1][ci], pb = pos[cj + 1][ci];
-        vec4 e = depth_edges(pc.z, pl.z, pr.z, pt.z, pb.z);
-        vec3 n = normal_from_neighbours(normalize(pl - pc), normalize(pr - pc), normalize(pt - pc),
-                                        normalize(pb - pc), e);
-        imageStore(normals_out, ivec3(t, layer), vec4(n, 1.0));
+    [[unroll]] for (int q = 0; q < 4; ++q) {
+        ivec2 qo = ivec2(q & 1, q >> 1);
+        ivec2 t = 2 * u + qo;
+        if (!in_rect(t, size)) continue;
+        [[unroll]] for (int k = 0; k < 4; ++k) {
+            if (cb.slice_count == 2 && (k == 1 || k == 2)) continue; /* LOWEST: slices 0 and 3 */
+            int layer = cb.slice_count == 2 ? k / 3 : k;
+            /* centre: (1,1) for slice 0 ... (2,2) for slice 3, of the texel's 4x4 block */
+            int ci = 1 + (k & 1) + 2 * qo.x, cj = 1 + (k >> 1) + 2 * qo.y;
+            vec3 pc = pos[cj][ci];
+            vec3 pl = pos[cj][ci - 1], pr = pos[cj][ci + 1];
+            vec3 pt = pos[cj - 1][ci], pb = pos[cj + 1][ci];
+            vec4 e = depth_edges(pc.z, pl.z, pr.z, pt.z, pb.z);
+            vec3 n = normal_from_neighbours(normalize(pl - pc), normalize(pr - pc), normalize(pt - pc),
+                                            normalize(pb - pc), e);
+            imageStore(normals_out, ivec3(t, layer), vec4(n, 1.0));
+        }
     }
 #endif
 }

@@ -64,11 +64,15 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                             CACAOI_GRID_SLICE, 4,
                             {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL),
                              W(DEPTHS_OUT0, DEPTHS, V(CACAO_DEPTHS_HALF) | V(CACAO_DEPTHS_FULL)),
-                             W_LEVELS(DEPTHS_OUT0, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS))}},
+                             W_LEVELS(DEPTHS_OUT0, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS))},
+                            /* the mips variant reduces a 2x2 quad per invocation in registers */
+                            .quad_variants = V(CACAO_DEPTHS_MIPS)},
     PASS(PREPARE_NORMALS) = {"prepare_normals", {"depth", "input"}, 2, true, false, false, WG(PREPARE),
                              CACAOI_GRID_SLICE, 4,
                              {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, V(0)), R(SRC_NORMALS, NORMALS_INPUT, V(1)),
-                              W(NORMALS_OUT, NORMALS, ALL)}},
+                              W(NORMALS_OUT, NORMALS, ALL)},
+                             /* from depth: a 2x2 quad per invocation shares its neighbourhood reads */
+                             .quad_variants = V(0)},
     /* spec: generate.md. Q3 (HIGHEST's adaptive pass) adds its base, the importance map and the
      * load counter; the Q3 base pass writes the second AO buffer. */
     PASS(GENERATE) = {"generate", {"q0", "q1", "q2", "q3", "q3base"}, 5, false, false, false, WG(GENERATE),

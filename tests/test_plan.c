@@ -72,6 +72,7 @@ static void test_only_needed_resources(void) {
     CHECK(find_image(&low, CACAO_RES_IMPORTANCE) == NULL); /* importance only at HIGHEST */
     CHECK(!low.uses_load_counter);
     CHECK(find_image(&low, CACAO_RES_DEPTHS)->mips == 1); /* LOW reads no mips */
+    CHECK(low.steps[0].dispatch[0] == 120 && low.steps[0].dispatch[1] == 68); /* prepare_depths.full: a texel each */
     CHECK(low.step_count == 7); /* prepare x2, classify, compact, generate, fill, apply: no blur, one fill */
     cacao_plan medium = build((cacao_settings){.quality = CACAO_QUALITY_MEDIUM, .generate_normals = true}, 1920, 1080);
     CHECK(find_image(&medium, CACAO_RES_DEPTHS)->mips == 1); /* MEDIUM never reads mips: none built */
@@ -101,7 +102,13 @@ static void test_only_needed_resources(void) {
 static void test_dispatch_sizes(void) {
     /* 1920x1080 native: S = 960x540, I = 480x270. Downsampled: S = 480x270. Odd 1001x37. */
     cacao_plan p = build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
-    CHECK(p.steps[0].dispatch[0] == 120 && p.steps[0].dispatch[1] == 68);  /* ceil(960/8), ceil(540/8) */
+    /* prepare_depths.mips and prepare_normals.depth: 2x2 texels per invocation, ceil(960/16),
+     * ceil(540/16) */
+    CHECK(p.steps[0].dispatch[0] == 60 && p.steps[0].dispatch[1] == 34);
+    CHECK(p.steps[1].dispatch[0] == 60 && p.steps[1].dispatch[1] == 34);
+    cacao_plan given = build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST}, 1920, 1080);
+    CHECK(strcmp(given.steps[1].key_name, "prepare_normals.input.native") == 0);
+    CHECK(given.steps[1].dispatch[0] == 120 && given.steps[1].dispatch[1] == 68); /* the caller's: one each */
     CHECK(p.steps[2].dispatch[0] == 15 && p.steps[2].dispatch[1] == 9);     /* classify: 120x68 tiles / 8x8 */
     CHECK(p.steps[3].dispatch[0] == (120 * 68 + 16 * 20 + 63) / 64);         /* compact: tiles + blur groups */
     CHECK(p.steps[5].dispatch[0] == 60 && p.steps[5].dispatch[1] == 34);    /* importance: ceil(480/8), ceil(270/8) */
