@@ -64,7 +64,7 @@ vec4 sat(vec4 x) { return clamp(x, vec4(0.0), vec4(1.0)); }
 float max0(float x) { return x > 0.0 ? x : 0.0; }
 
 /* Layer of a 2D-array resource -> slice index k (spec: README "Notation"). */
-int slice_of_layer(int layer) { return cb.slice_count == 2 ? layer * 3 : layer; }
+int slice_of_layer(int layer) { return CB.slice_count == 2 ? layer * 3 : layer; }
 
 /* Round a value to half precision and back: mirrors AMD's half-precision shared memory. */
 float round_to_half(float x) { return unpackHalf2x16(packHalf2x16(vec2(x, 0.0))).x; }
@@ -75,16 +75,16 @@ float round_to_half(float x) { return unpackHalf2x16(packHalf2x16(vec2(x, 0.0)))
  * removes. AMD divides blindly there ([quirk] INF-DEPTH); finite depths are unchanged. */
 float view_z(float d)
 {
-    float z = (cb.depth_unpack.x + cb.depth_unpack_d.x * d) / (cb.depth_unpack.y + cb.depth_unpack_d.y * d);
+    float z = (CB.depth_unpack.x + CB.depth_unpack_d.x * d) / (CB.depth_unpack.y + CB.depth_unpack_d.y * d);
     return (z >= 0.0 && z < CACAO_MAX_VIEW_Z) ? z : CACAO_MAX_VIEW_Z;
 }
 
 /* View xy per unit of (ndc_to_view_mul * uv + add): z for a perspective projection, 1 for an
  * orthographic one. */
-float view_xy_scale(float z) { return cb.view_xy_z.x * z + cb.view_xy_z.y; }
+float view_xy_scale(float z) { return CB.view_xy_z.x * z + CB.view_xy_z.y; }
 
 /* Screen UV + view z -> view-space position (spec: README "P(uv, z)"). */
-vec3 view_pos(vec2 uv, float z) { return vec3((cb.ndc_to_view_mul * uv + cb.ndc_to_view_add) * view_xy_scale(z), z); }
+vec3 view_pos(vec2 uv, float z) { return vec3((CB.ndc_to_view_mul * uv + CB.ndc_to_view_add) * view_xy_scale(z), z); }
 
 /* Edge weights toward L, R, T, B (spec: prepare.md "Edges"); 1 = no edge. */
 vec4 depth_edges(float c, float l, float r, float t, float b)
@@ -92,7 +92,7 @@ vec4 depth_edges(float c, float l, float r, float t, float b)
     vec4 d = vec4(l, r, t, b) - c;
     vec4 ds = d + d.yxwz; /* each difference plus its opposite: slope compensation */
     vec4 e = min(abs(d), abs(ds));
-    return sat(CACAO_EDGE_SLOPE - e / (CACAO_EDGE_DEPTH_FRACTION * (cb.edge_depth.x * c + cb.edge_depth.y)));
+    return sat(CACAO_EDGE_SLOPE - e / (CACAO_EDGE_DEPTH_FRACTION * (CB.edge_depth.x * c + CB.edge_depth.y)));
 }
 
 /* Normal from the unit directions towards the left, right, top and bottom neighbours, each
@@ -128,7 +128,7 @@ uint edges_bits(float packed_value) { return uint(packed_value * 255.5); }
 rvec4 unpack_edge_bits(uint v)
 {
     rvec4 e = rvec4(uvec4(v >> 6u, v >> 4u, v >> 2u, v) & uvec4(3u)) / rfloat(3.0);
-    return clamp(e + rfloat(cb.inv_sharpness), rvec4(0.0), rvec4(1.0));
+    return clamp(e + rfloat(CB.inv_sharpness), rvec4(0.0), rvec4(1.0));
 }
 rvec4 unpack_edges(float packed_value) { return unpack_edge_bits(edges_bits(packed_value)); }
 
@@ -136,7 +136,7 @@ bool in_rect(ivec2 p, ivec2 size) { return all(greaterThanEqual(p, ivec2(0))) &&
 
 /* The slice (deinterleaved depths at level 0, normals, AO) in texels. The depth image can be
  * larger: at HIGH and HIGHEST it is the atlas of the mip chain (cacao_shared.h). */
-ivec2 slice_size() { return ivec2(cb.slice_width, cb.slice_height); }
+ivec2 slice_size() { return ivec2(CB.slice_width, CB.slice_height); }
 
 /* Mirror addressing (-1 -> 0, -2 -> 1, n -> n-1, ...), clamped for padding wider than n. */
 int mirror_coord(int c, int n)
@@ -158,7 +158,7 @@ layout(set = 0, binding = CACAO_BINDING_SRC_DEPTH) uniform sampler2D src_depth;
  * On lavapipe a sample costs less than a texelFetch. */
 float load_src_depth_clamped(ivec2 p)
 {
-    return textureLod(src_depth, (vec2(p) + 0.5) * cb.depth_buffer_inverse_dimensions, 0.0).r;
+    return textureLod(src_depth, (vec2(p) + 0.5) * CB.depth_buffer_inverse_dimensions, 0.0).r;
 }
 
 /* The caller's depth, out of bounds -> raw 0 (D3D load rule). */
@@ -234,7 +234,7 @@ layout(std430, set = 0, binding = CACAO_BINDING_TILES) readonly buffer cacao_til
 /* First uint of a list's entries: after the header, the classes, and the lists before it. */
 uint list_base(int list)
 {
-    uint t = uint(cb.tiles_x * cb.tiles_y);
+    uint t = uint(CB.tiles_x * CB.tiles_y);
     uint base = uint(CACAO_TILE_HEADER) + t; /* the generate list */
     if (list >= CACAO_LIST_FILL_SLICES) base += t;
     if (list >= CACAO_LIST_BLUR) base += t;
@@ -242,7 +242,7 @@ uint list_base(int list)
 }
 
 /* A list's grid width: the host writes it as the command's x (record.c). */
-uint list_width(int list) { return uint(list == CACAO_LIST_BLUR ? cb.blur_groups_x : cb.tiles_x); }
+uint list_width(int list) { return uint(list == CACAO_LIST_BLUR ? CB.blur_groups_x : CB.tiles_x); }
 #endif
 
 /* The group this workgroup computes, false for none. Over a list: the entry at y width + x,
@@ -334,7 +334,7 @@ vec4 slice_depths(ivec2 t)
     /* Native: slice k holds pixel 2t + (k & 1, k >> 1), so the four are one 2x2 gather, taken at
      * the texels' shared corner (see prepare_normals). Gather order: x = (0,1), y = (1,1),
      * z = (1,0), w = (0,0). */
-    vec4 raw = textureGather(src_depth, vec2(2 * t + 1) * cb.depth_buffer_inverse_dimensions, 0).wzxy;
+    vec4 raw = textureGather(src_depth, vec2(2 * t + 1) * CB.depth_buffer_inverse_dimensions, 0).wzxy;
     return vec4(view_z(raw.x), view_z(raw.y), view_z(raw.z), view_z(raw.w));
 #else
     return vec4(view_z(load_src_depth_clamped(full_res_pixel(t, 0))), view_z(load_src_depth_clamped(full_res_pixel(t, 1))),
@@ -412,11 +412,11 @@ void main()
     /* Transform the caller's normal; not renormalised ([quirk] NORMALS-NOT-NORMALIZED). */
     ivec2 size = textureSize(src_normals, 0);
     [[unroll]] for (int layer = 0; layer < 4; ++layer) {
-        if (layer >= cb.slice_count) break;
+        if (layer >= CB.slice_count) break;
         ivec2 p = full_res_pixel(t, slice_of_layer(layer));
         vec3 rgb = in_rect(p, size) ? texelFetch(src_normals, p, 0).rgb : vec3(0.0);
-        vec3 n = rgb * cb.normals_unpack_mul + cb.normals_unpack_add;
-        vec3 nv = (cb.normals_to_view * vec4(n, 0.0)).xyz; /* n'_j = sum_i E[j][i] n_i */
+        vec3 n = rgb * CB.normals_unpack_mul + CB.normals_unpack_add;
+        vec3 nv = (CB.normals_to_view * vec4(n, 0.0)).xyz; /* n'_j = sum_i E[j][i] n_i */
         imageStore(normals_out, ivec3(t, layer), vec4(clamp(nv, vec3(-1.0), vec3(1.0)), 1.0));
     }
 #else
@@ -436,7 +436,7 @@ void main()
      * y = (1,1), z = (1,0), w = (0,0). */
     float dz[6][6];
     {
-        vec2 inv = cb.depth_buffer_inverse_dimensions;
+        vec2 inv = CB.depth_buffer_inverse_dimensions;
         [[unroll]] for (int gj = 0; gj < 3; ++gj) {
             [[unroll]] for (int gi = 0; gi < 3; ++gi) {
                 vec4 g4 = textureGather(src_depth, vec2(4 * u + 2 * ivec2(gi, gj)) * inv, 0);
@@ -458,10 +458,10 @@ void main()
 #if CACAO_DOWNSAMPLED == 1
             /* integer loads: OOB -> raw 0 ([quirk] DOWNSAMPLED-NORMAL-OOB kept) */
             float d = load_src_depth_or_zero(8 * u + 2 * o);
-            vec2 uv = (vec2(8 * u) + 0.5 + 2.0 * vec2(o)) * cb.depth_buffer_inverse_dimensions;
+            vec2 uv = (vec2(8 * u) + 0.5 + 2.0 * vec2(o)) * CB.depth_buffer_inverse_dimensions;
 #else
             float d = dz[j][i];
-            vec2 uv = (vec2(4 * u) + 0.5 + vec2(o)) * cb.depth_buffer_inverse_dimensions;
+            vec2 uv = (vec2(4 * u) + 0.5 + vec2(o)) * CB.depth_buffer_inverse_dimensions;
 #endif
             pos[j][i] = view_pos(uv, view_z(d));
         }
@@ -472,8 +472,8 @@ void main()
         ivec2 t = 2 * u + qo;
         if (!in_rect(t, size)) continue;
         [[unroll]] for (int k = 0; k < 4; ++k) {
-            if (cb.slice_count == 2 && (k == 1 || k == 2)) continue; /* LOWEST: slices 0 and 3 */
-            int layer = cb.slice_count == 2 ? k / 3 : k;
+            if (CB.slice_count == 2 && (k == 1 || k == 2)) continue; /* LOWEST: slices 0 and 3 */
+            int layer = CB.slice_count == 2 ? k / 3 : k;
             /* centre: (1,1) for slice 0 ... (2,2) for slice 3, of the texel's 4x4 block */
             int ci = 1 + (k & 1) + 2 * qo.x, cj = 1 + (k >> 1) + 2 * qo.y;
             vec3 pc = pos[cj][ci];
@@ -531,7 +531,7 @@ const float k_sample_pattern[128] = float[128](CACAO_SAMPLE_PATTERN_VALUES);
  * costs more than a sample (its per-lane level and bounds code). */
 vec3 load_normal(ivec2 p, int layer)
 {
-    return textureLod(normals, vec3((vec2(p) + 0.5) * cb.ssao_buffer_inverse_dimensions, float(layer)), 0.0).xyz;
+    return textureLod(normals, vec3((vec2(p) + 0.5) * CB.ssao_buffer_inverse_dimensions, float(layer)), 0.0).xyz;
 }
 
 /* Normal at slice texel p; OOB -> (0,0,0) ([quirk] NORMAL-EDGE-OOB kept). */
@@ -584,12 +584,12 @@ void accumulate_tap(vec4 s, bool use_pattern_weight, vec2 uvd, vec2 inv_s, int l
 #else
         float z = textureLod(depths, vec3(uv, float(layer)), 0.0).r;
 #endif
-        vec3 delta = vec3((cb.depth_uv_to_view_mul * uv + cb.depth_uv_to_view_add) * view_xy_scale(z), z) - pc;
-        float ob = obscurance(n, delta, falloff, cb.effect_horizon_angle_threshold);
+        vec3 delta = vec3((CB.depth_uv_to_view_mul * uv + CB.depth_uv_to_view_add) * view_xy_scale(z), z) - pc;
+        float ob = obscurance(n, delta, falloff, CB.effect_horizon_angle_threshold);
         float w = 1.0;
 #if GEN_Q >= 1
         /* haloing reduction, with the global radius ([quirk] HALO-GLOBAL-RADIUS) */
-        w = CACAO_HALO_AMOUNT * sat(max0(-delta.z) * cb.neg_rec_effect_radius + 2.0) + (1.0 - CACAO_HALO_AMOUNT);
+        w = CACAO_HALO_AMOUNT * sat(max0(-delta.z) * CB.neg_rec_effect_radius + 2.0) + (1.0 - CACAO_HALO_AMOUNT);
 #endif
         if (use_pattern_weight) w *= s.z; /* adaptive taps: halo only ([quirk] ADAPTIVE-WEIGHTMOD) */
         obsc_sum += ob * w;
@@ -599,6 +599,7 @@ void accumulate_tap(vec4 s, bool use_pattern_weight, vec2 uvd, vec2 inv_s, int l
 
 void main()
 {
+    hoist_constants();
     ivec2 group;
     if (!group_of(group)) return;
     ivec2 xy = texel_of(group);
@@ -606,7 +607,7 @@ void main()
     int slice = slice_of_layer(layer);
     ivec2 size = slice_size();
     if (!in_rect(xy, size)) return; /* no LDS, no barriers, no atomics: safe to leave */
-    vec2 inv_s = cb.ssao_buffer_inverse_dimensions; /* = 1 / slice size */
+    vec2 inv_s = CB.ssao_buffer_inverse_dimensions; /* = 1 / slice size */
     vec2 inv_d = 1.0 / vec2(textureSize(depths, 0).xy); /* the depth image's: the atlas at Q2, Q3 */
 #if GEN_Q >= 2
     init_atlas(size, inv_d);
@@ -629,11 +630,11 @@ void main()
     vec2 uvs = uvd; /* slice UV used as screen UV ([quirk] SLICE-SUBPIXEL) */
     vec3 pc = view_pos(uvs, zc);
     vec3 n = load_normal(xy, layer);
-    vec2 px_size = view_xy_scale(zc) * cb.ndc_to_view_mul * inv_s; /* .y negative */
+    vec2 px_size = view_xy_scale(zc) * CB.ndc_to_view_mul * inv_s; /* .y negative */
 
     /* 2. radius parameters from the unscaled centre */
-    float near_mod = sat(length(pc) * cb.effect_sampling_radius_near_limit_rec) * CACAO_NEAR_LIMIT_SCALE + CACAO_NEAR_LIMIT_BIAS;
-    float r_eff = cb.effect_radius * near_mod;
+    float near_mod = sat(length(pc) * CB.effect_sampling_radius_near_limit_rec) * CACAO_NEAR_LIMIT_SCALE + CACAO_NEAR_LIMIT_BIAS;
+    float r_eff = CB.effect_radius * near_mod;
     float radius_px = CACAO_LOOKUP_RADIUS_FACTOR * r_eff / px_size.x;
     float falloff = -1.0 / (r_eff * r_eff);
 
@@ -642,7 +643,7 @@ void main()
     vec4 rot_scale = cb.pattern_rot_scale[slice * 5 + ri] * radius_px;
 
     /* 4. self-occlusion guard for the R16F depths */
-    pc *= cb.depth_precision_offset_mod;
+    pc *= CB.depth_precision_offset_mod;
 
     /* A pixel the fade-out has taken entirely (fade 0 beyond fade_out_to: the distance of open
      * worlds) ends as AO 1 whatever its taps give, since its obscurance is multiplied by 0 below;
@@ -653,7 +654,7 @@ void main()
      * pixel: its raw values feed the importance map and the load counter, which steer the
      * adaptive pass elsewhere. */
 #if GEN_BASE == 0
-    bool faded = zc >= cb.background_z || sat(pc.z * cb.effect_fade_out_mul + cb.effect_fade_out_add) == 0.0;
+    bool faded = zc >= CB.background_z || sat(pc.z * CB.effect_fade_out_mul + CB.effect_fade_out_add) == 0.0;
 #else
     const bool faded = false;
 #endif
@@ -665,17 +666,17 @@ void main()
 #if GEN_Q >= 1 && GEN_BASE == 0
     edges = depth_edges(zc, zl, zr, zt, zb);
     {
-        vec3 v = vec3((cb.ndc_to_view_mul * uvs + cb.ndc_to_view_add) * cb.view_xy_z.x, 1.0); /* d pos / d z */
+        vec3 v = vec3((CB.ndc_to_view_mul * uvs + CB.ndc_to_view_add) * CB.view_xy_z.x, 1.0); /* d pos / d z */
         vec3 dl = vec3(-px_size.x, 0.0, 0.0) + v * (zl - pc.z);
         vec3 dr = vec3(px_size.x, 0.0, 0.0) + v * (zr - pc.z);
         vec3 dt = vec3(0.0, -px_size.y, 0.0) + v * (zt - pc.z);
         vec3 db = vec3(0.0, px_size.y, 0.0) + v * (zb - pc.z);
         float f4 = CACAO_DETAIL_FALLOFF_MUL * falloff;
-        float h = cb.effect_horizon_angle_threshold;
+        float h = CB.effect_horizon_angle_threshold;
         if (!faded) {
             vec4 ob = vec4(obscurance(n, dl, f4, h), obscurance(n, dr, f4, h), obscurance(n, dt, f4, h),
                            obscurance(n, db, f4, h));
-            obsc_sum = cb.detail_ao_strength * dot(edges, ob);
+            obsc_sum = CB.detail_ao_strength * dot(edges, ob);
         }
     }
 #endif
@@ -728,8 +729,8 @@ void main()
     obsc_sum += base.r * weight_sum;
 
     /* C: number of extra taps (limiter with D3D's saturate: NaN -> 0, +inf -> 1) */
-    float avg_importance = float(load_counter) * cb.load_counter_avg_div;
-    float limiter = cb.adaptive_sample_count_limit / avg_importance;
+    float avg_importance = float(load_counter) * CB.load_counter_avg_div;
+    float limiter = CB.adaptive_sample_count_limit / avg_importance;
     limiter = limiter > 0.0 ? min(limiter, 1.0) : 0.0;
     uint extra = uint(float(CACAO_ADAPTIVE_TAP_FLEXIBLE_COUNT) * (importance * limiter) + 1.5);
     int tap_end = int(min(uint(CACAO_MAX_TAPS), extra + uint(CACAO_ADAPTIVE_TAP_BASE_COUNT)));
@@ -743,13 +744,13 @@ void main()
 
     /* 10b. final shaping (a faded pixel: obscurance 0, which the fade below would make of any) */
     float obsc = faded ? 0.0 : obsc_sum / weight_sum;
-    float fade = sat(pc.z * cb.effect_fade_out_mul + cb.effect_fade_out_add);
+    float fade = sat(pc.z * CB.effect_fade_out_mul + CB.effect_fade_out_add);
 #if GEN_Q >= 1
     float edge_fade = sat((1.0 - edges.x - edges.y) * CACAO_EDGE_FADE) + sat((1.0 - edges.z - edges.w) * CACAO_EDGE_FADE);
     fade *= sat(1.0 - edge_fade);
 #endif
-    obsc = min(cb.effect_shadow_strength * obsc, cb.effect_shadow_clamp) * fade;
-    float ao = pow(sat(1.0 - obsc), cb.effect_shadow_pow);
+    obsc = min(CB.effect_shadow_strength * obsc, CB.effect_shadow_clamp) * fade;
+    float ao = pow(sat(1.0 - obsc), CB.effect_shadow_pow);
 #if GEN_Q >= 1
     float packed_edges = pack_edges(edges);
 #else
@@ -782,8 +783,8 @@ void main()
         vmin = min(vmin, min(min(g.x, g.y), min(g.z, g.w)));
         vmax = max(vmax, max(max(g.x, g.y), max(g.z, g.w)));
     }
-    float mx = max(pow(sat(1.0 - cb.effect_shadow_strength * vmin), cb.effect_shadow_pow), 0.0);
-    float mn = min(pow(sat(1.0 - cb.effect_shadow_strength * vmax), cb.effect_shadow_pow), 1.0);
+    float mx = max(pow(sat(1.0 - CB.effect_shadow_strength * vmin), CB.effect_shadow_pow), 0.0);
+    float mn = min(pow(sat(1.0 - CB.effect_shadow_strength * vmax), CB.effect_shadow_pow), 1.0);
     imageStore(importance_out, t, vec4(pow(sat(2.0 * (mx - mn)), CACAO_IMPORTANCE_POWER)));
 }
 #endif /* IMPORTANCE */
@@ -798,8 +799,8 @@ float importance_at(vec2 uv) { return textureLod(importance_in, uv, 0.0).r; }
 void main()
 {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
-    vec2 c = (vec2(t) + 0.5) * cb.importance_map_inverse_dimensions;
-    vec2 h = 0.5 * cb.importance_map_inverse_dimensions;
+    vec2 c = (vec2(t) + 0.5) * CB.importance_map_inverse_dimensions;
+    vec2 h = 0.5 * CB.importance_map_inverse_dimensions;
 #if CACAO_PASS == CACAO_PASS_IMPORTANCE_A
     float v0 = importance_at(c + vec2(-3.0 * h.x, -h.y));
     float v1 = importance_at(c + vec2(h.x, -3.0 * h.y));
@@ -942,7 +943,7 @@ rfloat smart_apply(ivec2 p)
     float sx = float(e.y - e.x); /* push samples away from edges */
     float sy = float(e.w - e.z);
     vec2 pf = vec2(p);
-    vec2 inv_s = cb.ssao_buffer_inverse_dimensions;
+    vec2 inv_s = CB.ssao_buffer_inverse_dimensions;
     vec2 uvh = (pf + vec2(float(mx) + sx - 0.5, 0.5 - float(my))) * 0.5 * inv_s;
     vec2 uvv = (pf + vec2(0.5 - float(mx), float(my) - 0.5 + sy)) * 0.5 * inv_s;
     vec2 uvd = (pf + vec2(float(mx) - 0.5 + sx, float(my) - 0.5 + sy)) * 0.5 * inv_s;
@@ -968,10 +969,10 @@ void main()
 #if CACAO_VARIANT == CACAO_OUTPUT_SMART
     rfloat ao = smart_apply(p);
 #elif CACAO_VARIANT == CACAO_OUTPUT_NON_SMART
-    vec2 uv = vec2(p) * cb.output_buffer_inverse_dimensions; /* no +0.5, as AMD */
+    vec2 uv = vec2(p) * CB.output_buffer_inverse_dimensions; /* no +0.5, as AMD */
     rfloat ao = (ao_bilinear(uv, 0) + ao_bilinear(uv, 1) + ao_bilinear(uv, 2) + ao_bilinear(uv, 3)) / rfloat(4.0);
 #else
-    vec2 uv = vec2(p) * cb.output_buffer_inverse_dimensions;
+    vec2 uv = vec2(p) * CB.output_buffer_inverse_dimensions;
     rfloat ao = (ao_bilinear(uv, 0) + ao_bilinear(uv, 1)) / rfloat(2.0); /* layers 0,1 = slices 0,3 */
 #endif
     imageStore(output_image, p, vec4(float(ao), 0.0, 0.0, 0.0));
@@ -1015,7 +1016,7 @@ void main()
     ivec2 s = textureSize(ssao_in, 0).xy;
     ivec2 qsize = 2 * s;
     ivec2 g = ivec2(gl_WorkGroupID.xy);
-    vec2 inv_s = cb.ssao_buffer_inverse_dimensions;
+    vec2 inv_s = CB.ssao_buffer_inverse_dimensions;
 
     /* Step 1: (value, depth) of Q-positions g*SPAN - 2 .. g*SPAN + SPAN + 1, filled by all
      * threads. Entries outside [0, 2S) get weight 0 ([quirk] BILATERAL-LEFT-BORDER fixed). */
@@ -1094,7 +1095,7 @@ void main()
                         /* |dx|, |dy| in half texels: x - (o & 1) / 2 and y - (o >> 1) / 2 */
                         float ws = up_axis_weight(abs(2 * x - (o & 1))) * up_axis_weight(abs(2 * y - (o >> 1)));
                         float dz = zf[o] - zq; /* sigma is used as a variance, as AMD does */
-                        float wz = valid ? exp2(dz * dz * cb.bilateral_depth_exp2_mul) : 0.0;
+                        float wz = valid ? exp2(dz * dz * CB.bilateral_depth_exp2_mul) : 0.0;
                         rfloat w = rfloat(ws * wz);
                         tot[o] += v * w;
                         wsum[o] += w;
@@ -1113,7 +1114,7 @@ void main()
 /* ============================== CLASSIFY ============================== */
 #if CACAO_PASS == CACAO_PASS_CLASSIFY
 /* docs/tiles.md: one invocation per tile, no barriers. A texel is quiet where every layer's
- * stored view z is background or faded (with the margin of cb.quiet_margin, so that generate
+ * stored view z is background or faded (with the margin of CB.quiet_margin, so that generate
  * finds it faded too); the tile is active when some texel is not quiet (the scan stops there),
  * else faded when some texel is not background, else background. Gathers read 2x2 texels; past
  * the slice's edge they clamp to texels of the same tile. */
@@ -1122,7 +1123,7 @@ layout(local_size_x = CACAO_WG_CLASSIFY, local_size_y = CACAO_WG_CLASSIFY) in;
 void main()
 {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
-    if (!in_rect(t, ivec2(cb.tiles_x, cb.tiles_y))) return;
+    if (!in_rect(t, ivec2(CB.tiles_x, CB.tiles_y))) return;
     ivec2 size = slice_size();
     ivec2 image_size = textureSize(depths, 0).xy;
     vec2 inv_d = 1.0 / vec2(image_size);
@@ -1130,15 +1131,15 @@ void main()
      * continues past the slice (cacao_shared.h), one texel inside it (the gather then also reads
      * texel n - 2, of this tile or its neighbour: at most a tile more is computed). */
     ivec2 corner_max = size - ivec2(greaterThan(image_size, size));
-    uint flags = cb.tiles_all != 0 ? 1u : 0u; /* 1: not quiet, 2: not background */
-    for (int layer = 0; layer < cb.slice_count && flags < 1u; ++layer) {
+    uint flags = CB.tiles_all != 0 ? 1u : 0u; /* 1: not quiet, 2: not background */
+    for (int layer = 0; layer < CB.slice_count && flags < 1u; ++layer) {
         for (int y = 0; y < CACAO_TILE && (flags & 1u) == 0u; y += 2) {
             for (int x = 0; x < CACAO_TILE; x += 2) {
                 ivec2 corner = min(t * CACAO_TILE + ivec2(x, y) + 1, corner_max);
                 vec4 z = textureGather(depths, vec3(vec2(corner) * inv_d, float(layer)), 0);
-                bvec4 background = greaterThanEqual(z, vec4(cb.background_z));
-                bvec4 faded = lessThan((z * cb.depth_precision_offset_mod) * cb.effect_fade_out_mul +
-                                           cb.effect_fade_out_add, vec4(-cb.quiet_margin));
+                bvec4 background = greaterThanEqual(z, vec4(CB.background_z));
+                bvec4 faded = lessThan((z * CB.depth_precision_offset_mod) * CB.effect_fade_out_mul +
+                                           CB.effect_fade_out_add, vec4(-CB.quiet_margin));
                 if (!all(background)) flags |= 2u;
                 if (!all(bvec4(uvec4(background) | uvec4(faded)))) flags |= 1u;
             }
@@ -1146,7 +1147,7 @@ void main()
     }
     uint cls = (flags & 1u) != 0u ? CACAO_TILE_CLASS_ACTIVE
              : (flags & 2u) != 0u ? CACAO_TILE_CLASS_FADED : CACAO_TILE_CLASS_BACKGROUND;
-    tiles[CACAO_TILE_HEADER + t.y * cb.tiles_x + t.x] = cls;
+    tiles[CACAO_TILE_HEADER + t.y * CB.tiles_x + t.x] = cls;
     atomicAdd(tiles[CACAO_TILE_COUNT_ACTIVE + cls], 1u);
 }
 #endif /* CLASSIFY */
@@ -1161,12 +1162,12 @@ layout(local_size_x = CACAO_WG_COMPACT) in;
 /* Some tile within one tile of the tiles [t0, t1] is active: a needed tile lies in [t0, t1]. */
 bool touches_needed(ivec2 t0, ivec2 t1)
 {
-    ivec2 last = ivec2(cb.tiles_x, cb.tiles_y) - 1;
+    ivec2 last = ivec2(CB.tiles_x, CB.tiles_y) - 1;
     t0 = clamp(t0 - 1, ivec2(0), last);
     t1 = clamp(t1 + 1, ivec2(0), last);
     for (int y = t0.y; y <= t1.y; ++y)
         for (int x = t0.x; x <= t1.x; ++x)
-            if (tiles[CACAO_TILE_HEADER + y * cb.tiles_x + x] == CACAO_TILE_CLASS_ACTIVE) return true;
+            if (tiles[CACAO_TILE_HEADER + y * CB.tiles_x + x] == CACAO_TILE_CLASS_ACTIVE) return true;
     return false;
 }
 
@@ -1181,14 +1182,14 @@ void append(int list, ivec2 g)
 void main()
 {
     int i = int(gl_GlobalInvocationID.x);
-    int t = cb.tiles_x * cb.tiles_y, b = cb.blur_groups_x * cb.blur_groups_y;
+    int t = CB.tiles_x * CB.tiles_y, b = CB.blur_groups_x * CB.blur_groups_y;
     if (i < t) {
-        ivec2 g = ivec2(i % cb.tiles_x, i / cb.tiles_x);
+        ivec2 g = ivec2(i % CB.tiles_x, i / CB.tiles_x);
         append(touches_needed(g, g) ? CACAO_LIST_GENERATE : CACAO_LIST_FILL_SLICES, g);
     } else if (i < t + b) {
         i -= t;
-        ivec2 g = ivec2(i % cb.blur_groups_x, i / cb.blur_groups_x);
-        ivec2 out_size = ivec2(cb.blur_out_x, cb.blur_out_y);
+        ivec2 g = ivec2(i % CB.blur_groups_x, i / CB.blur_groups_x);
+        ivec2 out_size = ivec2(CB.blur_out_x, CB.blur_out_y);
         ivec2 lo = g * out_size, hi = lo + out_size - 1; /* its output texels */
         if (touches_needed(lo / CACAO_TILE, hi / CACAO_TILE)) append(CACAO_LIST_BLUR, g);
     }
@@ -1223,10 +1224,10 @@ const float SLICE_PI = 3.14159265358979;
 const float SLICE_HALF_PI = 1.57079632679490;
 
 /* View-space position of pixel p's centre at view z (estimators.md section 1). */
-vec3 slice_pos(ivec2 p, float z) { return view_pos((vec2(p) + 0.5) * cb.depth_buffer_inverse_dimensions, z); }
+vec3 slice_pos(ivec2 p, float z) { return view_pos((vec2(p) + 0.5) * CB.depth_buffer_inverse_dimensions, z); }
 
 /* Unit vector from the surface point towards the camera. */
-vec3 slice_to_camera(vec3 pos) { return cb.slice_ortho != 0 ? vec3(0.0, 0.0, -1.0) : -normalize(pos); }
+vec3 slice_to_camera(vec3 pos) { return CB.slice_ortho != 0 ? vec3(0.0, 0.0, -1.0) : -normalize(pos); }
 
 /* A stored normal, renormalised; zero or non-finite -> facing the camera. */
 vec3 slice_normal(vec3 stored, vec3 to_camera)
@@ -1247,9 +1248,9 @@ layout(set = 0, binding = CACAO_BINDING_NORMALS_OUT, CACAO_FORMAT_NORMALS_OUT) u
  * exact where d is near 1). */
 float slice_view_z(float d)
 {
-    if (d == cb.slice_far_depth) return -1.0;
-    float z = (cb.depth_unpack.x + cb.depth_unpack_d.x * d) /
-              (cb.slice_depth_den_a + cb.slice_depth_den_b * d + cb.slice_depth_den_c * (1.0 - d));
+    if (d == CB.slice_far_depth) return -1.0;
+    float z = (CB.depth_unpack.x + CB.depth_unpack_d.x * d) /
+              (CB.slice_depth_den_a + CB.slice_depth_den_b * d + CB.slice_depth_den_c * (1.0 - d));
     return (z > 0.0 && z < 3.0e38) ? z : -1.0; /* NaN fails z > 0 */
 }
 
@@ -1279,7 +1280,7 @@ void main()
         vec3 to_camera = slice_to_camera(pc);
 #if CACAO_VARIANT == CACAO_SLICE_NORMALS_INPUT
         vec3 rgb = texelFetch(src_normals, p, 0).rgb;
-        n = (cb.normals_to_view * vec4(rgb * cb.normals_unpack_mul + cb.normals_unpack_add, 0.0)).xyz;
+        n = (CB.normals_to_view * vec4(rgb * CB.normals_unpack_mul + CB.normals_unpack_add, 0.0)).xyz;
         n = slice_normal(n, to_camera);
 #else
         ivec2 ql = p - ivec2(1, 0), qr = p + ivec2(1, 0), qt = p - ivec2(0, 1), qb = p + ivec2(0, 1);
@@ -1411,14 +1412,14 @@ float slice_visibility(ivec2 p, float z, ivec2 size)
     vec3 pos = slice_pos(p, z);
     vec3 v = slice_to_camera(pos);
     vec3 nrm = fetch_normal(p, v);
-    const float radius = cb.slice_radius, radius2 = radius * radius, inv_radius2 = 1.0 / radius2;
-    float rpx = radius / (cb.slice_pixel_size * view_xy_scale(z)); /* radius in pixels */
+    const float radius = CB.slice_radius, radius2 = radius * radius, inv_radius2 = 1.0 / radius2;
+    float rpx = radius / (CB.slice_pixel_size * view_xy_scale(z)); /* radius in pixels */
     float min_s = CACAO_SLICE_MIN_OFFSET_PX / rpx;
-    uint h = hilbert_index(uint(p.x) & 63u, uint(p.y) & 63u) + uint(cb.slice_noise_offset);
+    uint h = hilbert_index(uint(p.x) & 63u, uint(p.y) & 63u) + uint(CB.slice_noise_offset);
     float xi_s = unit_fraction(h * R2_X + HALF);
     uint xi_t = h * R2_Y + HALF;
-    const int ns = cb.slice_directions, m = cb.slice_steps;
-    const vec2 rotation = vec2(cb.slice_rotation_cos, cb.slice_rotation_sin);
+    const int ns = CB.slice_directions, m = CB.slice_steps;
+    const vec2 rotation = vec2(CB.slice_rotation_cos, CB.slice_rotation_sin);
     float phi0 = SLICE_PI * xi_s / float(ns);
     vec2 dir = vec2(cos(phi0), sin(phi0)); /* slice i: angle pi (i + xi_s) / ns */
     float sum_vis = 0.0, sum_full = 0.0;
@@ -1461,14 +1462,14 @@ float slice_visibility(ivec2 p, float z, ivec2 size)
                 float dist2 = dot(delta3, delta3);
                 float x = dot(delta3, v), y = dot(delta3, f.t);
 #if SLICE_BITMASK
-                float w = cb.slice_binary != 0 ? (dist2 <= radius2 ? 1.0 : 0.0) : max(0.0, 1.0 - dist2 * inv_radius2);
+                float w = CB.slice_binary != 0 ? (dist2 <= radius2 ? 1.0 : 0.0) : max(0.0, 1.0 - dist2 * inv_radius2);
                 if (!(w > 0.0)) continue;
                 /* back point: T further along the sample's own view ray (y: S . t = delta . t) */
                 float xb = x, yb = y;
-                if (cb.slice_ortho != 0) {
-                    xb -= cb.slice_thickness * v.z;
+                if (CB.slice_ortho != 0) {
+                    xb -= CB.slice_thickness * v.z;
                 } else {
-                    float along = cb.slice_thickness * inversesqrt(dot(sample_pos, sample_pos));
+                    float along = CB.slice_thickness * inversesqrt(dot(sample_pos, sample_pos));
                     xb += along * dot(sample_pos, v);
                     yb += along * y;
                 }
@@ -1482,7 +1483,7 @@ float slice_visibility(ivec2 p, float z, ivec2 size)
                 bits |= mask;
 #else
                 float inv_dist = inversesqrt(dist2);
-                float w = sat((radius - dist2 * inv_dist) * cb.slice_falloff_mul);
+                float w = sat((radius - dist2 * inv_dist) * CB.slice_falloff_mul);
                 float cs = x * inv_dist;
                 if (positive) c_pos = max(c_pos, low_pos + (cs - low_pos) * w);
                 else c_neg = max(c_neg, low_neg + (cs - low_neg) * w);
@@ -1512,7 +1513,7 @@ float slice_visibility(ivec2 p, float z, ivec2 size)
     float vis = sat(sum_vis / max(sum_full, 1e-9));
 #endif
     /* the fade-out distance range of the settings: occlusion fades to none */
-    return 1.0 - (1.0 - vis) * sat(z * cb.effect_fade_out_mul + cb.effect_fade_out_add);
+    return 1.0 - (1.0 - vis) * sat(z * CB.effect_fade_out_mul + CB.effect_fade_out_add);
 }
 
 void main()
@@ -1542,7 +1543,7 @@ void main()
     }
     vec3 pos = slice_pos(p, z);
     vec3 nrm = fetch_normal(p, slice_to_camera(pos));
-    float inv_scale = 1.0 / max(cb.slice_denoise_sigma * z, 1e-30);
+    float inv_scale = 1.0 / max(CB.slice_denoise_sigma * z, 1e-30);
     float sum = imageLoad(ao_in, p).r, weight_sum = 1.0;
     [[unroll]] for (int j = -1; j <= 1; ++j) {
         [[unroll]] for (int i = -1; i <= 1; ++i) {
