@@ -138,6 +138,16 @@ bool in_rect(ivec2 p, ivec2 size) { return all(greaterThanEqual(p, ivec2(0))) &&
  * larger: at HIGH and HIGHEST it is the atlas of the mip chain (cacao_shared.h). */
 ivec2 slice_size() { return ivec2(CB.slice_width, CB.slice_height); }
 
+/* Level l of the depth atlas of a slice of size s0 (cacao_shared.h): (width, height, x, y). */
+ivec4 depth_atlas_level(ivec2 s0, int l)
+{
+    return ivec4(CACAO_DEPTH_LEVEL_EXTENT(s0.x, l), CACAO_DEPTH_LEVEL_EXTENT(s0.y, l), l == 0 ? 0 : s0.x,
+                 CACAO_DEPTH_ATLAS_Y(s0.y, l));
+}
+
+/* Texel q = 0..3 of the 2x2 quad 2u .. 2u + 1 that one invocation of a quad pass computes. */
+ivec2 quad_texel(ivec2 u, int q) { return 2 * u + ivec2(q & 1, q >> 1); }
+
 /* Mirror addressing (-1 -> 0, -2 -> 1, n -> n-1, ...), clamped for padding wider than n. */
 int mirror_coord(int c, int n)
 {
@@ -314,9 +324,8 @@ void store_mip(int level, ivec2 p, int layer, float z)
 {
     ivec2 s0 = slice_size();
     if (level >= CACAO_DEPTH_MIP_LEVELS(max(s0.x, s0.y))) return;
-    ivec2 e = ivec2(CACAO_DEPTH_LEVEL_EXTENT(s0.x, level), CACAO_DEPTH_LEVEL_EXTENT(s0.y, level));
-    ivec2 origin = ivec2(s0.x, CACAO_DEPTH_ATLAS_Y(s0.y, level));
-    if (in_rect(p, e)) imageStore(depths_out0, ivec3(origin + p, layer), vec4(z));
+    ivec4 lv = depth_atlas_level(s0, level);
+    if (in_rect(p, lv.xy)) imageStore(depths_out0, ivec3(lv.zw + p, layer), vec4(z));
 }
 
 /* The 2x2 level-l texels 2q .. 2q + 1 of tile[k] (row-major, w wide) reduced to one texel of
@@ -366,7 +375,7 @@ void main()
     ivec2 u = ivec2(gl_GlobalInvocationID.xy);
     vec4 z[4];
     [[unroll]] for (int q = 0; q < 4; ++q) {
-        ivec2 t = 2 * u + ivec2(q & 1, q >> 1);
+        ivec2 t = quad_texel(u, q);
         z[q] = slice_depths(t);
         if (in_rect(t, s)) store_slices(t, z[q]);
     }
@@ -468,8 +477,8 @@ void main()
     }
 
     [[unroll]] for (int q = 0; q < 4; ++q) {
-        ivec2 qo = ivec2(q & 1, q >> 1);
-        ivec2 t = 2 * u + qo;
+        ivec2 t = quad_texel(u, q);
+        ivec2 qo = t - 2 * u;
         if (!in_rect(t, size)) continue;
         [[unroll]] for (int k = 0; k < 4; ++k) {
             if (CB.slice_count == 2 && (k == 1 || k == 2)) continue; /* LOWEST: slices 0 and 3 */
@@ -551,9 +560,7 @@ vec2 g_inv_atlas;
 
 void init_atlas(ivec2 s0, vec2 inv_atlas)
 {
-    for (int l = 0; l < 4; ++l)
-        g_level[l] = vec4(CACAO_DEPTH_LEVEL_EXTENT(s0.x, l), CACAO_DEPTH_LEVEL_EXTENT(s0.y, l),
-                          l == 0 ? 0 : s0.x, CACAO_DEPTH_ATLAS_Y(s0.y, l));
+    for (int l = 0; l < 4; ++l) g_level[l] = vec4(depth_atlas_level(s0, l));
     g_top_level = float(CACAO_DEPTH_MIP_LEVELS(max(s0.x, s0.y)) - 1);
     g_inv_atlas = inv_atlas;
 }

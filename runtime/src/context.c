@@ -290,7 +290,6 @@ static cacao_result create_image(cacao_context *ctx, const cacao_plan_image *pi)
     };
     vr = vkCreateImageView(ctx->device, &view, ctx->alloc, &im->view);
     if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateImageView");
-    im->layers = pi->layers;
     ctx->memory.image_count++;
     return CACAO_SUCCESS;
 }

@@ -11,7 +11,6 @@ typedef struct cacao_intermediate {
     VkImage image;
     VkDeviceMemory memory;
     VkImageView view; /* all layers of its one level, for sampling and storage */
-    uint32_t layers;
 } cacao_intermediate;
 
 enum { CACAO_BUFFER_CONSTANTS = 0, CACAO_BUFFER_LOAD_COUNTER = 1, CACAO_BUFFER_TILES = 2, CACAO_BUFFER_COUNT = 3 };
