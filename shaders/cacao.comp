@@ -969,21 +969,65 @@ rfloat smart_apply(ivec2 p)
 /* spec: apply.md (Apply, NonSmartApply, NonSmartHalfApply) */
 layout(local_size_x = CACAO_WG_APPLY_X, local_size_y = CACAO_WG_APPLY_Y) in;
 
+#if CACAO_VARIANT == CACAO_OUTPUT_SMART
 void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (!in_rect(p, imageSize(output_image))) return;
-#if CACAO_VARIANT == CACAO_OUTPUT_SMART
     rfloat ao = smart_apply(p);
-#elif CACAO_VARIANT == CACAO_OUTPUT_NON_SMART
-    vec2 uv = vec2(p) * CB.output_buffer_inverse_dimensions; /* no +0.5, as AMD */
-    rfloat ao = (ao_bilinear(uv, 0) + ao_bilinear(uv, 1) + ao_bilinear(uv, 2) + ao_bilinear(uv, 3)) / rfloat(4.0);
-#else
-    vec2 uv = vec2(p) * CB.output_buffer_inverse_dimensions;
-    rfloat ao = (ao_bilinear(uv, 0) + ao_bilinear(uv, 1)) / rfloat(2.0); /* layers 0,1 = slices 0,3 */
-#endif
     imageStore(output_image, p, vec4(float(ao), 0.0, 0.0, 0.0));
 }
+#else
+/* Non-smart and half: the mean of the layers (all four, or slices 0 and 3) read bilinearly at
+ * uv = p / output size (no +0.5, as AMD). One invocation computes a 2x2 quad of output pixels. */
+#if CACAO_VARIANT == CACAO_OUTPUT_NON_SMART
+#define APPLY_LAYERS 4
+#else
+#define APPLY_LAYERS 2 /* layers 0,1 = slices 0,3 */
+#endif
+
+/* One axis of the linear sampler's filter on 8-bit texels: a weight of f / 256 (8 fractional
+ * coordinate bits), the product rounded, a + round(f (b - a) / 256). */
+int lerp_texel8(int f, int a, int b) { return a + ((f * (b - a) + 128) >> 8); }
+
+void main()
+{
+    /* Quad q holds the output pixels o .. o + 1, o = 2q (even size) or 2q - 1 (odd): in either
+     * case both of them read, per axis, between slice texels q - 1 and q (p / O in a slice of
+     * S = ceil(O / 2) texels, less half a texel, lies in [q - 1, q] for those p). So one gather
+     * per layer at the corner between those texels reads the four texels of all four pixels, and
+     * the filter is done here as the sampler does it on 8-bit texels, to the bit, with a quarter of
+     * its reads. */
+    ivec2 q = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 osize = imageSize(output_image);
+    ivec2 ssize = textureSize(ssao_in, 0).xy;
+    vec2 inv_o = CB.output_buffer_inverse_dimensions;
+    if (!in_rect(q, ssize)) return;
+    ivec2 o = 2 * q - (osize & 1);
+    /* each pixel's weight of texel q, in 256ths: its coordinate in 8.8 fixed point, rounded as
+     * the sampler rounds it, less the half texel, relative to texel q - 1 (0 < weight <= 256) */
+    const vec2 fixed_size = vec2(ssize * 256);
+    ivec2 w[2];
+    [[unroll]] for (int i = 0; i < 2; ++i)
+        w[i] = ivec2(roundEven(vec2(o + i) * inv_o * fixed_size)) - 128 - 256 * (q - 1);
+    precise rfloat sum[4] = rfloat[4](rfloat(0.0), rfloat(0.0), rfloat(0.0), rfloat(0.0));
+    vec2 corner = vec2(q) / vec2(ssize);
+    [[unroll]] for (int l = 0; l < APPLY_LAYERS; ++l) {
+        /* x: (q-1, q), y: (q, q), z: (q, q-1), w: (q-1, q-1) */
+        ivec4 t = ivec4(textureGather(ssao_in, vec3(corner, float(l)), 0) * 255.0 + 0.5);
+        [[unroll]] for (int i = 0; i < 4; ++i) {
+            int fx = w[i & 1].x, fy = w[i >> 1].y;
+            int v = lerp_texel8(fy, lerp_texel8(fx, t.w, t.z), lerp_texel8(fx, t.x, t.y));
+            sum[i] += rfloat(float(v) * (1.0 / 255.0));
+        }
+    }
+    [[unroll]] for (int i = 0; i < 4; ++i) {
+        ivec2 p = o + ivec2(i & 1, i >> 1);
+        if (all(greaterThanEqual(p, ivec2(0))))
+            imageStore(output_image, p, vec4(float(sum[i] / rfloat(APPLY_LAYERS)), 0.0, 0.0, 0.0));
+    }
+}
+#endif
 #endif /* APPLY */
 
 /* ============================== UPSAMPLE ============================== */

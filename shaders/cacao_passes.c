@@ -103,7 +103,9 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * 1. (Indirect over the groups near an active tile, with a fill for the rest, was slower on
      * lavapipe: docs/tiles.md.) */
     PASS(APPLY) = {"apply", {"smart", "nonsmart", "half"}, 3, false, false, true, WG(APPLY), CACAOI_GRID_OUTPUT, 3,
-                   {CONSTANTS, R(SSAO_IN, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL)}},
+                   {CONSTANTS, R(SSAO_IN, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL)},
+                   /* non-smart and half: a 2x2 quad of output pixels per invocation */
+                   .quad_variants = V(CACAO_OUTPUT_NON_SMART) | V(CACAO_OUTPUT_HALF)},
     PASS(UPSAMPLE) = {"upsample", {"smart", "nonsmart", "half"}, 3, false, false, true, WG(UPSAMPLE),
                       CACAOI_GRID_UPSAMPLE, 5,
                       {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), R(DEPTHS, DEPTHS, ALL), R(SSAO_IN, SSAO_PING, ALL),

@@ -74,6 +74,13 @@ static void test_only_needed_resources(void) {
     CHECK(find_image(&low, CACAO_RES_DEPTHS)->mips == 1); /* LOW reads no mips */
     CHECK(low.steps[0].dispatch[0] == 120 && low.steps[0].dispatch[1] == 68); /* prepare_depths.full: a texel each */
     CHECK(low.step_count == 7); /* prepare x2, classify, compact, generate, fill, apply: no blur, one fill */
+    /* apply.nonsmart: a 2x2 quad of output pixels per invocation, one per slice texel: ceil(960/8), ceil(540/8) */
+    CHECK(strcmp(low.steps[6].key_name, "apply.nonsmart.fp32") == 0);
+    CHECK(low.steps[6].dispatch[0] == 120 && low.steps[6].dispatch[1] == 68);
+    cacao_plan odd = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true}, 1001, 37);
+    CHECK(strcmp(odd.steps[odd.step_count - 1].key_name, "apply.half.fp32") == 0);
+    /* odd sizes: still one quad per slice texel (501x19): ceil(501/8), ceil(19/8) */
+    CHECK(odd.steps[odd.step_count - 1].dispatch[0] == 63 && odd.steps[odd.step_count - 1].dispatch[1] == 3);
     cacao_plan medium = build((cacao_settings){.quality = CACAO_QUALITY_MEDIUM, .generate_normals = true}, 1920, 1080);
     CHECK(find_image(&medium, CACAO_RES_DEPTHS)->mips == 1); /* MEDIUM never reads mips: none built */
     cacao_plan lowest = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true}, 1920, 1080);
