@@ -32,7 +32,7 @@ extern const char *const cacaoi_quality_names[CACAO_KEY_QUALITY_COUNT];
 
 typedef struct cacao_key {
     uint8_t pass;        /* CACAO_PASS_* */
-    uint8_t variant;     /* depths: CACAO_DEPTHS_*; normals: 0 from depth, 1 from input;
+    uint8_t variant;     /* prepare_depths, prepare: CACAO_DEPTHS_*;
                             generate: CACAO_GENERATE_*; apply/upsample: CACAO_OUTPUT_*; else 0 */
     uint8_t downsampled; /* prepare passes only: 0 native, 1 downsampled */
     uint8_t blur_passes; /* blur only: 1..8 */

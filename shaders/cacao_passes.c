@@ -59,7 +59,8 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
 
 const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     /* spec: prepare.md. HALF = slices 0 and 3 (LOWEST), FULL = four slices, MIPS = + mips 1..3,
-     * all levels in one atlas image (cacao_shared.h). */
+     * all levels in one atlas image (cacao_shared.h). Where the caller gives normals; with
+     * normals from depth PREPARE writes the same depths and the normals in one pass. */
     PASS(PREPARE_DEPTHS) = {"prepare_depths", {"half", "full", "mips"}, 3, true, false, false, WG(PREPARE),
                             CACAOI_GRID_SLICE, 4,
                             {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL),
@@ -67,12 +68,9 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                              W_LEVELS(DEPTHS_OUT0, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS))},
                             /* the mips variant reduces a 2x2 quad per invocation in registers */
                             .quad_variants = V(CACAO_DEPTHS_MIPS)},
-    PASS(PREPARE_NORMALS) = {"prepare_normals", {"depth", "input"}, 2, true, false, false, WG(PREPARE),
-                             CACAOI_GRID_SLICE, 4,
-                             {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, V(0)), R(SRC_NORMALS, NORMALS_INPUT, V(1)),
-                              W(NORMALS_OUT, NORMALS, ALL)},
-                             /* from depth: a 2x2 quad per invocation shares its neighbourhood reads */
-                             .quad_variants = V(0)},
+    /* spec: prepare.md "Normals from input normals" (from depth: PREPARE). */
+    PASS(PREPARE_NORMALS) = {"prepare_normals", {NULL}, 1, true, false, false, WG(PREPARE), CACAOI_GRID_SLICE, 3,
+                             {CONSTANTS, R(SRC_NORMALS, NORMALS_INPUT, ALL), W(NORMALS_OUT, NORMALS, ALL)}},
     /* spec: generate.md. Q3 (HIGHEST's adaptive pass) adds its base, the importance map and the
      * load counter; the Q3 base pass writes the second AO buffer. */
     PASS(GENERATE) = {"generate", {"q0", "q1", "q2", "q3", "q3base"}, 5, false, false, false, WG(GENERATE),
@@ -134,6 +132,14 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                      {CONSTANTS, W(TILES, TILES, ALL)}},
     /* AO 1 into the slices' AO of the tiles generate skips (and, a step rebinding SSAO_OUT, into
      * the blur's output there when a blur runs). */
+    /* spec: prepare.md, normals from depth: PREPARE_DEPTHS's variants and the normals in one pass,
+     * a 2x2 quad of slice texels per invocation sharing one block of depths. */
+    PASS(PREPARE) = {"prepare", {"half", "full", "mips"}, 3, true, false, false, WG(PREPARE), CACAOI_GRID_SLICE, 5,
+                     {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL),
+                      W(DEPTHS_OUT0, DEPTHS, V(CACAO_DEPTHS_HALF) | V(CACAO_DEPTHS_FULL)),
+                      W_LEVELS(DEPTHS_OUT0, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS)),
+                      W(NORMALS_OUT, NORMALS, ALL)},
+                     .quad_variants = V(CACAO_DEPTHS_HALF) | V(CACAO_DEPTHS_FULL) | V(CACAO_DEPTHS_MIPS)},
     PASS(FILL) = {"fill", {NULL}, 1, false, false, false, {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE_LAYERS, 3,
                   {CONSTANTS, R(TILES, TILES, ALL), W(SSAO_OUT, SSAO_PING, ALL)},
                   .lists = {CACAO_LIST_FILL_SLICES}},
@@ -226,8 +232,13 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     if (c->estimator != CACAO_KEY_ESTIMATOR_CACAO) return slice_sequence(c, out);
     size_t n = 0;
     const unsigned ds = c->downsampled ? 1 : 0, fp = c->fp16 ? 1 : 0;
-    push(out, &n, CACAO_PASS_PREPARE_DEPTHS, cacaoi_depths_variant_for_quality(c->quality), ds, 0, 0);
-    push(out, &n, CACAO_PASS_PREPARE_NORMALS, c->normals_from_input ? 1 : 0, ds, 0, 0);
+    const unsigned depths = cacaoi_depths_variant_for_quality(c->quality);
+    if (c->normals_from_input) {
+        push(out, &n, CACAO_PASS_PREPARE_DEPTHS, depths, ds, 0, 0);
+        push(out, &n, CACAO_PASS_PREPARE_NORMALS, 0, ds, 0, 0);
+    } else {
+        push(out, &n, CACAO_PASS_PREPARE, depths, ds, 0, 0); /* depths and normals in one pass */
+    }
     push(out, &n, CACAO_PASS_CLASSIFY, 0, 0, 0, 0);
     push(out, &n, CACAO_PASS_COMPACT, 0, 0, 0, 0);
     if (c->quality == CACAO_KEY_QUALITY_HIGHEST) {

@@ -30,7 +30,10 @@
 #define CACAO_PASS_CLASSIFY 12           /* one class per tile: active, faded or background */
 #define CACAO_PASS_COMPACT 13            /* the tile lists and indirect dispatch commands */
 #define CACAO_PASS_FILL 14               /* AO 1 where no pass computes it */
-#define CACAO_PASS_COUNT 15
+/* Prepare with normals from depth: the depths (CACAO_DEPTHS_* variants) and the normals in one
+ * pass; PREPARE_DEPTHS and PREPARE_NORMALS run instead where the caller gives normals. */
+#define CACAO_PASS_PREPARE 15
+#define CACAO_PASS_COUNT 16
 
 /* Depth-prepare variants (spec: prepare.md). HALF = slices 0 and 3 only (LOWEST), FULL = four
  * slices, MIPS = four slices plus mips 1..3 (HIGH and HIGHEST; MEDIUM never reads mips). */

@@ -10,9 +10,10 @@
 static void test_names_round_trip(void) {
     cacao_key keys[64];
     size_t n = cacaoi_key_list(keys, 64);
-    /* 6 prepare_depths + 4 prepare_normals + 5 generate + 3 importance + 16 blur + 6 apply + 6 upsample
-     * + 2 slice_prepare + 4 slice_main + 2 slice_denoise + classify + compact + fill */
-    CHECK(n == 57);
+    /* 6 prepare_depths + 2 prepare_normals (from the input) + 5 generate + 3 importance + 16 blur
+     * + 6 apply + 6 upsample + 2 slice_prepare + 4 slice_main + 2 slice_denoise + classify + compact
+     * + fill + 6 prepare (depths and normals from depth) */
+    CHECK(n == 61);
     for (size_t i = 0; i < n; ++i) {
         char name[CACAO_KEY_NAME_MAX];
         CHECK(cacaoi_key_is_valid(&keys[i]));
@@ -49,12 +50,13 @@ static void test_invalid_keys(void) {
 static void test_subset(void) {
     cacao_key_subset s;
     CHECK(cacaoi_key_subset_parse("medium;high", "OFF", "fp32", &s));
-    /* By hand: MEDIUM native = prepare_depths.full (no mips), Q1, apply.smart; HIGH native =
-     * prepare_depths.mips, Q2, apply.smart; both: either normals source, blur 1..8 fp32. The
+    /* By hand: MEDIUM native = depths without mips, Q1, apply.smart; HIGH native = depths with
+     * mips, Q2, apply.smart; both: either normals source (given: prepare_depths and
+     * prepare_normals; from depth: prepare, both in one pass), blur 1..8 fp32. The
      * horizon-slice estimators have no quality axis (quality is their budget, a constant) and run
      * native in fp32: all their keys belong to any subset with native resolution. */
     const char *expected[] = {"prepare_depths.full.native", "prepare_depths.mips.native",
-                              "prepare_normals.depth.native", "prepare_normals.input.native",
+                              "prepare_normals.native", "prepare.full.native", "prepare.mips.native",
                               "generate.q1", "generate.q2", "blur.1.fp32", "blur.2.fp32",
                               "blur.3.fp32", "blur.4.fp32", "blur.5.fp32", "blur.6.fp32",
                               "blur.7.fp32", "blur.8.fp32", "apply.smart.fp32", "slice_prepare.depth",

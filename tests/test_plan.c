@@ -28,16 +28,12 @@ static void test_steps_per_quality(void) {
 #define TILES "classify", "compact"
 #define FILLS "fill", "fill"
     const char *expected[5][16] = {
-        {"prepare_depths.half.native", "prepare_normals.depth.native", TILES, "generate.q0", FILLS, "blur.2.fp32",
-         "apply.half.fp32"},
-        {"prepare_depths.full.native", "prepare_normals.depth.native", TILES, "generate.q0", FILLS, "blur.2.fp32",
-         "apply.nonsmart.fp32"},
-        {"prepare_depths.full.native", "prepare_normals.depth.native", TILES, "generate.q1", FILLS, "blur.2.fp32",
-         "apply.smart.fp32"},
-        {"prepare_depths.mips.native", "prepare_normals.depth.native", TILES, "generate.q2", FILLS, "blur.2.fp32",
-         "apply.smart.fp32"},
-        {"prepare_depths.mips.native", "prepare_normals.depth.native", TILES, "generate.q3base", "importance",
-         "importance_a", "importance_b", "generate.q3", FILLS, "blur.2.fp32", "apply.smart.fp32"},
+        {"prepare.half.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.half.fp32"},
+        {"prepare.full.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.nonsmart.fp32"},
+        {"prepare.full.native", TILES, "generate.q1", FILLS, "blur.2.fp32", "apply.smart.fp32"},
+        {"prepare.mips.native", TILES, "generate.q2", FILLS, "blur.2.fp32", "apply.smart.fp32"},
+        {"prepare.mips.native", TILES, "generate.q3base", "importance", "importance_a", "importance_b",
+         "generate.q3", FILLS, "blur.2.fp32", "apply.smart.fp32"},
     };
 #undef TILES
 #undef FILLS
@@ -51,12 +47,12 @@ static void test_steps_per_quality(void) {
                 fprintf(stderr, "quality %d step %u: %s, expected %s\n", q, i, p.steps[i].key_name, expected[q][i]);
             CHECK(strcmp(p.steps[i].key_name, expected[q][i]) == 0);
         }
-        /* Prepare depths and normals touch disjoint resources: no barrier between them; nor
-         * between the two fills (the AO and the blur's output), nor before the Q3 base pass (it
-         * reads the prepared depths and normals, which the barrier before classify already
-         * ordered, not the tiles); every other step depends on the one before. */
-        CHECK(!p.steps[0].barrier_before && !p.steps[1].barrier_before);
-        for (uint32_t i = 2; i < p.step_count; ++i) {
+        /* No barrier before the first step, between the two fills (the AO and the blur's output),
+         * nor before the Q3 base pass (it reads the prepared depths and normals, which the barrier
+         * before classify already ordered, not the tiles); every other step depends on the one
+         * before. */
+        CHECK(!p.steps[0].barrier_before);
+        for (uint32_t i = 1; i < p.step_count; ++i) {
             const bool independent = (strcmp(p.steps[i].key_name, "fill") == 0 && !strcmp(p.steps[i - 1].key_name, "fill")) ||
                                      strcmp(p.steps[i].key_name, "generate.q3base") == 0;
             CHECK(p.steps[i].barrier_before == !independent);
@@ -72,11 +68,16 @@ static void test_only_needed_resources(void) {
     CHECK(find_image(&low, CACAO_RES_IMPORTANCE) == NULL); /* importance only at HIGHEST */
     CHECK(!low.uses_load_counter);
     CHECK(find_image(&low, CACAO_RES_DEPTHS)->mips == 1); /* LOW reads no mips */
-    CHECK(low.steps[0].dispatch[0] == 120 && low.steps[0].dispatch[1] == 68); /* prepare_depths.full: a texel each */
-    CHECK(low.step_count == 7); /* prepare x2, classify, compact, generate, fill, apply: no blur, one fill */
+    CHECK(low.steps[0].dispatch[0] == 60 && low.steps[0].dispatch[1] == 34); /* prepare.full: 2x2 texels each */
+    CHECK(low.step_count == 6); /* prepare, classify, compact, generate, fill, apply: no blur, one fill */
     /* apply.nonsmart: a 2x2 quad of output pixels per invocation, one per slice texel: ceil(960/8), ceil(540/8) */
-    CHECK(strcmp(low.steps[6].key_name, "apply.nonsmart.fp32") == 0);
-    CHECK(low.steps[6].dispatch[0] == 120 && low.steps[6].dispatch[1] == 68);
+    CHECK(strcmp(low.steps[5].key_name, "apply.nonsmart.fp32") == 0);
+    CHECK(low.steps[5].dispatch[0] == 120 && low.steps[5].dispatch[1] == 68);
+    cacao_plan given_low = build((cacao_settings){.quality = CACAO_QUALITY_LOW, .blur_pass_count = CACAO_BLUR_NONE}, 1920, 1080);
+    CHECK(given_low.step_count == 7); /* normals given: prepare_depths and prepare_normals */
+    CHECK(strcmp(given_low.steps[0].key_name, "prepare_depths.full.native") == 0);
+    CHECK(given_low.steps[0].dispatch[0] == 120 && given_low.steps[0].dispatch[1] == 68); /* a texel each */
+    CHECK(strcmp(given_low.steps[1].key_name, "prepare_normals.native") == 0);
     cacao_plan odd = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true}, 1001, 37);
     CHECK(strcmp(odd.steps[odd.step_count - 1].key_name, "apply.half.fp32") == 0);
     /* odd sizes: still one quad per slice texel (501x19): ceil(501/8), ceil(19/8) */
@@ -85,8 +86,8 @@ static void test_only_needed_resources(void) {
     CHECK(find_image(&medium, CACAO_RES_DEPTHS)->mips == 1); /* MEDIUM never reads mips: none built */
     cacao_plan lowest = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true}, 1920, 1080);
     CHECK(lowest.slice_count == 2 && find_image(&lowest, CACAO_RES_DEPTHS)->layers == 2);
-    CHECK(strcmp(lowest.steps[4].key_name, "generate.q0") == 0 && lowest.steps[4].dispatch[2] == 2); /* two slices */
-    CHECK(lowest.steps[4].list == CACAO_LIST_GENERATE); /* indirect, over the needed tiles */
+    CHECK(strcmp(lowest.steps[3].key_name, "generate.q0") == 0 && lowest.steps[3].dispatch[2] == 2); /* two slices */
+    CHECK(lowest.steps[3].list == CACAO_LIST_GENERATE); /* indirect, over the needed tiles */
     /* 1920x1080: slices 960x540, tiles of 8x8 texels 120x68; blur 2 outputs 60x28 per group. */
     CHECK(lowest.tiles_x == 120 && lowest.tiles_y == 68 && lowest.blur_groups_x == 16 && lowest.blur_groups_y == 20);
     CHECK(lowest.tile_buffer_bytes == 4u * (32u + 3u * 120u * 68u + 16u * 20u));
@@ -109,21 +110,24 @@ static void test_only_needed_resources(void) {
 static void test_dispatch_sizes(void) {
     /* 1920x1080 native: S = 960x540, I = 480x270. Downsampled: S = 480x270. Odd 1001x37. */
     cacao_plan p = build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
-    /* prepare_depths.mips and prepare_normals.depth: 2x2 texels per invocation, ceil(960/16),
+    /* prepare.mips (depths and normals from depth): 2x2 texels per invocation, ceil(960/16),
      * ceil(540/16) */
+    CHECK(strcmp(p.steps[0].key_name, "prepare.mips.native") == 0);
     CHECK(p.steps[0].dispatch[0] == 60 && p.steps[0].dispatch[1] == 34);
-    CHECK(p.steps[1].dispatch[0] == 60 && p.steps[1].dispatch[1] == 34);
     cacao_plan given = build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST}, 1920, 1080);
-    CHECK(strcmp(given.steps[1].key_name, "prepare_normals.input.native") == 0);
+    CHECK(strcmp(given.steps[0].key_name, "prepare_depths.mips.native") == 0);
+    CHECK(given.steps[0].dispatch[0] == 60 && given.steps[0].dispatch[1] == 34); /* mips: 2x2 texels each */
+    CHECK(strcmp(given.steps[1].key_name, "prepare_normals.native") == 0);
     CHECK(given.steps[1].dispatch[0] == 120 && given.steps[1].dispatch[1] == 68); /* the caller's: one each */
-    CHECK(p.steps[2].dispatch[0] == 15 && p.steps[2].dispatch[1] == 9);     /* classify: 120x68 tiles / 8x8 */
-    CHECK(p.steps[3].dispatch[0] == (120 * 68 + 16 * 20 + 63) / 64);         /* compact: tiles + blur groups */
-    CHECK(p.steps[5].dispatch[0] == 60 && p.steps[5].dispatch[1] == 34);    /* importance: ceil(480/8), ceil(270/8) */
-    CHECK(p.steps[8].dispatch[2] == 4);                                     /* generate: 4 slices */
-    CHECK(p.steps[11].dispatch[0] == 16 && p.steps[11].dispatch[1] == 20);  /* blur, N = 2: ceil(960/60), ceil(540/28) */
-    CHECK(p.steps[12].dispatch[0] == 240 && p.steps[12].dispatch[1] == 135); /* apply: ceil(1920/8) */
-    CHECK(p.steps[8].list == CACAO_LIST_GENERATE && p.steps[9].list == CACAO_LIST_FILL_SLICES &&
-          p.steps[11].list == CACAO_LIST_BLUR && p.steps[12].list == CACAO_LIST_NONE && p.steps[4].list == CACAO_LIST_NONE);
+    CHECK(given.step_count == p.step_count + 1);
+    CHECK(p.steps[1].dispatch[0] == 15 && p.steps[1].dispatch[1] == 9);     /* classify: 120x68 tiles / 8x8 */
+    CHECK(p.steps[2].dispatch[0] == (120 * 68 + 16 * 20 + 63) / 64);         /* compact: tiles + blur groups */
+    CHECK(p.steps[4].dispatch[0] == 60 && p.steps[4].dispatch[1] == 34);    /* importance: ceil(480/8), ceil(270/8) */
+    CHECK(p.steps[7].dispatch[2] == 4);                                     /* generate: 4 slices */
+    CHECK(p.steps[10].dispatch[0] == 16 && p.steps[10].dispatch[1] == 20);  /* blur, N = 2: ceil(960/60), ceil(540/28) */
+    CHECK(p.steps[11].dispatch[0] == 240 && p.steps[11].dispatch[1] == 135); /* apply: ceil(1920/8) */
+    CHECK(p.steps[7].list == CACAO_LIST_GENERATE && p.steps[8].list == CACAO_LIST_FILL_SLICES &&
+          p.steps[10].list == CACAO_LIST_BLUR && p.steps[11].list == CACAO_LIST_NONE && p.steps[3].list == CACAO_LIST_NONE);
     cacao_plan d =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true, .generate_normals = true}, 1001, 37);
     CHECK(d.slice_width == 251 && d.slice_height == 10); /* ceil(ceil(1001/2)/2), ceil(ceil(37/2)/2) */
@@ -153,9 +157,11 @@ static void test_small_mip_chain(void) {
         CHECK(depths && depths->mips == cases[c].mips);
         CHECK(depths->width == cases[c].atlas_w && depths->height == cases[c].atlas_h);
         CHECK(depths->bytes == (uint64_t)cases[c].atlas_w * cases[c].atlas_h * 4 * 2);
-        const cacao_plan_binding *b = &p.steps[0].bindings[2]; /* constants, source depth, the atlas */
-        CHECK(p.steps[0].binding_count == 3 && b->binding == CACAO_BINDING_DEPTHS_OUT0 && b->write &&
+        /* prepare.mips: constants, source depth, the atlas, the normals */
+        const cacao_plan_binding *b = &p.steps[0].bindings[2];
+        CHECK(p.steps[0].binding_count == 4 && b->binding == CACAO_BINDING_DEPTHS_OUT0 && b->write &&
               b->resource == CACAO_RES_DEPTHS);
+        CHECK(p.steps[0].bindings[3].binding == CACAO_BINDING_NORMALS_OUT && p.steps[0].bindings[3].write);
     }
 }
 

@@ -6,7 +6,7 @@
 # what the table and the report must list, in that order, followed by the tile counts.
 include(${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake)
 cacao_ok(run --scene ${ROOM} --quality high --validate --timings --repeat 3 --json ${WORK}/t.json -o ${WORK}/t.png)
-set(expected prepare_depths.mips.native prepare_normals.input.native classify compact generate.q2 fill fill
+set(expected prepare_depths.mips.native prepare_normals.native classify compact generate.q2 fill fill
     blur.2.fp32 apply.smart.fp32)
 string(REGEX MATCHALL "\n[a-z_0-9.]+ +[0-9]+\\.[0-9]+" rows "${run_out}")
 set(names "")
