@@ -869,22 +869,25 @@ void main()
 
 /* ============================== BLUR ============================== */
 #if CACAO_PASS == CACAO_PASS_BLUR
-/* spec: blur.md (padded-domain formulation, N Jacobi iterations in one dispatch).
- * The padded tile (64x32 slice texels) is split into 4x2 blocks, one per thread. A thread keeps its
- * block's values and edge weights in registers for all N iterations; shared memory only carries
- * the values its neighbours need (one barrier per iteration, double-buffered). The inner
- * (64-2N)x(32-2N) texels are exact: values at distance d from the padded border are wrong after
- * d iterations at most, and the inner region is N away from it. */
+/* spec: blur.md (padded-domain formulation, N Jacobi iterations in one dispatch), two ways:
+ * - up to CACAO_BLUR_REGISTER_PASSES passes, each thread computes a block of BX x BY output
+ *   texels from its footprint, the block and N more texels on every side, held in registers:
+ *   iteration it is right at the texels at least it from the footprint's edge, so after N the
+ *   block is exact. The footprints overlap (each texel is loaded and updated by several threads),
+ *   but no texel goes through shared memory: on lavapipe, whose shared loads run lane by lane and
+ *   whose barriers switch between all the group's invocations, that exchange was 2/3 of the blur
+ *   (docs/speed-notes.md). Its fully unrolled code grows with N x footprint: past 3 passes
+ *   lavapipe's compile time grows to seconds (7.9 s at 4, 26 s at 6), so
+ * - beyond, a group owns a padded tile of BX x BY blocks, one per thread, whose values and edge
+ *   weights stay in registers for all N iterations; shared memory carries only the values the
+ *   neighbours need (one barrier per iteration, double-buffered). The inner
+ *   (WG BX - 2N) x (WG BY - 2N) texels are exact: values at distance d from the padded border
+ *   are wrong after d iterations at most, and the inner region is N away from it. */
 layout(local_size_x = CACAO_WG_BLUR_X, local_size_y = CACAO_WG_BLUR_Y) in;
 
 #define BLUR_N CACAO_BLUR_PASSES
 #define BX CACAO_BLUR_BLOCK_X
 #define BY CACAO_BLUR_BLOCK_Y
-#define BLUR_PX (CACAO_WG_BLUR_X * BX) /* padded tile width */
-#define BLUR_PY (CACAO_WG_BLUR_Y * BY) /* padded tile height */
-
-/* 2 x 2048 values: 16 KiB (fp32), 8 KiB (fp16). */
-shared rfloat blur_values[2][BLUR_PY][BLUR_PX];
 
 rfloat blur_store_value(float v)
 {
@@ -894,6 +897,100 @@ rfloat blur_store_value(float v)
     return round_to_half(v); /* AMD keeps the values as half between iterations */
 #endif
 }
+
+/* Value (r) and packed edges (g) of padded-domain texels c .. c + 1 (2x2), mirrored at the
+ * slice's edges ([quirk] BLUR-BORDER-EDGES), from one gather per channel: the mirrored
+ * coordinates m0, m1 of a pair differ by at most 1 (mirroring and its clamp are continuous), so
+ * they lie in lo = min(m0, m1), lo + 1 (clamped by the sampler at the last texel), which one gather
+ * at the corner between them reads; each texel then takes its own of the two. Out: [y][x]. */
+void load_blur_piece(ivec2 c, ivec2 s, int layer, out vec2 ae[2][2])
+{
+    ivec2 m0 = mirror_coord(c, s), m1 = mirror_coord(c + 1, s);
+    ivec2 lo = min(m0, m1);
+    vec3 at = vec3(vec2(lo + 1) / vec2(s), float(layer));
+    /* gather order: x = (lo.x, lo.y + 1), y = (lo.x + 1, lo.y + 1), z = (lo.x + 1, lo.y), w = (lo.x, lo.y) */
+    vec4 ga = textureGather(ssao_in, at, 0);
+    vec4 ge = textureGather(ssao_in, at, 1);
+    [[unroll]] for (int j = 0; j < 2; ++j) {
+        [[unroll]] for (int i = 0; i < 2; ++i) {
+            bool first_x = (i == 0 ? m0.x : m1.x) == lo.x;
+            bool first_y = (j == 0 ? m0.y : m1.y) == lo.y;
+            ae[j][i] = first_y ? (first_x ? vec2(ga.w, ge.w) : vec2(ga.z, ge.z))
+                               : (first_x ? vec2(ga.x, ge.x) : vec2(ga.y, ge.y));
+        }
+    }
+}
+
+#if BLUR_N <= CACAO_BLUR_REGISTER_PASSES
+#define FX (BX + 2 * BLUR_N) /* the footprint */
+#define FY (BY + 2 * BLUR_N)
+#if FX % 2 != 0 || FY % 2 != 0
+#error "the blur loads its footprint in 2x2 pieces"
+#endif
+
+void main()
+{
+    ivec2 group;
+    if (!group_of(group)) return;
+    ivec2 s = textureSize(ssao_in, 0).xy;
+    int layer = int(gl_WorkGroupID.z);
+    ivec2 out0 = group * ivec2(CACAO_BLUR_OUT_X(BLUR_N), CACAO_BLUR_OUT_Y(BLUR_N)) + ivec2(gl_LocalInvocationID.xy) * ivec2(BX, BY);
+
+    rfloat v[FY][FX];
+    float packed[FY][FX];
+    [[unroll]] for (int py = 0; py < FY; py += 2) {
+        [[unroll]] for (int px = 0; px < FX; px += 2) {
+            vec2 ae[2][2];
+            load_blur_piece(out0 - BLUR_N + ivec2(px, py), s, layer, ae);
+            [[unroll]] for (int j = 0; j < 2; ++j) {
+                [[unroll]] for (int i = 0; i < 2; ++i) {
+                    v[py + j][px + i] = blur_store_value(ae[j][i].r);
+                    packed[py + j][px + i] = ae[j][i].g;
+                }
+            }
+        }
+    }
+    /* edge weights of the texels the iterations update: all but the footprint's outer ring */
+    rvec4 e[FY][FX];
+    rfloat wsum[FY][FX];
+    [[unroll]] for (int y = 1; y < FY - 1; ++y) {
+        [[unroll]] for (int x = 1; x < FX - 1; ++x) {
+            e[y][x] = unpack_edges(packed[y][x]);
+            wsum[y][x] = rfloat(CACAO_BLUR_CENTRE_WEIGHT) + e[y][x].x + e[y][x].y + e[y][x].z + e[y][x].w;
+        }
+    }
+    /* Every iteration updates the whole inner region (constant bounds: shrinking it by one per
+     * iteration made the loops too irregular for the driver to unroll, and the arrays went to
+     * memory, 6x slower); what it gets wrong near the edge no block texel depends on. */
+    [[unroll]] for (int it = 0; it < BLUR_N; ++it) {
+        rfloat nv[FY][FX] = v;
+        [[unroll]] for (int y = 1; y < FY - 1; ++y) {
+            [[unroll]] for (int x = 1; x < FX - 1; ++x) {
+                rvec4 w = e[y][x];
+                rfloat sum = rfloat(CACAO_BLUR_CENTRE_WEIGHT) * v[y][x] + w.x * v[y][x - 1] + w.y * v[y][x + 1] +
+                             w.z * v[y - 1][x] + w.w * v[y + 1][x];
+                nv[y][x] = blur_store_value(float(sum / wsum[y][x]));
+            }
+        }
+        v = nv;
+    }
+
+    /* the block: (blurred AO, original packed edges) */
+    [[unroll]] for (int y = 0; y < BY; ++y) {
+        [[unroll]] for (int x = 0; x < BX; ++x) {
+            ivec2 p = out0 + ivec2(x, y);
+            if (in_rect(p, s))
+                imageStore(ssao_out, ivec3(p, layer),
+                           vec4(float(v[BLUR_N + y][BLUR_N + x]), packed[BLUR_N + y][BLUR_N + x], 0.0, 0.0));
+        }
+    }
+}
+#else
+#define BLUR_PX (CACAO_WG_BLUR_X * BX) /* padded tile width */
+#define BLUR_PY (CACAO_WG_BLUR_Y * BY) /* padded tile height */
+
+/* 2 x 2048 values: 16 KiB (fp32), 8 KiB (fp16). */
+shared rfloat blur_values[2][BLUR_PY][BLUR_PX];
 
 void main()
 {
@@ -965,6 +1062,7 @@ void main()
         }
     }
 }
+#endif /* register or shared-memory blur */
 #endif /* BLUR */
 
 /* ============================== APPLY / UPSAMPLE shared ============================== */

@@ -129,13 +129,15 @@
 #define CACAO_WG_GENERATE_Y 8
 #define CACAO_WG_IMPORTANCE_X 8
 #define CACAO_WG_IMPORTANCE_Y 8
-#define CACAO_WG_BLUR_X 16
-#define CACAO_WG_BLUR_Y 16
-#define CACAO_BLUR_BLOCK_X 4             /* padded-tile texels each blur thread owns, x */
-#define CACAO_BLUR_BLOCK_Y 2             /* ... and y: the padded tile is 64x32 */
+#define CACAO_WG_BLUR_X 8
+#define CACAO_WG_BLUR_Y 8
+#define CACAO_BLUR_BLOCK_X 8             /* texels each blur thread owns, x */
+#define CACAO_BLUR_BLOCK_Y 4             /* ... and y: 64x32 per group */
+#define CACAO_BLUR_REGISTER_PASSES 3     /* up to this many passes, footprints in registers (blur.md in cacao.comp) */
 /* Output texels per blur workgroup for N iterations: the padded tile less N on each side. */
-#define CACAO_BLUR_OUT_X(n) (CACAO_WG_BLUR_X * CACAO_BLUR_BLOCK_X - 2 * (n))
-#define CACAO_BLUR_OUT_Y(n) (CACAO_WG_BLUR_Y * CACAO_BLUR_BLOCK_Y - 2 * (n))
+/* Output texels of a blur group of n passes: all its blocks, or its padded tile less n each side. */
+#define CACAO_BLUR_OUT_X(n) (CACAO_WG_BLUR_X * CACAO_BLUR_BLOCK_X - ((n) <= CACAO_BLUR_REGISTER_PASSES ? 0 : 2 * (n)))
+#define CACAO_BLUR_OUT_Y(n) (CACAO_WG_BLUR_Y * CACAO_BLUR_BLOCK_Y - ((n) <= CACAO_BLUR_REGISTER_PASSES ? 0 : 2 * (n)))
 #define CACAO_WG_APPLY_X 8
 #define CACAO_WG_APPLY_Y 8
 #define CACAO_WG_UPSAMPLE_X 8

@@ -88,9 +88,10 @@ static void test_only_needed_resources(void) {
     CHECK(lowest.slice_count == 2 && find_image(&lowest, CACAO_RES_DEPTHS)->layers == 2);
     CHECK(strcmp(lowest.steps[3].key_name, "generate.q0") == 0 && lowest.steps[3].dispatch[2] == 2); /* two slices */
     CHECK(lowest.steps[3].list == CACAO_LIST_GENERATE); /* indirect, over the needed tiles */
-    /* 1920x1080: slices 960x540, tiles of 8x8 texels 120x68; blur 2 outputs 60x28 per group. */
-    CHECK(lowest.tiles_x == 120 && lowest.tiles_y == 68 && lowest.blur_groups_x == 16 && lowest.blur_groups_y == 20);
-    CHECK(lowest.tile_buffer_bytes == 4u * (32u + 3u * 120u * 68u + 16u * 20u));
+    /* 1920x1080: slices 960x540, tiles of 8x8 texels 120x68; a blur group of 2 passes outputs
+     * 64x32 texels (8x8 threads of 8x4 each, from their footprints). */
+    CHECK(lowest.tiles_x == 120 && lowest.tiles_y == 68 && lowest.blur_groups_x == 15 && lowest.blur_groups_y == 17);
+    CHECK(lowest.tile_buffer_bytes == 4u * (32u + 3u * 120u * 68u + 15u * 17u));
     cacao_plan highest =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
     const cacao_plan_image *depths = find_image(&highest, CACAO_RES_DEPTHS);
@@ -121,10 +122,15 @@ static void test_dispatch_sizes(void) {
     CHECK(given.steps[1].dispatch[0] == 120 && given.steps[1].dispatch[1] == 68); /* the caller's: one each */
     CHECK(given.step_count == p.step_count + 1);
     CHECK(p.steps[1].dispatch[0] == 15 && p.steps[1].dispatch[1] == 9);     /* classify: 120x68 tiles / 8x8 */
-    CHECK(p.steps[2].dispatch[0] == (120 * 68 + 16 * 20 + 63) / 64);         /* compact: tiles + blur groups */
+    CHECK(p.steps[2].dispatch[0] == (120 * 68 + 15 * 17 + 63) / 64);         /* compact: tiles + blur groups */
     CHECK(p.steps[4].dispatch[0] == 60 && p.steps[4].dispatch[1] == 34);    /* importance: ceil(480/8), ceil(270/8) */
     CHECK(p.steps[7].dispatch[2] == 4);                                     /* generate: 4 slices */
-    CHECK(p.steps[10].dispatch[0] == 16 && p.steps[10].dispatch[1] == 20);  /* blur, N = 2: ceil(960/60), ceil(540/28) */
+    CHECK(p.steps[10].dispatch[0] == 15 && p.steps[10].dispatch[1] == 17);  /* blur, N = 2: ceil(960/64), ceil(540/32) */
+    /* past CACAO_BLUR_REGISTER_PASSES a group computes its 64x32 padded tile less N each side */
+    cacao_plan b8 = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .blur_pass_count = 8, .generate_normals = true},
+                          1920, 1080);
+    CHECK(strcmp(b8.steps[b8.step_count - 2].key_name, "blur.8.fp32") == 0);
+    CHECK(b8.blur_groups_x == 20 && b8.blur_groups_y == 34); /* ceil(960/48), ceil(540/16) */
     CHECK(p.steps[11].dispatch[0] == 240 && p.steps[11].dispatch[1] == 135); /* apply: ceil(1920/8) */
     CHECK(p.steps[7].list == CACAO_LIST_GENERATE && p.steps[8].list == CACAO_LIST_FILL_SLICES &&
           p.steps[10].list == CACAO_LIST_BLUR && p.steps[11].list == CACAO_LIST_NONE && p.steps[3].list == CACAO_LIST_NONE);
