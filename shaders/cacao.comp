@@ -1146,6 +1146,8 @@ void main()
     ivec2 w[2];
     [[unroll]] for (int i = 0; i < 2; ++i)
         w[i] = ivec2(roundEven(vec2(o + i) * inv_o * fixed_size)) - 128 - 256 * (q - 1);
+    /* precise: otherwise the compiler factors the 1/255 out of the sum and the last bit moves;
+     * and the sampler converts an 8-bit value v to v * (1/255), not v / 255 */
     precise rfloat sum[4] = rfloat[4](rfloat(0.0), rfloat(0.0), rfloat(0.0), rfloat(0.0));
     vec2 corner = vec2(q) / vec2(ssize);
     [[unroll]] for (int l = 0; l < APPLY_LAYERS; ++l) {
