@@ -898,6 +898,17 @@ rfloat blur_store_value(float v)
 #endif
 }
 
+/* Sum of a texel's blur weights: the centre's and its four edges'. */
+rfloat blur_weight_sum(rvec4 e) { return rfloat(CACAO_BLUR_CENTRE_WEIGHT) + e.x + e.y + e.z + e.w; }
+
+/* One Jacobi update of a texel: its value c and its neighbours' (left, right, top, bottom),
+ * weighted by its edges w, over their sum wsum; stored as the iterations keep it. */
+rfloat blur_update(rfloat c, rfloat l, rfloat r, rfloat t, rfloat b, rvec4 w, rfloat wsum)
+{
+    rfloat sum = rfloat(CACAO_BLUR_CENTRE_WEIGHT) * c + w.x * l + w.y * r + w.z * t + w.w * b;
+    return blur_store_value(float(sum / wsum));
+}
+
 /* Value (r) and packed edges (g) of padded-domain texels c .. c + 1 (2x2), mirrored at the
  * slice's edges ([quirk] BLUR-BORDER-EDGES), from one gather per channel: the mirrored
  * coordinates m0, m1 of a pair differ by at most 1 (mirroring and its clamp are continuous), so
@@ -956,7 +967,7 @@ void main()
     [[unroll]] for (int y = 1; y < FY - 1; ++y) {
         [[unroll]] for (int x = 1; x < FX - 1; ++x) {
             e[y][x] = unpack_edges(packed[y][x]);
-            wsum[y][x] = rfloat(CACAO_BLUR_CENTRE_WEIGHT) + e[y][x].x + e[y][x].y + e[y][x].z + e[y][x].w;
+            wsum[y][x] = blur_weight_sum(e[y][x]);
         }
     }
     /* Every iteration updates the whole inner region (constant bounds: shrinking it by one per
@@ -966,10 +977,7 @@ void main()
         rfloat nv[FY][FX] = v;
         [[unroll]] for (int y = 1; y < FY - 1; ++y) {
             [[unroll]] for (int x = 1; x < FX - 1; ++x) {
-                rvec4 w = e[y][x];
-                rfloat sum = rfloat(CACAO_BLUR_CENTRE_WEIGHT) * v[y][x] + w.x * v[y][x - 1] + w.y * v[y][x + 1] +
-                             w.z * v[y - 1][x] + w.w * v[y + 1][x];
-                nv[y][x] = blur_store_value(float(sum / wsum[y][x]));
+                nv[y][x] = blur_update(v[y][x], v[y][x - 1], v[y][x + 1], v[y - 1][x], v[y + 1][x], e[y][x], wsum[y][x]);
             }
         }
         v = nv;
@@ -1013,7 +1021,7 @@ void main()
             v[y][x] = blur_store_value(ae.r);
             packed[y][x] = ae.g;
             e[y][x] = unpack_edges(ae.g);
-            wsum[y][x] = rfloat(CACAO_BLUR_CENTRE_WEIGHT) + e[y][x].x + e[y][x].y + e[y][x].z + e[y][x].w;
+            wsum[y][x] = blur_weight_sum(e[y][x]);
         }
     }
 
@@ -1042,9 +1050,7 @@ void main()
                 rfloat ar = x < BX - 1 ? v[y][x + 1] : right[y];
                 rfloat at = y > 0 ? v[y - 1][x] : top[x];
                 rfloat ab = y < BY - 1 ? v[y + 1][x] : bottom[x];
-                rvec4 w = e[y][x];
-                rfloat sum = rfloat(CACAO_BLUR_CENTRE_WEIGHT) * v[y][x] + w.x * al + w.y * ar + w.z * at + w.w * ab;
-                nv[y][x] = blur_store_value(float(sum / wsum[y][x]));
+                nv[y][x] = blur_update(v[y][x], al, ar, at, ab, e[y][x], wsum[y][x]);
             }
         }
         v = nv;
