@@ -1077,8 +1077,30 @@ void main()
 /* Bilinear read of one layer of the AO texture (LinearClamp). */
 rfloat ao_bilinear(vec2 uv, int layer) { return rfloat(textureLod(ssao_in, vec3(uv, float(layer)), 0.0).r); }
 
-/* Edge-aware interleave at integer position p of the 2S-sized re-interleaved image
- * (spec: apply.md "Apply", integer p as written: [quirk] APPLY-HALF-PIXEL). */
+/* The edge-aware interleave of the 2S-sized re-interleaved image at integer position p (spec:
+ * apply.md "Apply", integer p as written: [quirk] APPLY-HALF-PIXEL) from the pixel's edges e:
+ * where it reads its three neighbour layers (uv of the horizontal, vertical and diagonal ones). */
+void smart_apply_taps(ivec2 p, rvec4 e, out vec2 uvh, out vec2 uvv, out vec2 uvd)
+{
+    int mx = p.x & 1, my = p.y & 1;
+    float sx = float(e.y - e.x); /* push samples away from edges */
+    float sy = float(e.w - e.z);
+    vec2 pf = vec2(p);
+    vec2 inv_s = CB.ssao_buffer_inverse_dimensions;
+    uvh = (pf + vec2(float(mx) + sx - 0.5, 0.5 - float(my))) * 0.5 * inv_s;
+    uvv = (pf + vec2(0.5 - float(mx), float(my) - 0.5 + sy)) * 0.5 * inv_s;
+    uvd = (pf + vec2(float(mx) - 0.5 + sx, float(my) - 0.5 + sy)) * 0.5 * inv_s;
+}
+
+/* ... and the pixel's value from its own texel's AO and the three reads. */
+rfloat smart_apply_mix(rfloat ao, rvec4 e, rfloat ah, rfloat av, rfloat ad)
+{
+    rfloat wh = (e.x + e.y) * rfloat(0.5);
+    rfloat wv = (e.z + e.w) * rfloat(0.5);
+    rfloat wd = (wh + wv) * rfloat(0.5);
+    return (ao + wh * ah + wv * av + wd * ad) / (rfloat(1.0) + wh + wv + wd);
+}
+
 rfloat smart_apply(ivec2 p)
 {
     int mx = p.x & 1, my = p.y & 1;
@@ -1087,22 +1109,10 @@ rfloat smart_apply(ivec2 p)
     int iv = mx + 2 * (1 - my);
     int id = (1 - mx) + 2 * (1 - my);
     vec2 ae = texelFetch(ssao_in, ivec3(p >> 1, ic), 0).rg;
-    rfloat ao = rfloat(ae.r);
     rvec4 e = unpack_edges(ae.g);
-    float sx = float(e.y - e.x); /* push samples away from edges */
-    float sy = float(e.w - e.z);
-    vec2 pf = vec2(p);
-    vec2 inv_s = CB.ssao_buffer_inverse_dimensions;
-    vec2 uvh = (pf + vec2(float(mx) + sx - 0.5, 0.5 - float(my))) * 0.5 * inv_s;
-    vec2 uvv = (pf + vec2(0.5 - float(mx), float(my) - 0.5 + sy)) * 0.5 * inv_s;
-    vec2 uvd = (pf + vec2(float(mx) - 0.5 + sx, float(my) - 0.5 + sy)) * 0.5 * inv_s;
-    rfloat ah = ao_bilinear(uvh, ih);
-    rfloat av = ao_bilinear(uvv, iv);
-    rfloat ad = ao_bilinear(uvd, id);
-    rfloat wh = (e.x + e.y) * rfloat(0.5);
-    rfloat wv = (e.z + e.w) * rfloat(0.5);
-    rfloat wd = (wh + wv) * rfloat(0.5);
-    return (ao + wh * ah + wv * av + wd * ad) / (rfloat(1.0) + wh + wv + wd);
+    vec2 uvh, uvv, uvd;
+    smart_apply_taps(p, e, uvh, uvv, uvd);
+    return smart_apply_mix(rfloat(ae.r), e, ao_bilinear(uvh, ih), ao_bilinear(uvv, iv), ao_bilinear(uvd, id));
 }
 #endif
 
@@ -1111,13 +1121,82 @@ rfloat smart_apply(ivec2 p)
 /* spec: apply.md (Apply, NonSmartApply, NonSmartHalfApply) */
 layout(local_size_x = CACAO_WG_APPLY_X, local_size_y = CACAO_WG_APPLY_Y) in;
 
+/* One axis of the linear sampler's filter on 8-bit texels: a weight of f / 256 (8 fractional
+ * coordinate bits), the product rounded, a + round(f (b - a) / 256). */
+int lerp_texel8(int f, int a, int b) { return a + ((f * (b - a) + 128) >> 8); }
+
+/* The 8-bit texel of an unorm value as gathered. */
+int texel8(float v) { return int(v * 255.0 + 0.5); }
+
 #if CACAO_VARIANT == CACAO_OUTPUT_SMART
+/* The sampler's bilinear read, to the bit, from a 4x4 window w of one layer's texels (window
+ * texel 0 at slice texel base) at sampler coordinate uv. Along an axis the read starts at window
+ * texel lo, or (shift: where the edges can move it by one) at lo or lo + 1. */
+int window_read(float w[4][4], ivec2 base, vec2 uv, vec2 fixed_size, ivec2 lo, bvec2 shift)
+{
+    ivec2 c = ivec2(roundEven(uv * fixed_size)) - 128; /* 8.8 fixed point, less half a texel */
+    ivec2 f = c & 255;
+    bvec2 hi = bvec2(shift.x && (c.x >> 8) - base.x != lo.x, shift.y && (c.y >> 8) - base.y != lo.y);
+    int row[3];
+    [[unroll]] for (int k = 0; k < 3; ++k) {
+        int y = min(lo.y + k, 3);
+        int v0 = texel8(w[y][lo.x]), v1 = texel8(w[y][min(lo.x + 1, 3)]), v2 = texel8(w[y][min(lo.x + 2, 3)]);
+        row[k] = lerp_texel8(f.x, hi.x ? v1 : v0, hi.x ? v2 : v1);
+    }
+    return lerp_texel8(f.y, hi.y ? row[1] : row[0], hi.y ? row[2] : row[1]);
+}
+
+/* One invocation computes 4x4 output pixels, those of slice texels Q, Q + 1 (x and y). Their reads
+ * of a layer with parity (lx, ly) all lie in the 4x4 texels from Q - 1 - (lx, ly): where the edges
+ * push a pixel's read, it moves by at most half a texel, towards the texels that pixel's parity
+ * leaves room for. So 4 gathers per layer and one of the edges give every texel the 16 pixels read
+ * (20 sampler operations, against 64), and the shader filters as the sampler does on 8-bit texels
+ * (as the non-smart apply below). */
 void main()
 {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (!in_rect(p, imageSize(output_image))) return;
-    rfloat ao = smart_apply(p);
-    imageStore(output_image, p, vec4(float(ao), 0.0, 0.0, 0.0));
+    ivec2 Q = 2 * ivec2(gl_GlobalInvocationID.xy);
+    ivec2 osize = imageSize(output_image);
+    ivec2 ssize = textureSize(ssao_in, 0).xy;
+    if (!in_rect(2 * Q, osize)) return;
+    const vec2 fixed_size = vec2(ssize * 256);
+    float w[4][4][4]; /* layer, y, x */
+    [[unroll]] for (int l = 0; l < 4; ++l) {
+        ivec2 base = Q - 1 - ivec2(l & 1, l >> 1);
+        [[unroll]] for (int gy = 0; gy < 2; ++gy) {
+            [[unroll]] for (int gx = 0; gx < 2; ++gx) {
+                /* x: (x0, y1), y: (x1, y1), z: (x1, y0), w: (x0, y0) */
+                vec4 g = textureGather(ssao_in, vec3(vec2(base + 1 + 2 * ivec2(gx, gy)) / vec2(ssize), float(l)), 0);
+                w[l][2 * gy][2 * gx] = g.w;
+                w[l][2 * gy][2 * gx + 1] = g.z;
+                w[l][2 * gy + 1][2 * gx] = g.x;
+                w[l][2 * gy + 1][2 * gx + 1] = g.y;
+            }
+        }
+    }
+    vec4 edges[4]; /* per layer, the packed edges of texels Q .. Q + 1, in gather order */
+    [[unroll]] for (int l = 0; l < 4; ++l)
+        edges[l] = textureGather(ssao_in, vec3(vec2(Q + 1) / vec2(ssize), float(l)), 1);
+    [[unroll]] for (int i = 0; i < 16; ++i) {
+        ivec2 d = ivec2((i >> 1) & 1, i >> 3);  /* texel Q + d */
+        ivec2 m = ivec2(i & 1, (i >> 2) & 1);   /* parity */
+        ivec2 p = 2 * (Q + d) + m;
+        int ic = m.x + 2 * m.y, ih = (1 - m.x) + 2 * m.y, iv = m.x + 2 * (1 - m.y), id = (1 - m.x) + 2 * (1 - m.y);
+        int gather_index = d.y == 0 ? 3 - d.x : d.x; /* (0,0) w, (1,0) z, (0,1) x, (1,1) y */
+        rvec4 e = unpack_edges(edges[ic][gather_index]);
+        vec2 uvh, uvv, uvd;
+        smart_apply_taps(p, e, uvh, uvv, uvd);
+        /* window texel of slice texel t in a layer of parity l: t - Q + 1 + l; an axis the edges
+         * shift starts at t + m - 2 (window d + m - 1 + l), a fixed one at t - 1 (d + l) */
+        ivec2 lh = ivec2(1 - m.x, m.y), lv = ivec2(m.x, 1 - m.y), ld = 1 - m;
+        int ah = window_read(w[ih], Q - 1 - lh, uvh, fixed_size, ivec2(d.x + m.x - 1 + lh.x, d.y + lh.y), bvec2(true, false));
+        int av = window_read(w[iv], Q - 1 - lv, uvv, fixed_size, ivec2(d.x + lv.x, d.y + m.y - 1 + lv.y), bvec2(false, true));
+        int ad = window_read(w[id], Q - 1 - ld, uvd, fixed_size, d + m - 1 + ld, bvec2(true, true));
+        rfloat ao = rfloat(w[ic][d.y + 1 + m.y][d.x + 1 + m.x]);
+        rfloat v = smart_apply_mix(ao, e, rfloat(float(ah) * (1.0 / 255.0)), rfloat(float(av) * (1.0 / 255.0)),
+                                   rfloat(float(ad) * (1.0 / 255.0)));
+        if (in_rect(p, osize))
+            imageStore(output_image, p, vec4(float(v), 0.0, 0.0, 0.0));
+    }
 }
 #else
 /* Non-smart and half: the mean of the layers (all four, or slices 0 and 3) read bilinearly at
@@ -1128,9 +1207,6 @@ void main()
 #define APPLY_LAYERS 2 /* layers 0,1 = slices 0,3 */
 #endif
 
-/* One axis of the linear sampler's filter on 8-bit texels: a weight of f / 256 (8 fractional
- * coordinate bits), the product rounded, a + round(f (b - a) / 256). */
-int lerp_texel8(int f, int a, int b) { return a + ((f * (b - a) + 128) >> 8); }
 
 void main()
 {

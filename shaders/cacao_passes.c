@@ -67,7 +67,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                              W(DEPTHS_OUT0, DEPTHS, V(CACAO_DEPTHS_HALF) | V(CACAO_DEPTHS_FULL)),
                              W_LEVELS(DEPTHS_OUT0, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS))},
                             /* the mips variant reduces a 2x2 quad per invocation in registers */
-                            .quad_variants = V(CACAO_DEPTHS_MIPS)},
+                            .quad = {[CACAO_DEPTHS_MIPS] = 2}},
     /* spec: prepare.md "Normals from input normals" (from depth: PREPARE). */
     PASS(PREPARE_NORMALS) = {"prepare_normals", {NULL}, 1, true, false, false, WG(PREPARE), CACAOI_GRID_SLICE, 3,
                              {CONSTANTS, R(SRC_NORMALS, NORMALS_INPUT, ALL), W(NORMALS_OUT, NORMALS, ALL)}},
@@ -102,8 +102,8 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * lavapipe: docs/tiles.md.) */
     PASS(APPLY) = {"apply", {"smart", "nonsmart", "half"}, 3, false, false, true, WG(APPLY), CACAOI_GRID_OUTPUT, 3,
                    {CONSTANTS, R(SSAO_IN, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL)},
-                   /* non-smart and half: a 2x2 quad of output pixels per invocation */
-                   .quad_variants = V(CACAO_OUTPUT_NON_SMART) | V(CACAO_OUTPUT_HALF)},
+                   /* smart: 4x4 output pixels per invocation; non-smart and half: 2x2 */
+                   .quad = {[CACAO_OUTPUT_SMART] = 4, [CACAO_OUTPUT_NON_SMART] = 2, [CACAO_OUTPUT_HALF] = 2}},
     PASS(UPSAMPLE) = {"upsample", {"smart", "nonsmart", "half"}, 3, false, false, true, WG(UPSAMPLE),
                       CACAOI_GRID_UPSAMPLE, 5,
                       {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), R(DEPTHS, DEPTHS, ALL), R(SSAO_IN, SSAO_PING, ALL),
@@ -139,7 +139,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                       W(DEPTHS_OUT0, DEPTHS, V(CACAO_DEPTHS_HALF) | V(CACAO_DEPTHS_FULL)),
                       W_LEVELS(DEPTHS_OUT0, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS)),
                       W(NORMALS_OUT, NORMALS, ALL)},
-                     .quad_variants = V(CACAO_DEPTHS_HALF) | V(CACAO_DEPTHS_FULL) | V(CACAO_DEPTHS_MIPS)},
+                     .quad = {[CACAO_DEPTHS_HALF] = 2, [CACAO_DEPTHS_FULL] = 2, [CACAO_DEPTHS_MIPS] = 2}},
     PASS(FILL) = {"fill", {NULL}, 1, false, false, false, {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE_LAYERS, 3,
                   {CONSTANTS, R(TILES, TILES, ALL), W(SSAO_OUT, SSAO_PING, ALL)},
                   .lists = {CACAO_LIST_FILL_SLICES}},

@@ -104,8 +104,9 @@ typedef struct cacaoi_pass_row {
     cacaoi_pass_binding bindings[CACAOI_PASS_MAX_BINDINGS];
     uint8_t lists[CACAOI_MAX_VARIANTS];              /* per variant: CACAO_LIST_* it dispatches from
                                                         (indirect), CACAO_LIST_NONE: a direct grid */
-    uint8_t quad_variants;                           /* variants (bit mask) whose invocations each
-                                                        compute 2x2 texels: grid x and y halved */
+    uint8_t quad[CACAOI_MAX_VARIANTS];               /* per variant: an invocation computes quad x
+                                                        quad texels (grid x and y divided by it);
+                                                        0 for one texel */
 } cacaoi_pass_row;
 
 extern const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT];

@@ -30,9 +30,11 @@ static void test_rows(void) {
         CHECK(row->binding_count <= CACAOI_PASS_MAX_BINDINGS);
         /* quads: only variants the row has, and only on a direct slice or output grid (the lists'
          * groups are tiles) */
-        CHECK((row->quad_variants >> row->variants) == 0);
-        if (row->quad_variants)
-            CHECK((row->grid == CACAOI_GRID_SLICE || row->grid == CACAOI_GRID_OUTPUT) && row->lists[0] == CACAO_LIST_NONE);
+        for (unsigned v = 0; v < CACAOI_MAX_VARIANTS; ++v) {
+            CHECK(row->quad[v] <= 4 && (v < row->variants || row->quad[v] == 0));
+            if (row->quad[v] > 1)
+                CHECK((row->grid == CACAOI_GRID_SLICE || row->grid == CACAOI_GRID_OUTPUT) && row->lists[v] == CACAO_LIST_NONE);
+        }
         for (unsigned v = 0; v < row->variants; ++v) {
             CHECK((row->variants == 1) == (row->variant_names[v] == NULL));
             unsigned seen[CACAO_BINDING_COUNT] = {0};

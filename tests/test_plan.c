@@ -131,7 +131,7 @@ static void test_dispatch_sizes(void) {
                           1920, 1080);
     CHECK(strcmp(b8.steps[b8.step_count - 2].key_name, "blur.8.fp32") == 0);
     CHECK(b8.blur_groups_x == 20 && b8.blur_groups_y == 34); /* ceil(960/48), ceil(540/16) */
-    CHECK(p.steps[11].dispatch[0] == 240 && p.steps[11].dispatch[1] == 135); /* apply: ceil(1920/8) */
+    CHECK(p.steps[11].dispatch[0] == 60 && p.steps[11].dispatch[1] == 34); /* smart apply: 4x4 per invocation */
     CHECK(p.steps[7].list == CACAO_LIST_GENERATE && p.steps[8].list == CACAO_LIST_FILL_SLICES &&
           p.steps[10].list == CACAO_LIST_BLUR && p.steps[11].list == CACAO_LIST_NONE && p.steps[3].list == CACAO_LIST_NONE);
     cacao_plan d =

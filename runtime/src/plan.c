@@ -59,7 +59,7 @@ cacao_key_config cacaoi_key_config_of(const cacao_settings *s) {
 /* The dispatch grid of a step (the pass row's grid rule). */
 static void dispatch_size(const cacao_plan *p, const cacao_key *key, uint32_t out[3]) {
     const cacaoi_pass_row *row = &cacaoi_passes[key->pass];
-    const uint32_t quad = (row->quad_variants >> key->variant) & 1u ? 2u : 1u; /* texels per invocation, x and y */
+    const uint32_t quad = row->quad[key->variant] ? row->quad[key->variant] : 1u; /* texels per invocation, x and y */
     const uint32_t wx = quad * row->workgroup[0], wy = quad * row->workgroup[1];
     out[2] = 1;
     switch (row->grid) {
