@@ -1270,9 +1270,6 @@ float load_depth_or_zero(ivec2 c, int layer)
     return in_rect(c, slice_size()) ? texelFetch(depths, ivec3(c, layer), 0).r : 0.0;
 }
 
-/* exp(-(i/2)^2 / spatial variance) for i = 0..5 (a constant index after unrolling). */
-float up_axis_weight(int i) { return cb.bilateral_axis_weight[i >> 2][i & 3]; }
-
 rfloat table_value(float v)
 {
 #if CACAO_FP16 == 1
@@ -1284,6 +1281,12 @@ rfloat table_value(float v)
 
 void main()
 {
+    /* The block values step 2 uses in its 5x5 loop, read as main's first statements: on lavapipe
+     * a block load after step 1's loop is made lane by lane with a bounds check, at every use
+     * (docs/speed-notes.md). This copy takes the pass from 34 to 25 ms. */
+    float axis_weight[6]; /* exp(-(i/2)^2 / spatial variance) for i = 0..5 */
+    [[unroll]] for (int i = 0; i < 6; ++i) axis_weight[i] = cb.bilateral_axis_weight[i >> 2][i & 3];
+    const float depth_exp2_mul = CB.bilateral_depth_exp2_mul;
     ivec2 s = textureSize(ssao_in, 0).xy;
     ivec2 qsize = 2 * s;
     ivec2 g = ivec2(gl_WorkGroupID.xy);
@@ -1364,9 +1367,9 @@ void main()
                     bool valid = zq > -1.0e29;
                     [[unroll]] for (int o = 0; o < 4; ++o) {
                         /* |dx|, |dy| in half texels: x - (o & 1) / 2 and y - (o >> 1) / 2 */
-                        float ws = up_axis_weight(abs(2 * x - (o & 1))) * up_axis_weight(abs(2 * y - (o >> 1)));
+                        float ws = axis_weight[abs(2 * x - (o & 1))] * axis_weight[abs(2 * y - (o >> 1))];
                         float dz = zf[o] - zq; /* sigma is used as a variance, as AMD does */
-                        float wz = valid ? exp2(dz * dz * CB.bilateral_depth_exp2_mul) : 0.0;
+                        float wz = valid ? exp2(dz * dz * depth_exp2_mul) : 0.0;
                         rfloat w = rfloat(ws * wz);
                         tot[o] += v * w;
                         wsum[o] += w;
