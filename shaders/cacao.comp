@@ -187,7 +187,11 @@ layout(set = 0, binding = CACAO_BINDING_DEPTHS) uniform sampler2DArray depths;
 #endif
 
 #if CACAO_PASS == CACAO_PASS_GENERATE
-layout(set = 0, binding = CACAO_BINDING_NORMALS) uniform sampler2DArray normals;
+/* The taps and normals read single texels of the depths and normals through their storage-image
+ * slots: on lavapipe an imageLoad costs less than the sampling function a nearest textureLod
+ * calls (docs/speed-notes.md). The centre's depths are gathered through the sampler. */
+layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT0, CACAO_FORMAT_DEPTHS_OUT0) uniform readonly image2DArray depth_texels;
+layout(set = 0, binding = CACAO_BINDING_NORMALS_OUT, CACAO_FORMAT_NORMALS_OUT) uniform readonly image2DArray normal_texels;
 #endif
 
 #if CACAO_PASS == CACAO_PASS_IMPORTANCE || CACAO_PASS == CACAO_PASS_BLUR || \
@@ -574,11 +578,10 @@ const float k_sample_pattern[128] = float[128](CACAO_SAMPLE_PATTERN_VALUES);
                               k_sample_pattern[4 * (i) + 2], k_sample_pattern[4 * (i) + 3])
 
 
-/* Normal at slice texel p through the nearest sampler at its texel centre: on lavapipe a fetch
- * costs more than a sample (its per-lane level and bounds code). */
+/* Normal at slice texel p, clamped to the slice (as the nearest sampler at its centre). */
 vec3 load_normal(ivec2 p, int layer)
 {
-    return textureLod(normals, vec3((vec2(p) + 0.5) * CB.ssao_buffer_inverse_dimensions, float(layer)), 0.0).xyz;
+    return imageLoad(normal_texels, ivec3(clamp(p, ivec2(0), slice_size() - 1), layer)).xyz;
 }
 
 /* Normal at slice texel p; OOB -> (0,0,0) ([quirk] NORMAL-EDGE-OOB kept). */
@@ -588,21 +591,17 @@ vec3 load_normal_or_zero(ivec2 p, ivec2 s, int layer)
     return in_rect(p, s) ? v : vec3(0.0);
 }
 
-#if GEN_Q >= 2
 /* The depth atlas (cacao_shared.h), per level l = 0..3: (width, height, x, y) of the level in
- * texels, as floats; the last level of the slice's chain; the atlas's inverse size. Set once per
- * invocation in main. */
+ * texels, as floats, and the last level of the slice's chain. Q0, Q1 read level 0 only, which is
+ * the slice. Set once per invocation in main. */
 vec4 g_level[4];
 float g_top_level;
-vec2 g_inv_atlas;
 
-void init_atlas(ivec2 s0, vec2 inv_atlas)
+void init_atlas(ivec2 s0)
 {
     for (int l = 0; l < 4; ++l) g_level[l] = vec4(depth_atlas_level(s0, l));
     g_top_level = float(CACAO_DEPTH_MIP_LEVELS(max(s0.x, s0.y)) - 1);
-    g_inv_atlas = inv_atlas;
 }
-#endif
 
 /* The two mirrored samples of one tap (generate.md step 9 / adaptive.md D). */
 void accumulate_tap(vec4 s, bool use_pattern_weight, vec2 uvd, vec2 inv_s, int layer, vec4 rot_scale,
@@ -611,24 +610,21 @@ void accumulate_tap(vec4 s, bool use_pattern_weight, vec2 uvd, vec2 inv_s, int l
     vec2 off = vec2(rot_scale.x * s.x + rot_scale.y * s.y, rot_scale.z * s.x + rot_scale.w * s.y);
     ivec2 o = ivec2(roundEven(off)); /* snap to whole slice texels */
     /* ViewspaceDepthTap: a point sample (nearest texel, nearest mip, clamp to edge) at the tap's
-     * texel-centre UV and explicit LOD, as the spec states it (Q0, Q1: LOD 0, the sampler does it).
-     * Q2, Q3 choose the level and texel here, as lavapipe's sampler does (the level is the LOD
-     * rounded to nearest even, at most the last; the texel is the truncated UV times the level's
-     * size, clamped to the level), and read the texel from the atlas at its centre. The max maps a
-     * -inf LOD (radius 0) and NaN to level 0. */
+     * texel-centre UV and explicit LOD (Q0, Q1: LOD 0), as the spec states it. The level and texel
+     * are chosen here as lavapipe's sampler does (the level is the LOD rounded to nearest even, at
+     * most the last; the texel is the truncated UV times the level's size, clamped to the level),
+     * and the texel is loaded from the atlas. The max maps a -inf LOD (radius 0) and NaN to level 0. */
 #if GEN_Q >= 2
     float level = min(roundEven(max(s.w + mip_offset, 0.0)), g_top_level);
     vec4 lv = level < 0.5 ? g_level[0] : level < 1.5 ? g_level[1] : level < 2.5 ? g_level[2] : g_level[3];
+#else
+    vec4 lv = g_level[0];
 #endif
     [[unroll]] for (int side = 0; side < 2; ++side) {
         ivec2 os = side == 0 ? o : -o;
         vec2 uv = uvd + vec2(os) * inv_s;
-#if GEN_Q >= 2
         ivec2 t = clamp(ivec2(uv * lv.xy), ivec2(0), ivec2(lv.xy) - 1);
-        float z = textureLod(depths, vec3((vec2(t) + lv.zw + 0.5) * g_inv_atlas, float(layer)), 0.0).r;
-#else
-        float z = textureLod(depths, vec3(uv, float(layer)), 0.0).r;
-#endif
+        float z = imageLoad(depth_texels, ivec3(t + ivec2(lv.zw), layer)).r;
         vec3 delta = vec3((CB.depth_uv_to_view_mul * uv + CB.depth_uv_to_view_add) * view_xy_scale(z), z) - pc;
         float ob = obscurance(n, delta, falloff, CB.effect_horizon_angle_threshold);
         float w = 1.0;
@@ -654,9 +650,7 @@ void main()
     if (!in_rect(xy, size)) return; /* no LDS, no barriers, no atomics: safe to leave */
     vec2 inv_s = CB.ssao_buffer_inverse_dimensions; /* = 1 / slice size */
     vec2 inv_d = 1.0 / vec2(textureSize(depths, 0).xy); /* the depth image's: the atlas at Q2, Q3 */
-#if GEN_Q >= 2
-    init_atlas(size, inv_d);
-#endif
+    init_atlas(size);
 
     /* 1. centre, neighbours (mirror), view position, normal, pixel size */
     vec2 uvd = (vec2(xy) + 0.5) * inv_s;

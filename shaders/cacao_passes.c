@@ -74,9 +74,11 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     /* spec: generate.md. Q3 (HIGHEST's adaptive pass) adds its base, the importance map and the
      * load counter; the Q3 base pass writes the second AO buffer. */
     PASS(GENERATE) = {"generate", {"q0", "q1", "q2", "q3", "q3base"}, 5, false, false, false, WG(GENERATE),
-                      CACAOI_GRID_SLICE_LAYERS, 9,
+                      CACAOI_GRID_SLICE_LAYERS, 10,
                       {CONSTANTS, R(LOAD_COUNTER, LOAD_COUNTER, V(CACAO_GENERATE_Q3)), R(DEPTHS, DEPTHS, ALL),
-                       R(NORMALS, NORMALS, ALL), R(SSAO_BASE, SSAO_PONG, V(CACAO_GENERATE_Q3)),
+                       /* the taps' and normals' single texels: imageLoad (cacao.comp) */
+                       R(DEPTHS_OUT0, DEPTHS, ALL), R(NORMALS_OUT, NORMALS, ALL),
+                       R(SSAO_BASE, SSAO_PONG, V(CACAO_GENERATE_Q3)),
                        R(IMPORTANCE_IN, IMPORTANCE, V(CACAO_GENERATE_Q3)),
                        W(SSAO_OUT, SSAO_PING, ALL & ~V(CACAO_GENERATE_Q3_BASE)),
                        W(SSAO_OUT, SSAO_PONG, V(CACAO_GENERATE_Q3_BASE)),

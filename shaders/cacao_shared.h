@@ -111,11 +111,11 @@
 #define CACAO_BINDING_SSAO_IN 6          /* AO + packed edges, sampler2DArray, linear clamp */
 #define CACAO_BINDING_SSAO_BASE 7        /* Q3 base result, sampler2DArray, nearest */
 #define CACAO_BINDING_IMPORTANCE_IN 8    /* importance map, sampler2D, linear clamp */
-#define CACAO_BINDING_DEPTHS_OUT0 9      /* image2DArray r16f, mip 0 .. mip 3 at 9..12 */
+#define CACAO_BINDING_DEPTHS_OUT0 9      /* image2DArray r16f, mip 0 .. mip 3 at 9..12 (generate: read) */
 #define CACAO_BINDING_DEPTHS_OUT1 10
 #define CACAO_BINDING_DEPTHS_OUT2 11
 #define CACAO_BINDING_DEPTHS_OUT3 12
-#define CACAO_BINDING_NORMALS_OUT 13     /* image2DArray rgba8_snorm */
+#define CACAO_BINDING_NORMALS_OUT 13     /* image2DArray rgba8_snorm (generate: read) */
 #define CACAO_BINDING_SSAO_OUT 14        /* image2DArray rg8 */
 #define CACAO_BINDING_IMPORTANCE_OUT 15  /* image2D r8 */
 #define CACAO_BINDING_OUTPUT 16          /* caller's output, image2D, written without format */

@@ -209,6 +209,17 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     return CACAO_SUCCESS;
 }
 
+/* The resources a step reads (or writes), each once (a pass can bind one through two slots). */
+static void print_resources(FILE *out, const cacao_plan_step *s, bool write) {
+    uint32_t printed = 1u << CACAO_RES_CONSTANTS;
+    for (uint32_t j = 0; j < s->binding_count; ++j) {
+        const uint32_t bit = 1u << s->bindings[j].resource;
+        if (s->bindings[j].write != write || (printed & bit)) continue;
+        printed |= bit;
+        fprintf(out, " %s", cacaoi_resources[s->bindings[j].resource].name);
+    }
+}
+
 void cacao_plan_print(const cacao_plan *p, FILE *out) {
     const int blur = p->settings.blur_pass_count == CACAO_BLUR_NONE ? 0 : p->settings.blur_pass_count;
     static const char *const estimator_names[] = {"default", "cacao", "gtao", "bitmask"};
@@ -239,12 +250,9 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
         static const char *const list_names[] = {"", "needed tiles", "unneeded tiles", "blur groups at needed tiles"};
         fprintf(out, "  %2u %-34s dispatch %4u x %4u x %u%s%s  reads", i, s->key_name, s->dispatch[0], s->dispatch[1],
                 s->dispatch[2], s->list ? " at most, indirect over " : "", list_names[s->list]);
-        for (uint32_t j = 0; j < s->binding_count; ++j)
-            if (!s->bindings[j].write && s->bindings[j].resource != CACAO_RES_CONSTANTS)
-                fprintf(out, " %s", cacaoi_resources[s->bindings[j].resource].name);
+        print_resources(out, s, false);
         fprintf(out, "  writes");
-        for (uint32_t j = 0; j < s->binding_count; ++j)
-            if (s->bindings[j].write) fprintf(out, " %s", cacaoi_resources[s->bindings[j].resource].name);
+        print_resources(out, s, true);
         fprintf(out, "\n");
     }
     fprintf(out, "intermediates:\n");
