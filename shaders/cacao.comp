@@ -1201,7 +1201,6 @@ void main()
 #define APPLY_LAYERS 2 /* layers 0,1 = slices 0,3 */
 #endif
 
-
 void main()
 {
     /* Quad q holds the output pixels o .. o + 1, o = 2q (even size) or 2q - 1 (odd): in either
