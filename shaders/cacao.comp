@@ -1119,8 +1119,9 @@ layout(local_size_x = CACAO_WG_APPLY_X, local_size_y = CACAO_WG_APPLY_Y) in;
  * coordinate bits), the product rounded, a + round(f (b - a) / 256). */
 int lerp_texel8(int f, int a, int b) { return a + ((f * (b - a) + 128) >> 8); }
 
-/* The 8-bit texel of an unorm value as gathered. */
+/* The 8-bit texels of unorm values as gathered. */
 int texel8(float v) { return int(v * 255.0 + 0.5); }
+ivec4 texel8(vec4 v) { return ivec4(v * 255.0 + 0.5); }
 
 #if CACAO_VARIANT == CACAO_OUTPUT_SMART
 /* The sampler's bilinear read, to the bit, from a 4x4 window w of one layer's texels (window
@@ -1227,7 +1228,7 @@ void main()
     vec2 corner = vec2(q) / vec2(ssize);
     [[unroll]] for (int l = 0; l < APPLY_LAYERS; ++l) {
         /* x: (q-1, q), y: (q, q), z: (q, q-1), w: (q-1, q-1) */
-        ivec4 t = ivec4(textureGather(ssao_in, vec3(corner, float(l)), 0) * 255.0 + 0.5);
+        ivec4 t = texel8(textureGather(ssao_in, vec3(corner, float(l)), 0));
         [[unroll]] for (int i = 0; i < 4; ++i) {
             int fx = w[i & 1].x, fy = w[i >> 1].y;
             int v = lerp_texel8(fy, lerp_texel8(fx, t.w, t.z), lerp_texel8(fx, t.x, t.y));
