@@ -194,8 +194,7 @@ layout(set = 0, binding = CACAO_BINDING_DEPTHS_OUT0, CACAO_FORMAT_DEPTHS_OUT0) u
 layout(set = 0, binding = CACAO_BINDING_NORMALS_OUT, CACAO_FORMAT_NORMALS_OUT) uniform readonly image2DArray normal_texels;
 #endif
 
-#if CACAO_PASS == CACAO_PASS_IMPORTANCE || CACAO_PASS == CACAO_PASS_BLUR || \
-    CACAO_PASS == CACAO_PASS_APPLY || CACAO_PASS == CACAO_PASS_UPSAMPLE
+#if CACAO_PASS == CACAO_PASS_BLUR || CACAO_PASS == CACAO_PASS_APPLY || CACAO_PASS == CACAO_PASS_UPSAMPLE
 layout(set = 0, binding = CACAO_BINDING_SSAO_IN) uniform sampler2DArray ssao_in;
 #endif
 
@@ -226,8 +225,8 @@ layout(set = 0, binding = CACAO_BINDING_NORMALS_OUT, CACAO_FORMAT_NORMALS_OUT) u
 layout(set = 0, binding = CACAO_BINDING_SSAO_OUT, CACAO_FORMAT_SSAO_OUT) uniform writeonly image2DArray ssao_out;
 #endif
 
-#if CACAO_PASS == CACAO_PASS_IMPORTANCE || CACAO_PASS == CACAO_PASS_IMPORTANCE_A || \
-    CACAO_PASS == CACAO_PASS_IMPORTANCE_B
+#if (CACAO_PASS == CACAO_PASS_GENERATE && CACAO_VARIANT == CACAO_GENERATE_Q3_BASE) || \
+    CACAO_PASS == CACAO_PASS_IMPORTANCE_A || CACAO_PASS == CACAO_PASS_IMPORTANCE_B
 layout(set = 0, binding = CACAO_BINDING_IMPORTANCE_OUT, CACAO_FORMAT_IMPORTANCE_OUT) uniform writeonly image2D importance_out;
 #endif
 
@@ -638,19 +637,14 @@ void accumulate_tap(vec4 s, bool use_pattern_weight, vec2 uvd, vec2 inv_s, int l
     }
 }
 
-void main()
+/* Steps 1-10 for slice texel xy (in the slice) of layer: stores its AO. The Q3 base pass returns
+ * the raw obscurance it stores, the others 0. */
+float generate_texel(ivec2 xy, int layer)
 {
-    hoist_constants();
-    ivec2 group;
-    if (!group_of(group)) return;
-    ivec2 xy = texel_of(group);
-    int layer = int(gl_WorkGroupID.z);
     int slice = slice_of_layer(layer);
     ivec2 size = slice_size();
-    if (!in_rect(xy, size)) return; /* no LDS, no barriers, no atomics: safe to leave */
     vec2 inv_s = CB.ssao_buffer_inverse_dimensions; /* = 1 / slice size */
     vec2 inv_d = 1.0 / vec2(textureSize(depths, 0).xy); /* the depth image's: the atlas at Q2, Q3 */
-    init_atlas(size);
 
     /* 1. centre, neighbours (mirror), view position, normal, pixel size */
     vec2 uvd = (vec2(xy) + 0.5) * inv_s;
@@ -749,7 +743,9 @@ void main()
 
 #if GEN_BASE == 1
     /* 10a. raw obscurance and weight/20 for the adaptive pass */
-    imageStore(ssao_out, ivec3(xy, layer), vec4(obsc_sum / weight_sum, weight_sum / CACAO_BASE_WEIGHT_SCALE, 0.0, 0.0));
+    float raw = obsc_sum / weight_sum;
+    imageStore(ssao_out, ivec3(xy, layer), vec4(raw, weight_sum / CACAO_BASE_WEIGHT_SCALE, 0.0, 0.0));
+    return raw;
 #else
 
 #if CACAO_VARIANT == CACAO_GENERATE_Q3
@@ -796,37 +792,55 @@ void main()
     float packed_edges = 1.0; /* Q0: no edges */
 #endif
     imageStore(ssao_out, ivec3(xy, layer), vec4(ao, packed_edges, 0.0, 0.0));
+    return 0.0;
 #endif
 }
-#endif /* GENERATE */
 
-/* ============================== IMPORTANCE ============================== */
-#if CACAO_PASS == CACAO_PASS_IMPORTANCE
-/* spec: importance.md "GenerateImportanceMap" */
-layout(local_size_x = CACAO_WG_IMPORTANCE_X, local_size_y = CACAO_WG_IMPORTANCE_Y) in;
-
+#if GEN_BASE == 0
 void main()
 {
+    hoist_constants();
+    ivec2 group;
+    if (!group_of(group)) return;
+    ivec2 xy = texel_of(group);
+    if (!in_rect(xy, slice_size())) return; /* no LDS, no barriers, no atomics: safe to leave */
+    init_atlas(slice_size());
+    generate_texel(xy, int(gl_WorkGroupID.z));
+}
+#else
+/* The Q3 base pass and the importance map (importance.md "GenerateImportanceMap") in one
+ * dispatch: invocation t computes the 2x2 slice texels 2t .. 2t + 1 of all four layers, which are
+ * exactly the texels importance texel t reads, and so writes that texel too (one dispatch less:
+ * each costs lavapipe about 0.3 ms whatever its size). The map reads the base AO as stored, in 8
+ * bits: the stored value is re-made here with the store's rounding (round to nearest even) and
+ * the load's scale. A texel past the slice's edge reads the edge's (the sampler's clamp), which
+ * the same invocation computes, so it is skipped. */
+void main()
+{
+    hoist_constants();
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = slice_size();
     if (!in_rect(t, imageSize(importance_out))) return;
-    ivec2 s = textureSize(ssao_in, 0).xy;
+    init_atlas(size);
+    float vmin = 1.0e30, vmax = -1.0e30;
+    for (int layer = 0; layer < 4; ++layer) {
+        for (int q = 0; q < 4; ++q) {
+            ivec2 xy = quad_texel(t, q);
+            if (!in_rect(xy, size)) continue;
+            float v = float(uint(roundEven(sat(generate_texel(xy, layer)) * 255.0))) * (1.0 / 255.0);
+            vmin = min(vmin, v);
+            vmax = max(vmax, v);
+        }
+    }
     /* The per-texel shaping pow(sat(1 - strength v), power) (no clamp, no fade) is monotone in v
      * (strength and power are >= 0), so the max and min of the shaped values are the shaped
      * min and max of the raw ones: 2 pow calls per texel instead of 16. */
-    /* The 2x2 texels 2t .. 2t + 1 of each layer (clamped to the edge) in one gather at their
-     * shared corner: half the pass's time on lavapipe of four clamped texel loads. */
-    float vmin = 1.0e30, vmax = -1.0e30;
-    vec2 corner = vec2(2 * t + 1) / vec2(s);
-    [[unroll]] for (int k = 0; k < 4; ++k) {
-        vec4 g = textureGather(ssao_in, vec3(corner, float(k)), 0);
-        vmin = min(vmin, min(min(g.x, g.y), min(g.z, g.w)));
-        vmax = max(vmax, max(max(g.x, g.y), max(g.z, g.w)));
-    }
     float mx = max(pow(sat(1.0 - CB.effect_shadow_strength * vmin), CB.effect_shadow_pow), 0.0);
     float mn = min(pow(sat(1.0 - CB.effect_shadow_strength * vmax), CB.effect_shadow_pow), 1.0);
     imageStore(importance_out, t, vec4(pow(sat(2.0 * (mx - mn)), CACAO_IMPORTANCE_POWER)));
 }
-#endif /* IMPORTANCE */
+#endif
+#endif /* GENERATE */
 
 /* ============================== IMPORTANCE_A / IMPORTANCE_B ============================== */
 #if CACAO_PASS == CACAO_PASS_IMPORTANCE_A || CACAO_PASS == CACAO_PASS_IMPORTANCE_B

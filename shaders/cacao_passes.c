@@ -72,9 +72,11 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     PASS(PREPARE_NORMALS) = {"prepare_normals", {NULL}, 1, true, false, false, WG(PREPARE), CACAOI_GRID_SLICE, 3,
                              {CONSTANTS, R(SRC_NORMALS, NORMALS_INPUT, ALL), W(NORMALS_OUT, NORMALS, ALL)}},
     /* spec: generate.md. Q3 (HIGHEST's adaptive pass) adds its base, the importance map and the
-     * load counter; the Q3 base pass writes the second AO buffer. */
+     * load counter; the Q3 base pass writes the second AO buffer and the importance map
+     * (importance.md "GenerateImportanceMap"): an invocation per importance texel computes the
+     * 2x2 slice texels of every layer that texel reads. */
     PASS(GENERATE) = {"generate", {"q0", "q1", "q2", "q3", "q3base"}, 5, false, false, false, WG(GENERATE),
-                      CACAOI_GRID_SLICE_LAYERS, 10,
+                      CACAOI_GRID_SLICE_LAYERS, 11,
                       {CONSTANTS, R(LOAD_COUNTER, LOAD_COUNTER, V(CACAO_GENERATE_Q3)), R(DEPTHS, DEPTHS, ALL),
                        /* the taps' and normals' single texels: imageLoad (cacao.comp) */
                        R(DEPTHS_OUT0, DEPTHS, ALL), R(NORMALS_OUT, NORMALS, ALL),
@@ -82,13 +84,13 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                        R(IMPORTANCE_IN, IMPORTANCE, V(CACAO_GENERATE_Q3)),
                        W(SSAO_OUT, SSAO_PING, ALL & ~V(CACAO_GENERATE_Q3_BASE)),
                        W(SSAO_OUT, SSAO_PONG, V(CACAO_GENERATE_Q3_BASE)),
+                       W(IMPORTANCE_OUT, IMPORTANCE, V(CACAO_GENERATE_Q3_BASE)),
                        R(TILES, TILES, ALL & ~V(CACAO_GENERATE_Q3_BASE))},
                       /* the Q3 base pass covers every tile: its values feed the importance map and
                        * the load counter, which steer the adaptive pass everywhere */
-                      .lists = {GEN, GEN, GEN, GEN, CACAO_LIST_NONE}},
-    /* spec: importance.md: the map from the base AO, then two smoothing passes (ping-pong). */
-    PASS(IMPORTANCE) = {"importance", {NULL}, 1, false, false, false, WG(IMPORTANCE), CACAOI_GRID_IMPORTANCE, 3,
-                        {CONSTANTS, R(SSAO_IN, SSAO_PONG, ALL), W(IMPORTANCE_OUT, IMPORTANCE, ALL)}},
+                      .lists = {GEN, GEN, GEN, GEN, CACAO_LIST_NONE},
+                      .grids = {[CACAO_GENERATE_Q3_BASE] = CACAOI_GRID_IMPORTANCE}},
+    /* spec: importance.md: two smoothing passes (ping-pong) of the map the Q3 base pass wrote. */
     PASS(IMPORTANCE_A) = {"importance_a", {NULL}, 1, false, false, false, WG(IMPORTANCE), CACAOI_GRID_IMPORTANCE, 3,
                           {CONSTANTS, R(IMPORTANCE_IN, IMPORTANCE, ALL), W(IMPORTANCE_OUT, IMPORTANCE_PONG, ALL)}},
     PASS(IMPORTANCE_B) = {"importance_b", {NULL}, 1, false, false, false, WG(IMPORTANCE), CACAOI_GRID_IMPORTANCE, 4,
@@ -245,7 +247,6 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     push(out, &n, CACAO_PASS_COMPACT, 0, 0, 0, 0);
     if (c->quality == CACAO_KEY_QUALITY_HIGHEST) {
         push(out, &n, CACAO_PASS_GENERATE, CACAO_GENERATE_Q3_BASE, 0, 0, 0);
-        push(out, &n, CACAO_PASS_IMPORTANCE, 0, 0, 0, 0);
         push(out, &n, CACAO_PASS_IMPORTANCE_A, 0, 0, 0, 0);
         push(out, &n, CACAO_PASS_IMPORTANCE_B, 0, 0, 0, 0);
     }

@@ -70,14 +70,15 @@ typedef struct cacaoi_resource_row {
 extern const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT];
 
 /* How a pass's dispatch grid follows from the sizes. */
-#define CACAOI_GRID_SLICE 0        /* slice size / workgroup, 1 layer */
-#define CACAOI_GRID_SLICE_LAYERS 1 /* slice size / workgroup, one z per slice */
-#define CACAOI_GRID_IMPORTANCE 2   /* importance map size / workgroup */
-#define CACAOI_GRID_BLUR 3         /* slice size / CACAO_BLUR_OUT(n), one z per slice */
-#define CACAOI_GRID_OUTPUT 4       /* output size / workgroup */
-#define CACAOI_GRID_UPSAMPLE 5     /* output size / (2 CACAO_UPSAMPLE_SPAN) */
-#define CACAOI_GRID_COMPACT 6      /* one invocation per tile, blur group and apply group */
-#define CACAOI_GRID_TILES 7        /* one invocation per tile */
+#define CACAOI_GRID_ROW 0          /* in a row's grids[]: the variant has the row's grid */
+#define CACAOI_GRID_SLICE 1        /* slice size / workgroup, 1 layer */
+#define CACAOI_GRID_SLICE_LAYERS 2 /* slice size / workgroup, one z per slice */
+#define CACAOI_GRID_IMPORTANCE 3   /* importance map size / workgroup */
+#define CACAOI_GRID_BLUR 4         /* slice size / CACAO_BLUR_OUT(n), one z per slice */
+#define CACAOI_GRID_OUTPUT 5       /* output size / workgroup */
+#define CACAOI_GRID_UPSAMPLE 6     /* output size / (2 CACAO_UPSAMPLE_SPAN) */
+#define CACAOI_GRID_COMPACT 7      /* one invocation per tile, blur group and apply group */
+#define CACAOI_GRID_TILES 8        /* one invocation per tile */
 
 #define CACAOI_ALL_VARIANTS 0xffu
 #define CACAOI_VARIANT(v) (1u << (v))
@@ -90,7 +91,7 @@ typedef struct cacaoi_pass_binding {
     uint8_t variants; /* bit mask of the variants that declare it */
 } cacaoi_pass_binding;
 
-#define CACAOI_PASS_MAX_BINDINGS 10
+#define CACAOI_PASS_MAX_BINDINGS 11
 #define CACAOI_MAX_VARIANTS 5
 
 typedef struct cacaoi_pass_row {
@@ -107,6 +108,8 @@ typedef struct cacaoi_pass_row {
     uint8_t quad[CACAOI_MAX_VARIANTS];               /* per variant: an invocation computes quad x
                                                         quad texels (grid x and y divided by it);
                                                         0 for one texel */
+    uint8_t grids[CACAOI_MAX_VARIANTS];              /* per variant: CACAOI_GRID_* where it differs
+                                                        from the row's grid, CACAOI_GRID_ROW where not */
 } cacaoi_pass_row;
 
 extern const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT];

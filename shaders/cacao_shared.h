@@ -16,24 +16,23 @@
 #define CACAO_PASS_PREPARE_DEPTHS 0
 #define CACAO_PASS_PREPARE_NORMALS 1
 #define CACAO_PASS_GENERATE 2
-#define CACAO_PASS_IMPORTANCE 3
-#define CACAO_PASS_IMPORTANCE_A 4
-#define CACAO_PASS_IMPORTANCE_B 5
-#define CACAO_PASS_BLUR 6
-#define CACAO_PASS_APPLY 7
-#define CACAO_PASS_UPSAMPLE 8
+#define CACAO_PASS_IMPORTANCE_A 3
+#define CACAO_PASS_IMPORTANCE_B 4
+#define CACAO_PASS_BLUR 5
+#define CACAO_PASS_APPLY 6
+#define CACAO_PASS_UPSAMPLE 7
 /* Horizon-slice estimators (GTAO, visibility bitmask; spec: estimators.md), full resolution. */
-#define CACAO_PASS_SLICE_PREPARE 9       /* view z (R32F) and view normals, one texel per pixel */
-#define CACAO_PASS_SLICE_MAIN 10         /* the estimator: raw visibility per pixel */
-#define CACAO_PASS_SLICE_DENOISE 11      /* 3x3 depth/normal-aware filter (estimators.md section 5) */
+#define CACAO_PASS_SLICE_PREPARE 8        /* view z (R32F) and view normals, one texel per pixel */
+#define CACAO_PASS_SLICE_MAIN 9           /* the estimator: raw visibility per pixel */
+#define CACAO_PASS_SLICE_DENOISE 10       /* 3x3 depth/normal-aware filter (estimators.md section 5) */
 /* Tile classification (docs/tiles.md): which tiles a frame computes, and the value of the rest. */
-#define CACAO_PASS_CLASSIFY 12           /* one class per tile: active, faded or background */
-#define CACAO_PASS_COMPACT 13            /* the tile lists and indirect dispatch commands */
-#define CACAO_PASS_FILL 14               /* AO 1 where no pass computes it */
+#define CACAO_PASS_CLASSIFY 11            /* one class per tile: active, faded or background */
+#define CACAO_PASS_COMPACT 12             /* the tile lists and indirect dispatch commands */
+#define CACAO_PASS_FILL 13                /* AO 1 where no pass computes it */
 /* Prepare with normals from depth: the depths (CACAO_DEPTHS_* variants) and the normals in one
  * pass; PREPARE_DEPTHS and PREPARE_NORMALS run instead where the caller gives normals. */
-#define CACAO_PASS_PREPARE 15
-#define CACAO_PASS_COUNT 16
+#define CACAO_PASS_PREPARE 14
+#define CACAO_PASS_COUNT 15
 
 /* Depth-prepare variants (spec: prepare.md). HALF = slices 0 and 3 only (LOWEST), FULL = four
  * slices, MIPS = four slices plus mips 1..3 (HIGH and HIGHEST; MEDIUM never reads mips). */

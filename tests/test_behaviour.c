@@ -181,16 +181,13 @@ typedef struct adaptive_readback {
     uint32_t iw, ih;
 } adaptive_readback;
 
-static void copy_intermediates(vkdev *dev, cacao_context *ctx, VkCommandBuffer cmd, void *user) {
-    (void)dev;
-    adaptive_readback *rb = user;
-    VkImage image, no_image;
-    VkBuffer no_buffer, counter;
-    CHECK(cacao_context_intermediate(ctx, CACAO_RES_IMPORTANCE, &image, &no_buffer) == CACAO_SUCCESS);
-    CHECK(cacao_context_intermediate(ctx, CACAO_RES_LOAD_COUNTER, &no_image, &counter) == CACAO_SUCCESS);
-    const VkMemoryBarrier before = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
-                                    .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
-                                    .dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT};
+/* Records the copy of the first w x h texels of layers 0 .. layers - 1 of intermediate res (the
+ * frame's passes have written it, in the GENERAL layout) into buffer, for the host to read. */
+static void copy_intermediate_image(cacao_context *ctx, VkCommandBuffer cmd, cacao_resource res, uint32_t w,
+                                    uint32_t h, uint32_t layers, VkBuffer buffer) {
+    VkImage image;
+    VkBuffer no_buffer;
+    CHECK(cacao_context_intermediate(ctx, res, &image, &no_buffer) == CACAO_SUCCESS);
     const VkImageMemoryBarrier to_src = {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
                                          .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
                                          .dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT,
@@ -199,19 +196,38 @@ static void copy_intermediates(vkdev *dev, cacao_context *ctx, VkCommandBuffer c
                                          .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
                                          .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
                                          .image = image,
-                                         .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before, 0,
+                                         .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers}};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, NULL, 0,
                          NULL, 1, &to_src);
-    const VkBufferImageCopy region = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-                                      .imageExtent = {rb->iw, rb->ih, 1}};
-    vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, rb->importance.buffer, 1, &region);
-    const VkBufferCopy copy = {0, 0, sizeof(uint32_t)};
-    vkCmdCopyBuffer(cmd, counter, rb->counter.buffer, 1, &copy);
+    const VkBufferImageCopy region = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, layers},
+                                      .imageExtent = {w, h, 1}};
+    vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &region);
+}
+
+/* Makes the transfers recorded so far visible to the host. */
+static void transfers_to_host(VkCommandBuffer cmd) {
     const VkMemoryBarrier after = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
                                    .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
                                    .dstAccessMask = VK_ACCESS_HOST_READ_BIT};
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &after, 0, NULL, 0,
                          NULL);
+}
+
+static void copy_intermediates(vkdev *dev, cacao_context *ctx, VkCommandBuffer cmd, void *user) {
+    (void)dev;
+    adaptive_readback *rb = user;
+    VkImage no_image;
+    VkBuffer counter;
+    CHECK(cacao_context_intermediate(ctx, CACAO_RES_LOAD_COUNTER, &no_image, &counter) == CACAO_SUCCESS);
+    const VkMemoryBarrier before = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+                                    .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
+                                    .dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before, 0,
+                         NULL, 0, NULL);
+    copy_intermediate_image(ctx, cmd, CACAO_RES_IMPORTANCE, rb->iw, rb->ih, 1, rb->importance.buffer);
+    const VkBufferCopy copy = {0, 0, sizeof(uint32_t)};
+    vkCmdCopyBuffer(cmd, counter, rb->counter.buffer, 1, &copy);
+    transfers_to_host(cmd);
 }
 
 static void test_adaptive(vkdev *dev) {
@@ -276,6 +292,120 @@ static void test_adaptive(vkdev *dev) {
     vkdev_buffer_destroy(dev, &rb.counter);
     free(ao[0]);
     free(ao[1]);
+    scene_buffers_free(&b);
+}
+
+/* The importance map (spec: importance.md "GenerateImportanceMap"), which the Q3 base pass writes
+ * along with the base AO: texel t is pow(sat(2 (max - min)), 0.8) of the shaped base obscurance
+ * pow(sat(1 - strength v), power) over the 2x2 slice texels 2t .. 2t + 1 (clamped to the slice) of
+ * all four layers. The base AO (SSAO_PONG, kept without a blur) and the first smoothing pass's
+ * output (IMPORTANCE_PONG: the map through four bilinear taps, importance.md
+ * "PostprocessImportanceMapA") are read back; the host makes the map from the base and smooths it
+ * the same way, and the two must agree to one 8-bit step (the sampler's fixed-point weights and
+ * the stores' rounding). A map from one layer only, which a wrong texel or layer choice would
+ * resemble, misses by more: the check can tell. */
+typedef struct importance_readback {
+    vkdev_buffer base, smoothed;
+    uint32_t sw, sh, iw, ih;
+} importance_readback;
+
+static void copy_base_and_map(vkdev *dev, cacao_context *ctx, VkCommandBuffer cmd, void *user) {
+    (void)dev;
+    importance_readback *rb = user;
+    copy_intermediate_image(ctx, cmd, CACAO_RES_SSAO_PONG, rb->sw, rb->sh, 4, rb->base.buffer);
+    copy_intermediate_image(ctx, cmd, CACAO_RES_IMPORTANCE_PONG, rb->iw, rb->ih, 1, rb->smoothed.buffer);
+    transfers_to_host(cmd);
+}
+
+static float sat(float x) { return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x); }
+
+/* The map made on the host from the base AO (RG8, layers after each other), over layers 0 ..
+ * layers - 1, as 8-bit values. */
+static void host_importance_map(const importance_readback *rb, const uint8_t *base, int layers, float strength,
+                                float power, float *map) {
+    for (uint32_t y = 0; y < rb->ih; ++y)
+        for (uint32_t x = 0; x < rb->iw; ++x) {
+            float vmin = 1.0f, vmax = 0.0f;
+            for (int l = 0; l < layers; ++l)
+                for (uint32_t q = 0; q < 4; ++q) {
+                    const uint32_t sx = 2 * x + (q & 1) < rb->sw ? 2 * x + (q & 1) : rb->sw - 1;
+                    const uint32_t sy = 2 * y + (q >> 1) < rb->sh ? 2 * y + (q >> 1) : rb->sh - 1;
+                    const float v = base[(((size_t)l * rb->sh + sy) * rb->sw + sx) * 2] / 255.0f;
+                    vmin = v < vmin ? v : vmin;
+                    vmax = v > vmax ? v : vmax;
+                }
+            const float mx = powf(sat(1.0f - strength * vmin), power), mn = powf(sat(1.0f - strength * vmax), power);
+            map[(size_t)y * rb->iw + x] = roundf(powf(sat(2.0f * (mx - mn)), 0.8f) * 255.0f) / 255.0f;
+        }
+}
+
+/* The map through the first smoothing pass: the mean of four bilinear taps half a texel off
+ * the texel centres (-1.5, -0.5), (0.5, -1.5), (1.5, 0.5), (-0.5, 1.5), clamped to the edge; in
+ * 8-bit steps. */
+static int host_smoothed(const importance_readback *rb, const float *map, int x, int y) {
+    static const float taps[4][2] = {{-1.5f, -0.5f}, {0.5f, -1.5f}, {1.5f, 0.5f}, {-0.5f, 1.5f}};
+    float sum = 0.0f;
+    for (int k = 0; k < 4; ++k) {
+        const float fx = (float)x + taps[k][0], fy = (float)y + taps[k][1]; /* texel coordinates */
+        const int x0 = (int)floorf(fx), y0 = (int)floorf(fy);
+        const float ax = fx - (float)x0, ay = fy - (float)y0;
+        float v[2][2];
+        for (int j = 0; j < 2; ++j)
+            for (int i = 0; i < 2; ++i) {
+                int tx = x0 + i, ty = y0 + j;
+                tx = tx < 0 ? 0 : (tx >= (int)rb->iw ? (int)rb->iw - 1 : tx);
+                ty = ty < 0 ? 0 : (ty >= (int)rb->ih ? (int)rb->ih - 1 : ty);
+                v[j][i] = map[(size_t)ty * rb->iw + (size_t)tx];
+            }
+        sum += (1 - ay) * ((1 - ax) * v[0][0] + ax * v[0][1]) + ay * ((1 - ax) * v[1][0] + ax * v[1][1]);
+    }
+    return (int)lroundf(sat(sum / 4.0f) * 255.0f);
+}
+
+static void test_importance_map(vkdev *dev) {
+    scene_buffers b;
+    const float radius = scene_buffers_default(326, 186, &b); /* odd slices (163x93): clamped edges */
+    importance_readback rb = {.sw = (b.width + 1) / 2, .sh = (b.height + 1) / 2};
+    rb.iw = (rb.sw + 1) / 2, rb.ih = (rb.sh + 1) / 2;
+    CHECK(vkdev_buffer_create(dev, (VkDeviceSize)rb.sw * rb.sh * 4 * 2, &rb.base));
+    CHECK(vkdev_buffer_create(dev, (VkDeviceSize)rb.iw * rb.ih, &rb.smoothed));
+    const float multiplier = 1.0f, power = 1.5f;
+    const float strength = 4.3f * multiplier; /* spec: constants.md, EffectShadowStrength */
+    const cacao_settings s = {.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true, .radius = radius,
+                              .shadow_multiplier = multiplier, .shadow_power = power,
+                              .blur_pass_count = CACAO_BLUR_NONE};
+    vkdev_frame f = scene_frame(&b, false, false);
+    f.after_record = copy_base_and_map;
+    f.user = &rb;
+    float *ao = malloc(sizeof(float) * b.width * b.height);
+    const size_t n = (size_t)rb.iw * rb.ih;
+    float *map = malloc(sizeof(float) * n), *map_one_layer = malloc(sizeof(float) * n);
+    if (run(dev, &s, &f, ao)) {
+        const uint8_t *smoothed = rb.smoothed.mapped;
+        host_importance_map(&rb, rb.base.mapped, 4, strength, power, map);
+        host_importance_map(&rb, rb.base.mapped, 1, strength, power, map_one_layer);
+        int worst = 0, worst_one_layer = 0;
+        size_t busy = 0;
+        for (uint32_t y = 0; y < rb.ih; ++y)
+            for (uint32_t x = 0; x < rb.iw; ++x) {
+                const int gpu = smoothed[(size_t)y * rb.iw + x];
+                const int d = abs(gpu - host_smoothed(&rb, map, (int)x, (int)y));
+                const int d1 = abs(gpu - host_smoothed(&rb, map_one_layer, (int)x, (int)y));
+                worst = d > worst ? d : worst;
+                worst_one_layer = d1 > worst_one_layer ? d1 : worst_one_layer;
+                busy += gpu >= 64;
+            }
+        printf("importance map: %ux%u, %zu texels at or above 64/255 after smoothing; worst |GPU - host| %d "
+               "steps (from one layer only: %d)\n", rb.iw, rb.ih, busy, worst, worst_one_layer);
+        CHECK(busy > n / 20);
+        CHECK(worst <= 1);
+        CHECK(worst_one_layer > 8);
+    }
+    free(map);
+    free(map_one_layer);
+    free(ao);
+    vkdev_buffer_destroy(dev, &rb.base);
+    vkdev_buffer_destroy(dev, &rb.smoothed);
     scene_buffers_free(&b);
 }
 
@@ -350,6 +480,7 @@ int main(void) {
     test_blur_reduces_noise(&dev);
     test_grazing_floor(&dev);
     test_adaptive(&dev);
+    test_importance_map(&dev);
     test_faded_is_one(&dev);
     vkdev_destroy(&dev);
     CHECK(dev.validation_messages == 0);

@@ -29,11 +29,16 @@ static void test_rows(void) {
         CHECK(row->name && row->variants >= 1 && row->variants <= CACAOI_MAX_VARIANTS);
         CHECK(row->binding_count <= CACAOI_PASS_MAX_BINDINGS);
         /* quads: only variants the row has, and only on a direct slice or output grid (the lists'
-         * groups are tiles) */
+         * groups are tiles); a variant's own grid: only variants the row has, a direct one (a
+         * list's groups are its entries), a grid rule that exists */
+        CHECK(row->grid != CACAOI_GRID_ROW && row->grid <= CACAOI_GRID_TILES);
         for (unsigned v = 0; v < CACAOI_MAX_VARIANTS; ++v) {
+            const uint8_t grid = row->grids[v] != CACAOI_GRID_ROW ? row->grids[v] : row->grid;
             CHECK(row->quad[v] <= 4 && (v < row->variants || row->quad[v] == 0));
             if (row->quad[v] > 1)
-                CHECK((row->grid == CACAOI_GRID_SLICE || row->grid == CACAOI_GRID_OUTPUT) && row->lists[v] == CACAO_LIST_NONE);
+                CHECK((grid == CACAOI_GRID_SLICE || grid == CACAOI_GRID_OUTPUT) && row->lists[v] == CACAO_LIST_NONE);
+            CHECK(row->grids[v] <= CACAOI_GRID_TILES && (v < row->variants || row->grids[v] == CACAOI_GRID_ROW));
+            if (row->grids[v] != CACAOI_GRID_ROW) CHECK(row->lists[v] == CACAO_LIST_NONE);
         }
         for (unsigned v = 0; v < row->variants; ++v) {
             CHECK((row->variants == 1) == (row->variant_names[v] == NULL));

@@ -32,7 +32,7 @@ static void test_steps_per_quality(void) {
         {"prepare.full.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.nonsmart.fp32"},
         {"prepare.full.native", TILES, "generate.q1", FILLS, "blur.2.fp32", "apply.smart.fp32"},
         {"prepare.mips.native", TILES, "generate.q2", FILLS, "blur.2.fp32", "apply.smart.fp32"},
-        {"prepare.mips.native", TILES, "generate.q3base", "importance", "importance_a", "importance_b",
+        {"prepare.mips.native", TILES, "generate.q3base", "importance_a", "importance_b",
          "generate.q3", FILLS, "blur.2.fp32", "apply.smart.fp32"},
     };
 #undef TILES
@@ -123,17 +123,21 @@ static void test_dispatch_sizes(void) {
     CHECK(given.step_count == p.step_count + 1);
     CHECK(p.steps[1].dispatch[0] == 15 && p.steps[1].dispatch[1] == 9);     /* classify: 120x68 tiles / 8x8 */
     CHECK(p.steps[2].dispatch[0] == (120 * 68 + 15 * 17 + 63) / 64);         /* compact: tiles + blur groups */
-    CHECK(p.steps[4].dispatch[0] == 60 && p.steps[4].dispatch[1] == 34);    /* importance: ceil(480/8), ceil(270/8) */
-    CHECK(p.steps[7].dispatch[2] == 4);                                     /* generate: 4 slices */
-    CHECK(p.steps[10].dispatch[0] == 15 && p.steps[10].dispatch[1] == 17);  /* blur, N = 2: ceil(960/64), ceil(540/32) */
+    /* the Q3 base pass: an invocation per importance texel (its 2x2 slice texels in all 4 layers),
+     * ceil(480/8), ceil(270/8), one z; the importance passes the same grid */
+    CHECK(strcmp(p.steps[3].key_name, "generate.q3base") == 0);
+    CHECK(p.steps[3].dispatch[0] == 60 && p.steps[3].dispatch[1] == 34 && p.steps[3].dispatch[2] == 1);
+    CHECK(p.steps[4].dispatch[0] == 60 && p.steps[4].dispatch[1] == 34);    /* importance_a */
+    CHECK(p.steps[6].dispatch[2] == 4);                                     /* generate.q3: 4 slices */
+    CHECK(p.steps[9].dispatch[0] == 15 && p.steps[9].dispatch[1] == 17);    /* blur, N = 2: ceil(960/64), ceil(540/32) */
     /* past CACAO_BLUR_REGISTER_PASSES a group computes its 64x32 padded tile less N each side */
     cacao_plan b8 = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .blur_pass_count = 8, .generate_normals = true},
                           1920, 1080);
     CHECK(strcmp(b8.steps[b8.step_count - 2].key_name, "blur.8.fp32") == 0);
     CHECK(b8.blur_groups_x == 20 && b8.blur_groups_y == 34); /* ceil(960/48), ceil(540/16) */
-    CHECK(p.steps[11].dispatch[0] == 60 && p.steps[11].dispatch[1] == 34); /* smart apply: 4x4 per invocation */
-    CHECK(p.steps[7].list == CACAO_LIST_GENERATE && p.steps[8].list == CACAO_LIST_FILL_SLICES &&
-          p.steps[10].list == CACAO_LIST_BLUR && p.steps[11].list == CACAO_LIST_NONE && p.steps[3].list == CACAO_LIST_NONE);
+    CHECK(p.steps[10].dispatch[0] == 60 && p.steps[10].dispatch[1] == 34); /* smart apply: 4x4 per invocation */
+    CHECK(p.steps[6].list == CACAO_LIST_GENERATE && p.steps[7].list == CACAO_LIST_FILL_SLICES &&
+          p.steps[9].list == CACAO_LIST_BLUR && p.steps[10].list == CACAO_LIST_NONE && p.steps[3].list == CACAO_LIST_NONE);
     cacao_plan d =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true, .generate_normals = true}, 1001, 37);
     CHECK(d.slice_width == 251 && d.slice_height == 10); /* ceil(ceil(1001/2)/2), ceil(ceil(37/2)/2) */

@@ -51,7 +51,7 @@ int main(void) {
     m.non_writable[CACAO_BINDING_DEPTHS_OUT0] = false; /* writable where the row only reads */
     CHECK(!sg_check_row(&m));
 
-    CHECK(reflect_key("importance", &m));
+    CHECK(reflect_key("importance_a", &m));
     m.workgroup_size[0] = 16;
     CHECK(!sg_check_row(&m));
     return test_report("row_check");

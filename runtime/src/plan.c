@@ -62,7 +62,7 @@ static void dispatch_size(const cacao_plan *p, const cacao_key *key, uint32_t ou
     const uint32_t quad = row->quad[key->variant] ? row->quad[key->variant] : 1u; /* texels per invocation, x and y */
     const uint32_t wx = quad * row->workgroup[0], wy = quad * row->workgroup[1];
     out[2] = 1;
-    switch (row->grid) {
+    switch (row->grids[key->variant] != CACAOI_GRID_ROW ? row->grids[key->variant] : row->grid) {
     case CACAOI_GRID_SLICE_LAYERS: out[2] = p->slice_count; /* fall through */
     case CACAOI_GRID_SLICE:
         out[0] = div_up(p->slice_width, wx);
