@@ -814,7 +814,8 @@ void main()
  * each costs lavapipe about 0.3 ms whatever its size). The map reads the base AO as stored, in 8
  * bits: the stored value is re-made here with the store's rounding (round to nearest even) and
  * the load's scale. A texel past the slice's edge reads the edge's (the sampler's clamp), which
- * the same invocation computes, so it is skipped. */
+ * the same invocation computes, so it is skipped. Unrolled: 16 texels in a loop cost lavapipe
+ * about 10% more than the separate passes. */
 void main()
 {
     hoist_constants();
@@ -823,8 +824,8 @@ void main()
     if (!in_rect(t, imageSize(importance_out))) return;
     init_atlas(size);
     float vmin = 1.0e30, vmax = -1.0e30;
-    for (int layer = 0; layer < 4; ++layer) {
-        for (int q = 0; q < 4; ++q) {
+    [[unroll]] for (int layer = 0; layer < 4; ++layer) {
+        [[unroll]] for (int q = 0; q < 4; ++q) {
             ivec2 xy = quad_texel(t, q);
             if (!in_rect(xy, size)) continue;
             float v = float(uint(roundEven(sat(generate_texel(xy, layer)) * 255.0))) * (1.0 / 255.0);
