@@ -64,8 +64,8 @@ def main():
                 sys.exit('ab-revisions.py: %s failed:\n%s' % (rev, r.stderr))
             for line in r.stdout.splitlines():
                 f = line.split()
-                if len(f) >= 2 and rx.search(f[0]) and f[1][:1].isdigit():
-                    times[rev].setdefault(f[0], []).append(float(f[1]))
+                if len(f) >= 2 and rx.search(f[0]) and re.fullmatch(r'[0-9]+(\.[0-9]*)?', f[1]):
+                    times[rev].setdefault(f[0], []).append(float(f[1]))  # a pass row, not "tiles: ..."
     print('uptime: %s' % subprocess.run(['uptime'], capture_output=True, text=True).stdout.strip())
     for rev, _ in sides:
         print('%-12s %s' % (rev, '  '.join('%s %.1f' % (k, statistics.median(v)) for k, v in times[rev].items())))
