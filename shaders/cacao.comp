@@ -591,15 +591,18 @@ vec3 load_normal_or_zero(ivec2 p, ivec2 s, int layer)
 }
 
 /* The depth atlas (cacao_shared.h), per level l = 0..3: (width, height, x, y) of the level in
- * texels, as floats, and the last level of the slice's chain. Q0, Q1 read level 0 only, which is
- * the slice. Set once per invocation in main. */
+ * texels, as floats, the last level of the slice's chain, and 1 / the image's size (the atlas at
+ * Q2, Q3). Q0, Q1 read level 0 only, which is the slice. Set once per invocation in main (the Q3
+ * base pass computes 16 texels with them). */
 vec4 g_level[4];
 float g_top_level;
+vec2 g_inv_d;
 
 void init_atlas(ivec2 s0)
 {
     for (int l = 0; l < 4; ++l) g_level[l] = vec4(depth_atlas_level(s0, l));
     g_top_level = float(CACAO_DEPTH_MIP_LEVELS(max(s0.x, s0.y)) - 1);
+    g_inv_d = 1.0 / vec2(textureSize(depths, 0).xy);
 }
 
 /* The two mirrored samples of one tap (generate.md step 9 / adaptive.md D). */
@@ -644,7 +647,6 @@ float generate_texel(ivec2 xy, int layer)
     int slice = slice_of_layer(layer);
     ivec2 size = slice_size();
     vec2 inv_s = CB.ssao_buffer_inverse_dimensions; /* = 1 / slice size */
-    vec2 inv_d = 1.0 / vec2(textureSize(depths, 0).xy); /* the depth image's: the atlas at Q2, Q3 */
 
     /* 1. centre, neighbours (mirror), view position, normal, pixel size */
     vec2 uvd = (vec2(xy) + 0.5) * inv_s;
@@ -653,8 +655,8 @@ float generate_texel(ivec2 xy, int layer)
      * (-1 -> 0, n -> n - 1): the sampler's clamp at the left and top; at the right and bottom the
      * atlas can continue past the slice, so the clamp is done here. Gather order: x = (0,1),
      * y = (1,1), z = (1,0), w = (0,0). */
-    vec4 g_ul = textureGather(depths, vec3(vec2(xy) * inv_d, float(layer)), 0);
-    vec4 g_br = textureGather(depths, vec3(vec2(xy + 1) * inv_d, float(layer)), 0);
+    vec4 g_ul = textureGather(depths, vec3(vec2(xy) * g_inv_d, float(layer)), 0);
+    vec4 g_br = textureGather(depths, vec3(vec2(xy + 1) * g_inv_d, float(layer)), 0);
     float zc = g_ul.y;
     float zl = g_ul.x;
     float zt = g_ul.z;
@@ -803,8 +805,9 @@ void main()
     ivec2 group;
     if (!group_of(group)) return;
     ivec2 xy = texel_of(group);
-    if (!in_rect(xy, slice_size())) return; /* no LDS, no barriers, no atomics: safe to leave */
-    init_atlas(slice_size());
+    ivec2 size = slice_size();
+    if (!in_rect(xy, size)) return; /* no LDS, no barriers, no atomics: safe to leave */
+    init_atlas(size);
     generate_texel(xy, int(gl_WorkGroupID.z));
 }
 #else

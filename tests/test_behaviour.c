@@ -171,6 +171,9 @@ static void test_grazing_floor(vkdev *dev) {
     scene_buffers_free(&b);
 }
 
+/* Index i clamped to 0 .. n - 1 (a clamp-to-edge read of an image n texels wide). */
+static int clamp_index(int i, uint32_t n) { return i < 0 ? 0 : (i >= (int)n ? (int)n - 1 : i); }
+
 /* HIGHEST takes extra taps in proportion to the importance map. With adaptive_quality_limit 0 the
  * limiter scales every pixel's importance to 0 (one extra tap everywhere); with limit 1 the extra
  * taps follow the map. So pixels whose importance is 0 must come out identical in both runs,
@@ -271,8 +274,7 @@ static void test_adaptive(vkdev *dev) {
             int lo = 255, hi = 0;
             for (int dy = -1; dy <= 1; ++dy)
                 for (int dx = -1; dx <= 1; ++dx) {
-                    const int sx = tx + dx < 0 ? 0 : (tx + dx >= (int)rb.iw ? (int)rb.iw - 1 : tx + dx);
-                    const int sy = ty + dy < 0 ? 0 : (ty + dy >= (int)rb.ih ? (int)rb.ih - 1 : ty + dy);
+                    const int sx = clamp_index(tx + dx, rb.iw), sy = clamp_index(ty + dy, rb.ih);
                     const int v = imp[sy * rb.iw + sx];
                     lo = v < lo ? v : lo;
                     hi = v > hi ? v : hi;
@@ -328,9 +330,9 @@ static void host_importance_map(const importance_readback *rb, const uint8_t *ba
             float vmin = 1.0f, vmax = 0.0f;
             for (int l = 0; l < layers; ++l)
                 for (uint32_t q = 0; q < 4; ++q) {
-                    const uint32_t sx = 2 * x + (q & 1) < rb->sw ? 2 * x + (q & 1) : rb->sw - 1;
-                    const uint32_t sy = 2 * y + (q >> 1) < rb->sh ? 2 * y + (q >> 1) : rb->sh - 1;
-                    const float v = base[(((size_t)l * rb->sh + sy) * rb->sw + sx) * 2] / 255.0f;
+                    const int sx = clamp_index(2 * (int)x + (int)(q & 1), rb->sw);
+                    const int sy = clamp_index(2 * (int)y + (int)(q >> 1), rb->sh);
+                    const float v = base[(((size_t)l * rb->sh + (size_t)sy) * rb->sw + (size_t)sx) * 2] / 255.0f;
                     vmin = v < vmin ? v : vmin;
                     vmax = v > vmax ? v : vmax;
                 }
@@ -352,9 +354,7 @@ static int host_smoothed(const importance_readback *rb, const float *map, int x,
         float v[2][2];
         for (int j = 0; j < 2; ++j)
             for (int i = 0; i < 2; ++i) {
-                int tx = x0 + i, ty = y0 + j;
-                tx = tx < 0 ? 0 : (tx >= (int)rb->iw ? (int)rb->iw - 1 : tx);
-                ty = ty < 0 ? 0 : (ty >= (int)rb->ih ? (int)rb->ih - 1 : ty);
+                const int tx = clamp_index(x0 + i, rb->iw), ty = clamp_index(y0 + j, rb->ih);
                 v[j][i] = map[(size_t)ty * rb->iw + (size_t)tx];
             }
         sum += (1 - ay) * ((1 - ax) * v[0][0] + ax * v[0][1]) + ay * ((1 - ax) * v[1][0] + ax * v[1][1]);
