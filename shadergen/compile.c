@@ -54,38 +54,135 @@ static void buf_append(sg_buf *b, const char *text, size_t len) {
     b->data[b->len] = '\0';
 }
 
-static void buf_printf(sg_buf *b, const char *fmt, unsigned value, const char *s) {
-    char tmp[256];
-    int n = snprintf(tmp, sizeof tmp, fmt, value, s);
+/* ---- Sources and #include ----
+ * glslang 12's C API has no include callback (glslang_input_t gained one in later releases), so
+ * the generator resolves the source's #include "file" lines itself (the GL_GOOGLE_include_directive
+ * form, names relative to the including file), marking each file with #line so that compile
+ * errors name the right file and line. */
+
+/* The name of an #include line ('#include "name"'), or false for another line. */
+static bool include_name(const char *line, size_t len, char *name, size_t name_size) {
+    static const char directive[] = "#include \"";
+    if (len < sizeof directive || strncmp(line, directive, sizeof directive - 1) != 0) return false;
+    const char *start = line + sizeof directive - 1;
+    const char *end = memchr(start, '"', len - (sizeof directive - 1));
+    if (!end || (size_t)(end - start) + 1 > name_size) return false;
+    memcpy(name, start, (size_t)(end - start));
+    name[end - start] = '\0';
+    return true;
+}
+
+/* name relative to the folder of includer (both relative to the entry's folder). */
+static void relative_to(const char *includer, const char *name, char *out, size_t out_size) {
+    const char *slash = strrchr(includer, '/');
+    const int dir = slash ? (int)(slash - includer) + 1 : 0;
+    snprintf(out, out_size, "%.*s%s", dir, includer, name);
+}
+
+static const sg_source *find_source(const sg_sources *sources, const char *name) {
+    for (size_t i = 0; i < sources->count; ++i)
+        if (strcmp(sources->files[i].name, name) == 0) return &sources->files[i];
+    return NULL;
+}
+
+/* Reads file `name` (relative to dir) and, recursively, every file it includes. */
+static bool load_file(const char *dir, const char *name, unsigned depth, sg_sources *out) {
+    if (find_source(out, name)) return true;
+    if (depth > SG_MAX_INCLUDE_DEPTH || out->count >= SG_MAX_SOURCES) {
+        fprintf(stderr, "shadergen: %s: includes nest deeper than %d or name more than %d files\n", name,
+                SG_MAX_INCLUDE_DEPTH, SG_MAX_SOURCES);
+        return false;
+    }
+    char path[4096];
+    snprintf(path, sizeof path, "%s%s", dir, name);
+    char *text = sg_read_file(path);
+    char *copy = malloc(strlen(name) + 1);
+    if (!text || !copy) {
+        free(text);
+        free(copy);
+        return false;
+    }
+    memcpy(copy, name, strlen(name) + 1);
+    out->files[out->count++] = (sg_source){copy, text};
+    for (const char *p = text; *p;) {
+        const char *end = strchr(p, '\n');
+        const size_t len = end ? (size_t)(end - p) : strlen(p);
+        char inc[256], rel[512];
+        if (include_name(p, len, inc, sizeof inc)) {
+            relative_to(name, inc, rel, sizeof rel);
+            if (!load_file(dir, rel, depth + 1, out)) return false;
+        }
+        p += len + (end ? 1 : 0);
+    }
+    return true;
+}
+
+bool sg_load_sources(const char *entry_path, sg_sources *out) {
+    memset(out, 0, sizeof *out);
+    const char *slash = strrchr(entry_path, '/');
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - entry_path) + 1 : 0, entry_path);
+    if (load_file(dir, slash ? slash + 1 : entry_path, 0, out)) return true;
+    sg_free_sources(out);
+    return false;
+}
+
+void sg_free_sources(sg_sources *sources) {
+    for (size_t i = 0; i < sources->count; ++i) {
+        free((char *)sources->files[i].name);
+        free((char *)sources->files[i].text);
+    }
+    memset(sources, 0, sizeof *sources);
+}
+
+static void buf_line_mark(sg_buf *b, unsigned line, const char *file) {
+    char tmp[600];
+    int n = snprintf(tmp, sizeof tmp, "#line %u \"%s\"\n", line, file);
     buf_append(b, tmp, (size_t)n);
 }
 
-char *sg_specialise(const char *source, const char *shared_header, const cacao_key *key) {
-    static const char include_line[] = "#include \"cacao_shared.h\"";
-    char defines[CACAO_KEY_DEFINES_MAX];
-    if (!cacaoi_key_defines(key, defines, sizeof defines)) return NULL;
-    sg_buf b = {0};
+/* Appends file `src` with its includes spliced in; false (message printed) on an unresolved one. */
+static bool splice(sg_buf *b, const sg_sources *sources, const sg_source *src, const char *defines, unsigned depth) {
     unsigned line = 1;
-    const char *p = source;
-    while (*p) {
+    for (const char *p = src->text; *p; ++line) {
         const char *end = strchr(p, '\n');
-        size_t len = end ? (size_t)(end - p) : strlen(p);
-        if (line == 1 && strncmp(p, "#version", 8) == 0) {
+        const size_t len = end ? (size_t)(end - p) : strlen(p);
+        char inc[256], rel[512];
+        if (depth == 0 && line == 1 && strncmp(p, "#version", 8) == 0) {
             /* Keep #version first, then the key's defines, then resume line numbering. */
-            buf_append(&b, p, len);
-            buf_append(&b, "\n#extension GL_GOOGLE_cpp_style_line_directive : enable\n", 56);
-            buf_append(&b, defines, strlen(defines));
-            buf_printf(&b, "#line %u \"%s\"\n", line + 1, "cacao.comp");
-        } else if (strncmp(p, include_line, sizeof include_line - 1) == 0) {
-            buf_append(&b, "#line 1 \"cacao_shared.h\"\n", 25);
-            buf_append(&b, shared_header, strlen(shared_header));
-            buf_printf(&b, "\n#line %u \"%s\"\n", line + 1, "cacao.comp");
+            buf_append(b, p, len);
+            static const char ext[] = "\n#extension GL_GOOGLE_cpp_style_line_directive : enable\n";
+            buf_append(b, ext, sizeof ext - 1);
+            buf_append(b, defines, strlen(defines));
+            buf_line_mark(b, line + 1, src->name);
+        } else if (include_name(p, len, inc, sizeof inc)) {
+            relative_to(src->name, inc, rel, sizeof rel);
+            const sg_source *child = find_source(sources, rel);
+            if (!child || depth >= SG_MAX_INCLUDE_DEPTH) {
+                fprintf(stderr, "shadergen: %s:%u: cannot include \"%s\" (%s)\n", src->name, line, inc,
+                        child ? "nested too deep" : "not among the loaded sources");
+                return false;
+            }
+            buf_line_mark(b, 1, child->name);
+            if (!splice(b, sources, child, defines, depth + 1)) return false;
+            buf_append(b, "\n", 1);
+            buf_line_mark(b, line + 1, src->name);
         } else {
-            buf_append(&b, p, len);
-            buf_append(&b, "\n", 1);
+            buf_append(b, p, len);
+            buf_append(b, "\n", 1);
         }
-        ++line;
         p += len + (end ? 1 : 0);
+    }
+    return true;
+}
+
+char *sg_specialise(const sg_sources *sources, const cacao_key *key) {
+    char defines[CACAO_KEY_DEFINES_MAX];
+    if (!sources->count || !cacaoi_key_defines(key, defines, sizeof defines)) return NULL;
+    sg_buf b = {0};
+    if (!splice(&b, sources, &sources->files[0], defines, 0)) {
+        free(b.data);
+        return NULL;
     }
     return b.data;
 }

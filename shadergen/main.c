@@ -2,11 +2,12 @@
  * each with glslang's C API, validates with SPIRV-Tools, reflects with SPIRV-Cross, removes
  * duplicates and writes the C sources of generated/.
  *
- * usage: shadergen --source FILE --shared FILE --out DIR [--qualities LIST] [--downsample ON|OFF|ONLY]
+ * usage: shadergen --source FILE --out DIR [--qualities LIST] [--downsample ON|OFF|ONLY]
  *                  [--precision LIST] [--no-optimize]
  *
- * By default modules go through SPIRV-Tools' size passes (run by glslang): 383,812 instead of
- * 589,840 SPIR-V bytes for the full set (-35%); drivers optimise again at pipeline creation.
+ * The source's #include lines are resolved relative to the including file (compile.c). By
+ * default modules go through SPIRV-Tools' size passes (run by glslang); the summary line gives
+ * the SPIR-V bytes (compare a --no-optimize run); drivers optimise again at pipeline creation.
  * (glslang 12's C API runs the optimizer only for size: asking for its performance passes gave
  * byte-identical output to no optimisation, so that choice is not offered.)
  */
@@ -15,17 +16,18 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cacao_policy.h"
 #include "shadergen.h"
 
 typedef struct sg_args {
-    const char *source, *shared, *out;
+    const char *source, *out;
     const char *qualities, *downsample, *precision;
     sg_options options;
 } sg_args;
 
 static int usage(const char *problem) {
     fprintf(stderr,
-            "shadergen: %s\nusage: shadergen --source cacao.comp --shared cacao_shared.h --out DIR\n"
+            "shadergen: %s\nusage: shadergen --source cacao.comp --out DIR\n"
             "       [--qualities lowest;low;medium;high;highest] [--downsample ON|OFF|ONLY]\n"
             "       [--precision fp32;fp16] [--no-optimize]\n",
             problem);
@@ -38,7 +40,6 @@ static bool parse_args(int argc, char **argv, sg_args *a) {
         const char *arg = argv[i];
         const char **slot = NULL;
         if (strcmp(arg, "--source") == 0) slot = &a->source;
-        else if (strcmp(arg, "--shared") == 0) slot = &a->shared;
         else if (strcmp(arg, "--out") == 0) slot = &a->out;
         else if (strcmp(arg, "--qualities") == 0) slot = &a->qualities;
         else if (strcmp(arg, "--downsample") == 0) slot = &a->downsample;
@@ -56,7 +57,7 @@ static bool parse_args(int argc, char **argv, sg_args *a) {
             *slot = argv[++i];
         }
     }
-    return a->source && a->shared && a->out;
+    return a->source && a->out;
 }
 
 int main(int argc, char **argv) {
@@ -73,9 +74,8 @@ int main(int argc, char **argv) {
     bool full = strcmp(args.qualities, "all") == 0 && strcmp(args.downsample, "ON") == 0 &&
                 strcmp(args.precision, "all") == 0;
 
-    char *source = sg_read_file(args.source);
-    char *shared = sg_read_file(args.shared);
-    if (!source || !shared) return 1;
+    sg_sources sources;
+    if (!sg_load_sources(args.source, &sources)) return 1;
 
     size_t total = cacaoi_key_list(NULL, 0);
     cacao_key *keys = calloc(total, sizeof *keys);
@@ -91,7 +91,7 @@ int main(int argc, char **argv) {
         sg_module *m = &modules[count];
         m->key = keys[i];
         cacaoi_key_name(&keys[i], m->name, sizeof m->name);
-        char *text = sg_specialise(source, shared, &keys[i]);
+        char *text = sg_specialise(&sources, &keys[i]);
         bool ok = text && sg_compile(text, m->name, &args.options, &m->words, &m->word_count) &&
                   sg_validate(m->words, m->word_count, m->name) && sg_reflect(m) && sg_check_row(m);
         free(text);
@@ -120,7 +120,6 @@ int main(int argc, char **argv) {
     for (size_t i = 0; i < count; ++i) free(modules[i].words);
     free(modules);
     free(keys);
-    free(source);
-    free(shared);
+    sg_free_sources(&sources);
     return 0;
 }

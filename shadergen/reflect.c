@@ -11,10 +11,10 @@ typedef struct resource_kind {
 } resource_kind;
 
 static const resource_kind kinds[] = {
-    {SPVC_RESOURCE_TYPE_UNIFORM_BUFFER, CACAO_RESOURCE_UNIFORM_BUFFER},
-    {SPVC_RESOURCE_TYPE_STORAGE_BUFFER, CACAO_RESOURCE_STORAGE_BUFFER},
-    {SPVC_RESOURCE_TYPE_SAMPLED_IMAGE, CACAO_RESOURCE_SAMPLED_IMAGE},
-    {SPVC_RESOURCE_TYPE_STORAGE_IMAGE, CACAO_RESOURCE_STORAGE_IMAGE},
+    {SPVC_RESOURCE_TYPE_UNIFORM_BUFFER, CACAOI_DESCRIPTOR_UNIFORM_BUFFER},
+    {SPVC_RESOURCE_TYPE_STORAGE_BUFFER, CACAOI_DESCRIPTOR_STORAGE_BUFFER},
+    {SPVC_RESOURCE_TYPE_SAMPLED_IMAGE, CACAOI_DESCRIPTOR_SAMPLED_IMAGE},
+    {SPVC_RESOURCE_TYPE_STORAGE_IMAGE, CACAOI_DESCRIPTOR_STORAGE_IMAGE},
 };
 
 static void report(void *userdata, const char *error) {
@@ -55,13 +55,13 @@ bool sg_reflect(sg_module *m) {
                 goto done;
             }
             m->bindings[binding] = kinds[k].kind;
-            if (kinds[k].kind == CACAO_RESOURCE_SAMPLED_IMAGE || kinds[k].kind == CACAO_RESOURCE_STORAGE_IMAGE) {
+            if (kinds[k].kind == CACAOI_DESCRIPTOR_SAMPLED_IMAGE || kinds[k].kind == CACAOI_DESCRIPTOR_STORAGE_IMAGE) {
                 spvc_type type = spvc_compiler_get_type_handle(compiler, list[i].type_id);
                 m->image_format[binding] = (uint32_t)spvc_type_get_image_storage_format(type);
                 m->image_arrayed[binding] = spvc_type_get_image_arrayed(type);
                 m->non_writable[binding] = spvc_compiler_has_decoration(compiler, list[i].id, SpvDecorationNonWritable);
             }
-            if (kinds[k].kind == CACAO_RESOURCE_UNIFORM_BUFFER) {
+            if (kinds[k].kind == CACAOI_DESCRIPTOR_UNIFORM_BUFFER) {
                 size_t size = 0;
                 spvc_compiler_get_declared_struct_size(
                     compiler, spvc_compiler_get_type_handle(compiler, list[i].base_type_id), &size);
@@ -140,12 +140,10 @@ static SpvImageFormat spv_format(const char *glsl) {
     return SpvImageFormatUnknown;
 }
 
-static const char *const kind_names[] = {"nothing", "a uniform buffer", "a storage buffer",
-                                         "a combined image sampler", "a storage image"};
 
 bool sg_check_row(const sg_module *m) {
     cacaoi_module_expect want;
-    if (!cacaoi_pass_expect(&m->key, &want)) {
+    if (!cacaoi_key_expect(&m->key, &want)) {
         fprintf(stderr, "shadergen: %s: no pass row for this key\n", m->name);
         return false;
     }
@@ -161,12 +159,12 @@ bool sg_check_row(const sg_module *m) {
         const char *slot = cacaoi_slots[b].name;
         if (m->bindings[b] != want.descriptor[b]) {
             fprintf(stderr, "shadergen: %s: pass %s, binding %s (%u): the module declares %s, its row %s\n", m->name,
-                    pass, slot, b, kind_names[m->bindings[b]], kind_names[want.descriptor[b]]);
+                    pass, slot, b, cacaoi_descriptor_names[m->bindings[b]], cacaoi_descriptor_names[want.descriptor[b]]);
             ok = false;
             continue;
         }
-        const bool image = want.descriptor[b] == CACAO_RESOURCE_SAMPLED_IMAGE ||
-                           want.descriptor[b] == CACAO_RESOURCE_STORAGE_IMAGE;
+        const bool image = want.descriptor[b] == CACAOI_DESCRIPTOR_SAMPLED_IMAGE ||
+                           want.descriptor[b] == CACAOI_DESCRIPTOR_STORAGE_IMAGE;
         if (!image) continue;
         const cacaoi_resource_row *res = &cacaoi_resources[want.resource[b]];
         if (m->image_arrayed[b] != res->layered) {
@@ -175,7 +173,7 @@ bool sg_check_row(const sg_module *m) {
                     res->layered ? "layered" : "one layer");
             ok = false;
         }
-        if (want.descriptor[b] != CACAO_RESOURCE_STORAGE_IMAGE) continue;
+        if (want.descriptor[b] != CACAOI_DESCRIPTOR_STORAGE_IMAGE) continue;
         if (m->image_format[b] != (uint32_t)spv_format(res->glsl_format)) {
             fprintf(stderr, "shadergen: %s: pass %s, binding %s (%u): declared format %u, resource %s has '%s'\n",
                     m->name, pass, slot, b, m->image_format[b], res->name,

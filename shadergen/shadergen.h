@@ -30,9 +30,28 @@ typedef struct sg_options {
     bool optimize; /* run glslang's SPIRV-Tools optimizer; its C API offers the size passes only */
 } sg_options;
 
-/* Builds the full shader text for a key: #version line, key defines, the shared header spliced in
- * place of its #include, with #line directives so errors name the right file and line. */
-char *sg_specialise(const char *source, const char *shared_header, const cacao_key *key);
+/* The shader's source files: the entry (cacao.comp) first, then every file it includes, each
+ * named relative to the entry's folder ("cacao_shared.h", "glsl/blur.glsl"). */
+typedef struct sg_source {
+    const char *name;
+    const char *text;
+} sg_source;
+#define SG_MAX_SOURCES 32
+#define SG_MAX_INCLUDE_DEPTH 8
+typedef struct sg_sources {
+    sg_source files[SG_MAX_SOURCES];
+    size_t count;
+} sg_sources;
+
+/* Reads the entry source and, recursively, every file its #include "name" lines name (relative to
+ * the including file). False (message naming the file) when one cannot be read. */
+bool sg_load_sources(const char *entry_path, sg_sources *out);
+void sg_free_sources(sg_sources *sources);
+
+/* Builds the full shader text for a key: #version line, the key's defines, every #include
+ * spliced in place, with #line directives so errors name the right file and line. NULL (message
+ * printed) for an invalid key or an include not among the sources. The caller frees it. */
+char *sg_specialise(const sg_sources *sources, const cacao_key *key);
 
 /* Compiles GLSL text to SPIR-V 1.3 (Vulkan 1.1). On failure prints the key and log, returns false. */
 bool sg_compile(const char *text, const char *key_name, const sg_options *options, uint32_t **words,

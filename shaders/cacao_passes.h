@@ -1,21 +1,26 @@
-/* cacao_passes.h - the one declarative definition of the pipeline.
+/* cacao_passes.h - the one declarative definition of the pipeline's parts.
  *
- * Three tables and one sequence, compiled into the generator, the runtime and the tools:
+ * Three tables, compiled into the generator, the runtime and the tools:
  *   - cacaoi_slots:     one row per binding slot of the single descriptor set layout (descriptor
  *                       kind, sampler, name used in the GLSL defines);
  *   - cacaoi_resources: one row per resource (format, size rule, layers, filtering);
  *   - cacaoi_passes:    one row per pass (key axes, variant names, workgroup size, dispatch grid and
- *                       its bindings: slot, resource, levels, access, which variants use it);
- *   - cacaoi_sequence:  the steps one configuration dispatches, in order.
+ *                       its bindings: slot, resource, levels, access, which variants use it).
  *
- * Everything else is derived from them: the keys a configuration needs (cacaoi_keys_for_config,
- * subset builds, cacao-inspect verify), the steps, dispatch sizes, intermediates and barriers of
- * cacao_plan_build, the storage-image format qualifiers of the GLSL (cacaoi_key_defines writes
- * CACAO_FORMAT_<slot> per key), the runtime's set layout, samplers and image views, and the
- * generator's check of every compiled module's reflection against its row (cacaoi_pass_expect).
+ * Layering (each file depends only on those above it): cacao_shared.h (numbers shared with GLSL)
+ * -> cacao_passes (these rows and their binding rules) -> cacao_keys (the key space, names, the
+ * shader defines of a key, table lookup) -> cacao_policy (quality levels, the sequence of steps
+ * one configuration dispatches, subsets).
+ *
+ * Everything else is derived from the rows: the GLSL declarations of every module (cacaoi_key_defines
+ * writes CACAO_BIND_<slot>, CACAO_ACCESS_<slot> and CACAO_FORMAT_<slot> per key; shaders/glsl/
+ * bindings.glsl declares each slot once under its CACAO_BIND_ guard), the steps, dispatch sizes,
+ * intermediates, buffers and barriers of cacao_plan_build, the runtime's set layout, samplers,
+ * image views and buffers, and the generator's check of every compiled module's reflection
+ * against its row (cacaoi_pass_expect).
  *
  * Adding a pass: one row here (and its CACAO_PASS_* id in cacao_shared.h), its place in
- * cacaoi_sequence, its GLSL body in cacao.comp, its tests.
+ * cacaoi_sequence (cacao_policy.c), its GLSL body in shaders/glsl/, its tests.
  */
 #ifndef CACAO_PASSES_H
 #define CACAO_PASSES_H
@@ -25,14 +30,19 @@
 #include <stdint.h>
 
 #include "cacao.h"
-#include "cacao_keys.h"
+#include "cacao_shared.h"
 
-/* Descriptor kinds a binding slot has (0 = the module does not use that slot). */
-#define CACAO_RESOURCE_NONE 0
-#define CACAO_RESOURCE_UNIFORM_BUFFER 1
-#define CACAO_RESOURCE_STORAGE_BUFFER 2
-#define CACAO_RESOURCE_SAMPLED_IMAGE 3 /* combined image sampler (immutable sampler) */
-#define CACAO_RESOURCE_STORAGE_IMAGE 4
+/* Descriptor kinds a binding slot has (0 = the module does not use that slot). Kinds of
+ * descriptors, not resources (those are cacao_resource, CACAO_RES_*). */
+#define CACAOI_DESCRIPTOR_NONE 0
+#define CACAOI_DESCRIPTOR_UNIFORM_BUFFER 1
+#define CACAOI_DESCRIPTOR_STORAGE_BUFFER 2
+#define CACAOI_DESCRIPTOR_SAMPLED_IMAGE 3 /* combined image sampler (immutable sampler) */
+#define CACAOI_DESCRIPTOR_STORAGE_IMAGE 4
+#define CACAOI_DESCRIPTOR_COUNT 5
+
+/* Their names in messages and listings: "-", "uniform buffer", ... "storage image". */
+extern const char *const cacaoi_descriptor_names[CACAOI_DESCRIPTOR_COUNT];
 
 /* Immutable samplers of combined-image-sampler slots. Both clamp to edge, mipmap nearest. */
 #define CACAOI_SAMPLER_NONE 0
@@ -40,8 +50,8 @@
 #define CACAOI_SAMPLER_LINEAR 2
 
 typedef struct cacaoi_slot_row {
-    const char *name;   /* binding name without prefix: "SSAO_OUT" (GLSL define CACAO_FORMAT_SSAO_OUT) */
-    uint8_t descriptor; /* CACAO_RESOURCE_* */
+    const char *name;   /* binding name without prefix: "SSAO_IMAGE" (GLSL defines CACAO_BIND_SSAO_IMAGE, ...) */
+    uint8_t descriptor; /* CACAOI_DESCRIPTOR_* */
     uint8_t sampler;    /* CACAOI_SAMPLER_* (combined image samplers only) */
 } cacaoi_slot_row;
 
@@ -64,7 +74,8 @@ typedef struct cacaoi_resource_row {
     const char *format_name; /* "R16_SFLOAT" */
     const char *glsl_format; /* storage-image qualifier: "r16f" ("" where the view's format decides) */
     uint32_t texel_bytes;
-    uint32_t buffer_bytes;   /* buffers only */
+    uint32_t buffer_bytes;   /* CACAOI_SIZE_BUFFER only */
+    VkBufferUsageFlags buffer_usage; /* buffers only: how the passes and the runtime use it */
 } cacaoi_resource_row;
 
 extern const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT];
@@ -91,6 +102,8 @@ typedef struct cacaoi_pass_binding {
     uint8_t variants; /* bit mask of the variants that declare it */
 } cacaoi_pass_binding;
 
+/* Bindings a row lists (a binding per variant may share a slot) and variants a pass has. The
+ * bindings one variant makes are at most CACAO_PLAN_MAX_BINDINGS (cacao.h): test_pass_table. */
 #define CACAOI_PASS_MAX_BINDINGS 11
 #define CACAOI_MAX_VARIANTS 5
 
@@ -114,38 +127,21 @@ typedef struct cacaoi_pass_row {
 
 extern const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT];
 
-/* What a compiled module of this key must declare: per slot, its descriptor kind (or NONE), and
- * for image slots the resource whose format and layering it has. False for an invalid key. */
+/* What a compiled module of this pass variant must declare: per slot, its descriptor kind (or
+ * NONE), and for image slots the resource whose format and layering it has. False for a pass or
+ * variant the table does not have. */
 typedef struct cacaoi_module_expect {
     uint8_t descriptor[CACAO_BINDING_COUNT];
     uint8_t resource[CACAO_BINDING_COUNT];
     bool write[CACAO_BINDING_COUNT];
     uint32_t workgroup[3];
 } cacaoi_module_expect;
-bool cacaoi_pass_expect(const cacao_key *key, cacaoi_module_expect *out);
+bool cacaoi_pass_expect(unsigned pass, unsigned variant, cacaoi_module_expect *out);
 
-/* ---- The sequence ---- */
-
-/* One dispatch: its key and, where it binds another resource than its row's default at a slot
- * (ping-pong buffers), that resource. */
-typedef struct cacaoi_step {
-    cacao_key key;
-    uint8_t override_count;
-    uint8_t override_slot[2];
-    uint8_t override_resource[2];
-} cacaoi_step;
-
-#define CACAOI_SEQUENCE_MAX 16
-
-/* The steps one configuration dispatches, in order. */
-size_t cacaoi_sequence(const cacao_key_config *config, cacaoi_step out[CACAOI_SEQUENCE_MAX]);
-
-/* The bindings a step makes: its row's bindings for its variant, with the step's overrides. */
-size_t cacaoi_step_bindings(const cacaoi_step *step, cacaoi_pass_binding out[CACAOI_PASS_MAX_BINDINGS]);
-
-/* A plan step's key (cacao_plan_step.key holds pass, variant, downsampled, blur passes, fp16). */
-static inline cacao_key cacaoi_plan_step_key(const cacao_plan_step *step) {
-    return (cacao_key){step->key[0], step->key[1], step->key[2], step->key[3], step->key[4]};
-}
+/* The bindings one variant of a pass makes (its row's, in row order), written into out up to
+ * CACAO_PLAN_MAX_BINDINGS. Returns their number, which exceeds that only if the table is wrong
+ * (test_pass_table checks every variant; cacao_plan_build refuses such a step); 0 for a pass or
+ * variant the table lacks. */
+size_t cacaoi_variant_bindings(unsigned pass, unsigned variant, cacaoi_pass_binding out[CACAO_PLAN_MAX_BINDINGS]);
 
 #endif /* CACAO_PASSES_H */

@@ -22,9 +22,9 @@
 #define CACAO_PASS_APPLY 6
 #define CACAO_PASS_UPSAMPLE 7
 /* Horizon-slice estimators (GTAO, visibility bitmask; spec: estimators.md), full resolution. */
-#define CACAO_PASS_SLICE_PREPARE 8        /* view z (R32F) and view normals, one texel per pixel */
-#define CACAO_PASS_SLICE_MAIN 9           /* the estimator: raw visibility per pixel */
-#define CACAO_PASS_SLICE_DENOISE 10       /* 3x3 depth/normal-aware filter (estimators.md section 5) */
+#define CACAO_PASS_HORIZON_PREPARE 8        /* view z (R32F) and view normals, one texel per pixel */
+#define CACAO_PASS_HORIZON_MAIN 9           /* the estimator: raw visibility per pixel */
+#define CACAO_PASS_HORIZON_DENOISE 10       /* 3x3 depth/normal-aware filter (estimators.md section 5) */
 /* Tile classification (docs/tiles.md): which tiles a frame computes, and the value of the rest. */
 #define CACAO_PASS_CLASSIFY 11            /* one class per tile: active, faded or background */
 #define CACAO_PASS_COMPACT 12             /* the tile lists and indirect dispatch commands */
@@ -53,15 +53,15 @@
 #define CACAO_OUTPUT_HALF 2
 
 /* Slice-prepare variants: normals reconstructed from depth, or transformed from the input. */
-#define CACAO_SLICE_NORMALS_DEPTH 0
-#define CACAO_SLICE_NORMALS_INPUT 1
+#define CACAO_HORIZON_NORMALS_DEPTH 0
+#define CACAO_HORIZON_NORMALS_INPUT 1
 
 /* Slice-main variants: estimator (GTAO or bitmask) x destination (raw intermediate for the
  * denoiser, or the caller's output when no denoise pass runs). */
-#define CACAO_SLICE_GTAO 0
-#define CACAO_SLICE_BITMASK 1
-#define CACAO_SLICE_GTAO_DIRECT 2
-#define CACAO_SLICE_BITMASK_DIRECT 3
+#define CACAO_HORIZON_GTAO 0
+#define CACAO_HORIZON_BITMASK 1
+#define CACAO_HORIZON_GTAO_DIRECT 2
+#define CACAO_HORIZON_BITMASK_DIRECT 3
 
 /* Slice-denoise variants: into the ping-pong intermediate, or (the last pass) into the output. */
 #define CACAO_DENOISE_INTERMEDIATE 0
@@ -75,50 +75,64 @@
  * blur over the groups that touch one; the other tiles' AO is filled with 1. One tile of margin
  * covers every blur (at most 8 iterations reach 8 texels) and the apply/upsample footprint.
  *
- * The tile buffer: CACAO_TILE_HEADER uints of header, then the tile classes, then the lists.
- * Header: one VkDispatchIndirectCommand (x, y, z) per list (list l at 3 (l - 1)), the tile
- * counts per class, and the entries per list (list l at CACAO_TILE_LIST_COUNT + l). A list is
- * dispatched as a grid x wide (tiles_x, or blur_groups_x for the blur) and as many rows as its
- * entries fill (lavapipe runs a 1D grid of the same groups about 10% slower); group (x, y) takes
- * entry y width + x, and a group past the last entry finds CACAO_TILE_NO_ENTRY and returns. List entries are group coordinates
- * x | y << 16. */
+ * The tile buffer, in uints (the macros below are its one description, for C and GLSL):
+ *   header   CACAO_TILE_HEADER uints: one VkDispatchIndirectCommand (x, y, z) per list (list l at
+ *            CACAO_TILE_COMMAND(l)), the tile counts per class (CACAO_TILE_COUNT_*), and the
+ *            entries per list (list l at CACAO_TILE_LIST_ENTRIES(l));
+ *   classes  one uint per tile, from CACAO_TILE_CLASSES;
+ *   lists    the generate and fill lists hold up to one entry per tile, the blur list one per blur
+ *            group; list l starts at CACAO_TILE_LIST_BASE(l, tiles).
+ * A list is dispatched as a grid x wide (tiles_x, or blur_groups_x for the blur) and as many rows
+ * as its entries fill (lavapipe runs a 1D grid of the same groups slower); group (x, y)
+ * takes entry y width + x, and a group past the last entry finds CACAO_TILE_NO_ENTRY (the host
+ * fills the lists with it) and returns. List entries are group coordinates x | y << 16. */
 #define CACAO_TILE 8
 #define CACAO_LIST_NONE 0                /* a direct dispatch */
 #define CACAO_LIST_GENERATE 1            /* needed tiles (one generate group each, z = layers) */
 #define CACAO_LIST_FILL_SLICES 2         /* tiles that are not needed (z = layers) */
 #define CACAO_LIST_BLUR 3                /* blur groups touching a needed tile (z = layers) */
 #define CACAO_LIST_COUNT 3
+#define CACAO_TILE_HEADER 32
+#define CACAO_TILE_COMMAND(list) (3 * ((list) - 1)) /* header: list's indirect command (x, y, z) */
 #define CACAO_TILE_COUNT_ACTIVE 15       /* header: tiles per class */
 #define CACAO_TILE_COUNT_FADED 16
 #define CACAO_TILE_COUNT_BACKGROUND 17
-#define CACAO_TILE_LIST_COUNT 17         /* + list: entries in that list */
+#define CACAO_TILE_LIST_ENTRIES(list) (CACAO_TILE_COUNT_BACKGROUND + (list)) /* header: entries in list */
+#define CACAO_TILE_CLASSES CACAO_TILE_HEADER /* first tile class */
+/* First entry of list 1..3 (tiles: tiles_x tiles_y); the uints of the whole buffer. */
+#define CACAO_TILE_LIST_BASE(list, tiles) (CACAO_TILE_CLASSES + (tiles) * (list))
+#define CACAO_TILE_BUFFER_UINTS(tiles, blur_groups) (CACAO_TILE_LIST_BASE(CACAO_LIST_BLUR, tiles) + (blur_groups))
 #define CACAO_TILE_NO_ENTRY 0xffffffffu  /* list slots past the last entry (the host fills them) */
-#define CACAO_TILE_HEADER 32
 #define CACAO_TILE_CLASS_ACTIVE 0
 #define CACAO_TILE_CLASS_FADED 1
 #define CACAO_TILE_CLASS_BACKGROUND 2
 #define CACAO_WG_COMPACT 64
 #define CACAO_WG_CLASSIFY 8              /* 8x8 tiles per group, one invocation each */
 
-/* ---- Descriptor bindings (set 0, pushed with VK_KHR_push_descriptor) ---- */
+/* ---- Descriptor bindings (set 0, pushed with VK_KHR_push_descriptor) ----
+ * One slot per role: each slot has one descriptor kind and one GLSL type (shaders/glsl/bindings.glsl
+ * declares it once), and is named by what it holds. A content read both through a sampler and as a
+ * storage image has two slots, the storage one named _IMAGE. Which pass binds which slot, to which
+ * resource, reading or writing, is the pass table's (cacao_passes.c); every slot is used by some
+ * pass (test_pass_table). */
 #define CACAO_BINDING_CONSTANTS 0        /* uniform block cacao_constants */
-#define CACAO_BINDING_LOAD_COUNTER 1     /* storage buffer, one uint (HIGHEST only) */
-#define CACAO_BINDING_SRC_DEPTH 2        /* caller's depth, sampler2D, nearest sampler */
-#define CACAO_BINDING_SRC_NORMALS 3      /* caller's normals, sampler2D, nearest sampler */
-#define CACAO_BINDING_DEPTHS 4           /* deinterleaved view z, sampler2DArray, nearest */
-#define CACAO_BINDING_NORMALS 5          /* deinterleaved normals, sampler2DArray, nearest */
-#define CACAO_BINDING_SSAO_IN 6          /* AO + packed edges, sampler2DArray, linear clamp */
-#define CACAO_BINDING_SSAO_BASE 7        /* Q3 base result, sampler2DArray, nearest */
-#define CACAO_BINDING_IMPORTANCE_IN 8    /* importance map, sampler2D, linear clamp */
-#define CACAO_BINDING_DEPTHS_OUT0 9      /* image2DArray r16f, mip 0 .. mip 3 at 9..12 (generate: read) */
-#define CACAO_BINDING_DEPTHS_OUT1 10
-#define CACAO_BINDING_DEPTHS_OUT2 11
-#define CACAO_BINDING_DEPTHS_OUT3 12
-#define CACAO_BINDING_NORMALS_OUT 13     /* image2DArray rgba8_snorm (generate: read) */
-#define CACAO_BINDING_SSAO_OUT 14        /* image2DArray rg8 */
-#define CACAO_BINDING_IMPORTANCE_OUT 15  /* image2D r8 */
-#define CACAO_BINDING_OUTPUT 16          /* caller's output, image2D, written without format */
-#define CACAO_BINDING_TILES 17           /* storage buffer: tile classes, lists, indirect commands */
+#define CACAO_BINDING_LOAD_COUNTER 1     /* storage buffer, one uint (HIGHEST) */
+#define CACAO_BINDING_TILES 2            /* storage buffer: tile classes, lists, indirect commands */
+#define CACAO_BINDING_SRC_DEPTH 3        /* caller's depth, sampler2D, nearest */
+#define CACAO_BINDING_SRC_NORMALS 4      /* caller's normals, sampler2D, nearest */
+#define CACAO_BINDING_DEPTHS 5           /* deinterleaved view z, sampler2DArray, nearest */
+#define CACAO_BINDING_DEPTHS_IMAGE 6     /* the same as image2DArray r16f (prepare writes, generate loads) */
+#define CACAO_BINDING_NORMALS_IMAGE 7    /* deinterleaved normals, image2DArray rgba8_snorm */
+#define CACAO_BINDING_SSAO 8             /* AO + packed edges, sampler2DArray, linear */
+#define CACAO_BINDING_SSAO_BASE 9        /* the Q3 base pass's AO, sampler2DArray, nearest */
+#define CACAO_BINDING_SSAO_IMAGE 10      /* AO + packed edges, image2DArray rg8 (written) */
+#define CACAO_BINDING_IMPORTANCE_MAP 11  /* importance map, sampler2D, linear */
+#define CACAO_BINDING_IMPORTANCE_MAP_IMAGE 12 /* the same as image2D r8 (written) */
+#define CACAO_BINDING_VIEW_DEPTH 13      /* horizon estimators: full-res view z, image2D r32f */
+#define CACAO_BINDING_VIEW_NORMALS 14    /* horizon estimators: full-res view normals, image2D rgba8_snorm */
+#define CACAO_BINDING_HORIZON_AO 15      /* horizon estimators: visibility to denoise, image2D r16f (read) */
+#define CACAO_BINDING_HORIZON_AO_OUT 16  /* horizon estimators: visibility, image2D r16f (written) */
+#define CACAO_BINDING_OUTPUT 17          /* caller's output, image2D, written without format */
 #define CACAO_BINDING_COUNT 18
 
 /* ---- Workgroup sizes (x, y); z is always 1 ---- */
@@ -144,8 +158,8 @@
 #define CACAO_UPSAMPLE_BLOCK 2           /* each upsample thread filters BxB half-res positions */
 #define CACAO_UPSAMPLE_SPAN_X (CACAO_WG_UPSAMPLE_X * CACAO_UPSAMPLE_BLOCK) /* half-res per group */
 #define CACAO_UPSAMPLE_SPAN_Y (CACAO_WG_UPSAMPLE_Y * CACAO_UPSAMPLE_BLOCK)
-#define CACAO_WG_SLICE_X 8               /* slice prepare, main and denoise: one pixel per thread */
-#define CACAO_WG_SLICE_Y 8
+#define CACAO_WG_HORIZON_X 8               /* slice prepare, main and denoise: one pixel per thread */
+#define CACAO_WG_HORIZON_Y 8
 
 /* ---- Depth mips. Intermediate formats live in the resource rows (cacao_passes.c); the shader
  * gets each storage image's qualifier as CACAO_FORMAT_<binding> from the generator. ---- */
@@ -159,8 +173,8 @@
  * downwards to its right, level l at (w, y(l)) with y(1) = 0, y(l + 1) = y(l) + h(l). The atlas is
  * w + w(1) wide and max(h, y(levels)) tall. One level per image makes every tap a single-level
  * sample; the level and its texel are chosen in the shader (docs/speed-notes.md: lavapipe's
- * sampler looks up each lane's level with per-lane loads, which costs 30% of the HIGH generate
- * pass). Extent of level l of a side of n texels, and the row where level l starts: */
+ * sampler looks up each lane's level with per-lane loads). Extent of level l of a side of n texels,
+ * and the row where level l starts: */
 #define CACAO_DEPTH_LEVEL_EXTENT(n, l) (((n) >> (l)) > 0 ? ((n) >> (l)) : 1)
 #define CACAO_DEPTH_ATLAS_Y(h, l)                                                                  \
     (((l) >= 2 ? CACAO_DEPTH_LEVEL_EXTENT(h, 1) : 0) + ((l) >= 3 ? CACAO_DEPTH_LEVEL_EXTENT(h, 2) : 0) + \
@@ -200,15 +214,15 @@
 #define CACAO_LOWEST_RADIUS_FACTOR 0.8
 
 /* ---- Horizon-slice estimators (spec: estimators.md sections 2-6) ---- */
-#define CACAO_SLICE_GTAO_RADIUS_FACTOR 1.457   /* k_R of GTAO; bitmask uses R itself */
-#define CACAO_SLICE_GTAO_FALLOFF_RANGE 0.615   /* r_f, falloff visibility */
-#define CACAO_SLICE_GTAO_BINARY_FALLOFF_RANGE 0.3 /* r_f, binary visibility */
-#define CACAO_SLICE_MIN_OFFSET_PX 1.3          /* nearest sample offset: never the centre pixel */
-#define CACAO_SLICE_THICKNESS_FALLOFF 1.0      /* bitmask thickness / R, falloff visibility */
-#define CACAO_SLICE_THICKNESS_BINARY 0.5       /* bitmask thickness / R, binary visibility */
-#define CACAO_SLICE_DENOISE_SIGMA 0.02         /* tangent-plane distance / view z */
-#define CACAO_SLICE_MAX_DIRECTIONS 16
-#define CACAO_SLICE_MAX_STEPS 32
+#define CACAO_HORIZON_GTAO_RADIUS_FACTOR 1.457   /* k_R of GTAO; bitmask uses R itself */
+#define CACAO_HORIZON_GTAO_FALLOFF_RANGE 0.615   /* r_f, falloff visibility */
+#define CACAO_HORIZON_GTAO_BINARY_FALLOFF_RANGE 0.3 /* r_f, binary visibility */
+#define CACAO_HORIZON_MIN_OFFSET_PX 1.3          /* nearest sample offset: never the centre pixel */
+#define CACAO_HORIZON_THICKNESS_FALLOFF 1.0      /* bitmask thickness / R, falloff visibility */
+#define CACAO_HORIZON_THICKNESS_BINARY 0.5       /* bitmask thickness / R, binary visibility */
+#define CACAO_HORIZON_DENOISE_SIGMA 0.02         /* tangent-plane distance / view z */
+#define CACAO_HORIZON_MAX_DIRECTIONS 16
+#define CACAO_HORIZON_MAX_STEPS 32
 
 /* Sample pattern: 32 entries of (x, y, weight, mip term), spec: constants.md section 1.
  * A C initialiser for float[128]; the host copies it into the constant block (sample_pattern). */
@@ -294,22 +308,22 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(VEC2, depth_unpack_d)             /* (0, -1) perspective, (P(3,3), 0) orthographic */       \
     M(VEC2, view_xy_z)                  /* view xy = (ndc_to_view_mul uv + add) (x z + y) */       \
     M(VEC2, edge_depth)                 /* depth an edge is relative to = x z + y */ \
-    M(FLOAT, slice_depth_den_a)         /* slice modes: view z = (depth_unpack.x + depth_unpack_d.x d) / */ \
-    M(FLOAT, slice_depth_den_b)         /*   (a + b d + c (1 - d)): 1 - d is exact where d is near 1 */ \
-    M(FLOAT, slice_depth_den_c)                                                                    \
-    M(FLOAT, slice_far_depth)           /* raw depth of the far plane: background (2 if none) */   \
-    M(FLOAT, slice_radius)              /* effective radius (k_R R), view units */                 \
-    M(FLOAT, slice_falloff_mul)         /* GTAO: w = sat((radius - dist) falloff_mul) */            \
-    M(FLOAT, slice_thickness)           /* bitmask: constant thickness T, view units */            \
-    M(FLOAT, slice_pixel_size)          /* view units per pixel at view_xy_scale 1 */              \
-    M(INT, slice_directions)            /* slices per pixel (NS) */                                \
-    M(INT, slice_steps)                 /* steps per side (M) */                                   \
-    M(INT, slice_binary)                /* 1: binary visibility within R, 0: falloff */            \
-    M(INT, slice_noise_offset)          /* 288 (frame mod 64): decorrelates frames, 0 = frame 0 */ \
-    M(INT, slice_ortho)                 /* 1: orthographic (view rays parallel to z) */            \
-    M(FLOAT, slice_denoise_sigma)                                                                  \
-    M(FLOAT, slice_rotation_cos)        /* cos, sin of pi / slices: from one slice to the next */ \
-    M(FLOAT, slice_rotation_sin)                                                                   \
+    M(FLOAT, horizon_depth_den_a)         /* slice modes: view z = (depth_unpack.x + depth_unpack_d.x d) / */ \
+    M(FLOAT, horizon_depth_den_b)         /*   (a + b d + c (1 - d)): 1 - d is exact where d is near 1 */ \
+    M(FLOAT, horizon_depth_den_c)                                                                    \
+    M(FLOAT, horizon_far_depth)           /* raw depth of the far plane: background (2 if none) */   \
+    M(FLOAT, horizon_radius)              /* effective radius (k_R R), view units */                 \
+    M(FLOAT, horizon_falloff_mul)         /* GTAO: w = sat((radius - dist) falloff_mul) */            \
+    M(FLOAT, horizon_thickness)           /* bitmask: constant thickness T, view units */            \
+    M(FLOAT, horizon_pixel_size)          /* view units per pixel at view_xy_scale 1 */              \
+    M(INT, horizon_directions)            /* slices per pixel (NS) */                                \
+    M(INT, horizon_steps)                 /* steps per side (M) */                                   \
+    M(INT, horizon_binary)                /* 1: binary visibility within R, 0: falloff */            \
+    M(INT, horizon_noise_offset)          /* 288 (frame mod 64): decorrelates frames, 0 = frame 0 */ \
+    M(INT, horizon_ortho)                 /* 1: orthographic (view rays parallel to z) */            \
+    M(FLOAT, horizon_denoise_sigma)                                                                  \
+    M(FLOAT, horizon_rotation_cos)        /* cos, sin of pi / slices: from one slice to the next */ \
+    M(FLOAT, horizon_rotation_sin)                                                                   \
     M(FLOAT, background_z)              /* stored view z at or beyond which a texel is background */ \
     M(FLOAT, quiet_margin)              /* classification: fade argument below -margin is quiet */ \
     M(INT, tiles_all)                   /* 1: every tile active (no skipping: measurement, tests) */ \
@@ -323,15 +337,17 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(INT, slice_height)
 
 #ifdef CACAO_GLSL
+#ifdef CACAO_BIND_CONSTANTS /* every pass row binds it (glsl/bindings.glsl declares the other slots) */
 layout(std140, set = 0, binding = CACAO_BINDING_CONSTANTS) uniform cacao_constants_block {
     CACAO_CONSTANTS_MEMBERS(CACAO_MEMBER, CACAO_MEMBER_ARRAY)
 } cb;
+#endif
 /* The passes read the block's members other than its arrays as CB.name. In the generate pass CB
  * is cc, a private copy made by hoist_constants() as the first statement of its main: lavapipe
  * loads a block value inside control flow lane by lane with a bounds check (and everything after
  * an early return is inside control flow), but once at the top of main. There the copy makes the
- * pass 4-8% faster; in the other passes it was no faster or slower (docs/speed-notes.md), so
- * there CB is the block itself. The arrays are always read from the block (their indices vary
+ * pass faster; in the other passes it was not (docs/speed-notes.md), so there CB is the block
+ * itself. The arrays are always read from the block (their indices vary
  * per pixel). */
 #if CACAO_PASS == CACAO_PASS_GENERATE
 #define CACAO_CC_MEMBER(type, name) CACAO_T_##type name;

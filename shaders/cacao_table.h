@@ -23,7 +23,7 @@ typedef struct cacao_permutation {
     uint32_t workgroup_size[3];
     uint32_t uniform_size;     /* bytes of the constant block, 0 if unused */
     uint32_t push_constant_size;
-    uint8_t bindings[CACAO_BINDING_COUNT]; /* CACAO_RESOURCE_* per binding of set 0 */
+    uint8_t bindings[CACAO_BINDING_COUNT]; /* CACAOI_DESCRIPTOR_* per binding of set 0 */
 } cacao_permutation;
 
 typedef struct cacao_table {
@@ -40,7 +40,7 @@ typedef struct cacao_table {
 /* The table linked into this build (the committed full set, or a build-tree subset). */
 extern const cacao_table cacaoi_embedded_table;
 
-/* Binary search by key; NULL when the key is not embedded in this build. */
+/* Binary search by key; NULL when the key is not embedded in this build (cacao_keys.c). */
 const cacao_permutation *cacaoi_table_find(const cacao_table *table, const cacao_key *key);
 
 #endif /* CACAO_TABLE_H */

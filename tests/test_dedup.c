@@ -8,11 +8,11 @@
 #include "shadergen.h"
 #include "test_util.h"
 
-static bool compile_key(const char *source, const char *shared, const char *name, sg_module *m) {
+static bool compile_key(const sg_sources *sources, const char *name, sg_module *m) {
     memset(m, 0, sizeof *m);
     if (!cacaoi_key_parse(name, &m->key)) return false;
     snprintf(m->name, sizeof m->name, "%s", name);
-    char *text = sg_specialise(source, shared, &m->key);
+    char *text = sg_specialise(sources, &m->key);
     sg_options options = {.optimize = true};
     bool ok = text && sg_compile(text, name, &options, &m->words, &m->word_count) &&
               sg_validate(m->words, m->word_count, name);
@@ -21,18 +21,19 @@ static bool compile_key(const char *source, const char *shared, const char *name
 }
 
 int main(int argc, char **argv) {
-    if (argc != 3) {
-        fprintf(stderr, "usage: test_dedup cacao.comp cacao_shared.h\n");
+    if (argc != 2) {
+        fprintf(stderr, "usage: test_dedup cacao.comp\n");
         return 2;
     }
-    char *source = sg_read_file(argv[1]), *shared = sg_read_file(argv[2]);
-    CHECK(source && shared);
-    if (!source || !shared) return 1;
+    sg_sources sources;
+    const bool loaded = sg_load_sources(argv[1], &sources);
+    CHECK(loaded);
+    if (!loaded) return 1;
     glslang_initialize_process();
     sg_module m[3];
-    CHECK(compile_key(source, shared, "generate.q2", &m[0]));
-    CHECK(compile_key(source, shared, "blur.3.fp32", &m[1]));
-    CHECK(compile_key(source, shared, "generate.q2", &m[2])); /* the same key again */
+    CHECK(compile_key(&sources, "generate.q2", &m[0]));
+    CHECK(compile_key(&sources, "blur.3.fp32", &m[1]));
+    CHECK(compile_key(&sources, "generate.q2", &m[2])); /* the same key again */
     glslang_finalize_process();
     uint32_t unique = sg_dedup(m, 3);
     printf("synthetic: 3 modules before dedup, %u after\n", unique);
@@ -49,7 +50,6 @@ int main(int argc, char **argv) {
                   memcmp(t->modules[a].words, t->modules[b].words, t->modules[a].word_count * 4) != 0);
     for (uint32_t i = 0; i < t->permutation_count; ++i) CHECK(t->permutations[i].module < t->module_count);
     printf("embedded table: %u permutations, %u unique modules\n", t->permutation_count, t->module_count);
-    free(source);
-    free(shared);
+    sg_free_sources(&sources);
     return test_report("test_dedup");
 }

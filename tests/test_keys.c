@@ -5,14 +5,15 @@
 #include <string.h>
 
 #include "cacao_keys.h"
+#include "cacao_policy.h"
 #include "test_util.h"
 
 static void test_names_round_trip(void) {
     cacao_key keys[64];
     size_t n = cacaoi_key_list(keys, 64);
     /* 6 prepare_depths + 2 prepare_normals (from the input) + 5 generate + 2 importance (A, B: the
-     * map itself comes from generate.q3base) + 16 blur + 6 apply + 6 upsample + 2 slice_prepare
-     * + 4 slice_main + 2 slice_denoise + classify + compact + fill + 6 prepare (depths and normals
+     * map itself comes from generate.q3base) + 16 blur + 6 apply + 6 upsample + 2 horizon_prepare
+     * + 4 horizon_main + 2 horizon_denoise + classify + compact + fill + 6 prepare (depths and normals
      * from depth) */
     CHECK(n == 60);
     for (size_t i = 0; i < n; ++i) {
@@ -30,6 +31,18 @@ static void test_names_round_trip(void) {
     CHECK(!cacaoi_key_parse("blur.9.fp16", &k));
     CHECK(!cacaoi_key_parse("generate.q2.native", &k)); /* generate has no resolution axis */
     CHECK(!cacaoi_key_parse("", &k));
+}
+
+/* A name that does not fit gives 0 and an empty buffer, never a cut name (and every name fits the
+ * plan's key_name: test_names_round_trip names every key into CACAO_KEY_NAME_MAX). */
+static void test_name_too_long(void) {
+    cacao_key k;
+    CHECK(cacaoi_key_parse("prepare_depths.mips.downsampled", &k));
+    char name[CACAO_KEY_NAME_MAX];
+    const size_t len = cacaoi_key_name(&k, name, sizeof name);
+    CHECK(len == strlen("prepare_depths.mips.downsampled"));
+    CHECK(cacaoi_key_name(&k, name, len) == 0 && name[0] == '\0');
+    CHECK(cacaoi_key_name(&k, name, len + 1) == len);
 }
 
 static void test_invalid_keys(void) {
@@ -60,10 +73,10 @@ static void test_subset(void) {
                               "prepare_normals.native", "prepare.full.native", "prepare.mips.native",
                               "generate.q1", "generate.q2", "blur.1.fp32", "blur.2.fp32",
                               "blur.3.fp32", "blur.4.fp32", "blur.5.fp32", "blur.6.fp32",
-                              "blur.7.fp32", "blur.8.fp32", "apply.smart.fp32", "slice_prepare.depth",
-                              "slice_prepare.input", "slice_main.gtao", "slice_main.bitmask",
-                              "slice_main.gtao_direct", "slice_main.bitmask_direct",
-                              "slice_denoise.intermediate", "slice_denoise.final", "classify", "compact", "fill"};
+                              "blur.7.fp32", "blur.8.fp32", "apply.smart.fp32", "horizon_prepare.depth",
+                              "horizon_prepare.input", "horizon_main.gtao", "horizon_main.bitmask",
+                              "horizon_main.gtao_direct", "horizon_main.bitmask_direct",
+                              "horizon_denoise.intermediate", "horizon_denoise.final", "classify", "compact", "fill"};
     cacao_key keys[64];
     size_t n = cacaoi_key_list(keys, 64), kept = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -82,7 +95,7 @@ static void test_subset(void) {
     /* downsampled only: no slice-estimator key (they run at full resolution only) */
     CHECK(cacaoi_key_subset_parse("high", "ONLY", "fp32", &s));
     for (size_t i = 0; i < n; ++i)
-        if (keys[i].pass >= CACAO_PASS_SLICE_PREPARE && keys[i].pass <= CACAO_PASS_SLICE_DENOISE)
+        if (keys[i].pass >= CACAO_PASS_HORIZON_PREPARE && keys[i].pass <= CACAO_PASS_HORIZON_DENOISE)
             CHECK(!cacaoi_key_in_subset(&keys[i], &s));
     CHECK(!cacaoi_key_subset_parse("ultra", "OFF", "fp32", &s));
     CHECK(!cacaoi_key_subset_parse("high", "MAYBE", "fp32", &s));
@@ -92,6 +105,7 @@ static void test_subset(void) {
 int main(void) {
     test_names_round_trip();
     test_invalid_keys();
+    test_name_too_long();
     test_subset();
     return test_report("test_keys");
 }

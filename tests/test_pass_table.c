@@ -10,8 +10,15 @@
  *     (cacaoi_keys_for_config) are exactly the plan's distinct keys, each step binds exactly the
  *     slots its embedded module declares, with that module's workgroup size, and every resource a
  *     step touches is allocated (intermediates) or supplied by the caller;
- *   - the GLSL defines of every key carry one CACAO_FORMAT_<slot> per formatted storage image.
+ *   - the slots: every slot of the set layout is bound by some pass row and declared by some
+ *     embedded module, and each slot has one role: every binding of it, in every row, is of one
+ *     format and layering (the one GLSL declaration of glsl/bindings.glsl fits them all); no
+ *     variant binds more than CACAO_PLAN_MAX_BINDINGS slots;
+ *   - the GLSL defines of every key carry exactly the row's CACAO_BIND_<slot>, a CACAO_ACCESS_<slot>
+ *     of the row's access for storage slots, and one CACAO_FORMAT_<slot> per formatted storage
+ *     image.
  * Pure C: no device. */
+#include <stdlib.h>
 #include <string.h>
 
 #include "cacao_passes.h"
@@ -49,20 +56,26 @@ static void test_rows(void) {
                 if (!((b->variants >> v) & 1u)) continue;
                 ++seen[b->slot];
                 const uint8_t kind = cacaoi_slots[b->slot].descriptor;
-                const bool buffer_slot = kind == CACAO_RESOURCE_UNIFORM_BUFFER || kind == CACAO_RESOURCE_STORAGE_BUFFER;
+                const bool buffer_slot = kind == CACAOI_DESCRIPTOR_UNIFORM_BUFFER || kind == CACAOI_DESCRIPTOR_STORAGE_BUFFER;
                 if (buffer_slot != is_buffer(b->resource))
                     fprintf(stderr, "%s variant %u: slot %s holds %s\n", row->name, v, cacaoi_slots[b->slot].name,
                             cacaoi_resources[b->resource].name);
                 CHECK(buffer_slot == is_buffer(b->resource));
                 if (cacaoi_slots[b->slot].sampler == CACAOI_SAMPLER_LINEAR) CHECK(cacaoi_resources[b->resource].filtered);
-                if (kind == CACAO_RESOURCE_SAMPLED_IMAGE) CHECK(!b->write); /* sampled = read */
+                if (kind == CACAOI_DESCRIPTOR_SAMPLED_IMAGE) CHECK(!b->write); /* sampled = read */
                 /* only the depths hold levels (an atlas), written by prepare's MIPS variant */
                 if (b->levels > 1)
                     CHECK(b->resource == CACAO_RES_DEPTHS && b->levels <= CACAO_DEPTH_MIP_COUNT && b->write &&
-                          b->slot == CACAO_BINDING_DEPTHS_OUT0);
+                          b->slot == CACAO_BINDING_DEPTHS_IMAGE);
             }
             CHECK(seen[CACAO_BINDING_CONSTANTS] == 1); /* every pass reads the constant block */
-            for (unsigned s = 0; s < CACAO_BINDING_COUNT; ++s) CHECK(seen[s] <= 1);
+            unsigned bound = 0;
+            for (unsigned s = 0; s < CACAO_BINDING_COUNT; ++s) {
+                CHECK(seen[s] <= 1);
+                bound += seen[s];
+            }
+            cacaoi_pass_binding out[CACAO_PLAN_MAX_BINDINGS];
+            CHECK(bound <= CACAO_PLAN_MAX_BINDINGS && cacaoi_variant_bindings(p, v, out) == bound);
         }
     }
     /* Only the caller's images and the buffers lack a format; intermediates have a GLSL one. */
@@ -76,17 +89,63 @@ static void test_rows(void) {
     }
 }
 
+/* Every slot has one role and is used: some row binds it, and every binding of it (any row, any
+ * variant) is to a resource of one format and layering, so one GLSL declaration serves them all;
+ * some embedded module declares it. */
+static void test_slots(void) {
+    for (unsigned s = 0; s < CACAO_BINDING_COUNT; ++s) {
+        const cacaoi_resource_row *first = NULL;
+        unsigned rows = 0;
+        for (unsigned p = 0; p < CACAO_PASS_COUNT; ++p)
+            for (unsigned i = 0; i < cacaoi_passes[p].binding_count; ++i) {
+                const cacaoi_pass_binding *b = &cacaoi_passes[p].bindings[i];
+                if (b->slot != s) continue;
+                const cacaoi_resource_row *r = &cacaoi_resources[b->resource];
+                if (!first) first = r;
+                if (r->format != first->format || r->layered != first->layered)
+                    fprintf(stderr, "slot %s: %s binds %s, another row %s\n", cacaoi_slots[s].name,
+                            cacaoi_passes[p].name, r->name, first->name);
+                CHECK(r->format == first->format && r->layered == first->layered && r->size == first->size);
+                ++rows;
+            }
+        if (rows == 0) fprintf(stderr, "slot %s: no pass row binds it\n", cacaoi_slots[s].name);
+        CHECK(rows > 0);
+        bool declared = false;
+        for (uint32_t i = 0; i < cacaoi_embedded_table.permutation_count && !declared; ++i)
+            declared = cacaoi_embedded_table.permutations[i].bindings[s] == cacaoi_slots[s].descriptor;
+        if (!declared) fprintf(stderr, "slot %s: no embedded module declares it\n", cacaoi_slots[s].name);
+        CHECK(declared || cacaoi_embedded_table.permutation_count < cacaoi_key_list(NULL, 0)); /* a subset may lack it */
+    }
+}
+
+static bool has_line(const char *text, const char *line) {
+    const size_t n = strlen(line);
+    for (const char *at = strstr(text, line); at; at = strstr(at + 1, line))
+        if ((at == text || at[-1] == '\n') && at[n] == '\n') return true;
+    return false;
+}
+
 static void test_defines(void) {
-    cacao_key keys[64];
-    const size_t n = cacaoi_key_list(keys, 64);
-    for (size_t i = 0; i < n; ++i) {
-        char defines[CACAO_KEY_DEFINES_MAX], name[64];
+    const size_t n = cacaoi_key_list(NULL, 0);
+    cacao_key *keys = calloc(n, sizeof *keys);
+    CHECK(keys && cacaoi_key_list(keys, n) == n);
+    for (size_t i = 0; keys && i < n; ++i) {
+        char defines[CACAO_KEY_DEFINES_MAX], name[64], line[128];
+        char small[16];
+        CHECK(cacaoi_key_defines(&keys[i], small, sizeof small) == 0 && small[0] == '\0'); /* not a cut text */
         CHECK(cacaoi_key_defines(&keys[i], defines, sizeof defines) > 0);
         cacaoi_module_expect want;
-        CHECK(cacaoi_pass_expect(&keys[i], &want));
+        CHECK(cacaoi_key_expect(&keys[i], &want));
         for (unsigned s = 0; s < CACAO_BINDING_COUNT; ++s) {
+            const uint8_t kind = want.descriptor[s];
+            snprintf(line, sizeof line, "#define CACAO_BIND_%s 1", cacaoi_slots[s].name);
+            CHECK(has_line(defines, line) == (kind != CACAOI_DESCRIPTOR_NONE));
+            const bool storage = kind == CACAOI_DESCRIPTOR_STORAGE_IMAGE || kind == CACAOI_DESCRIPTOR_STORAGE_BUFFER;
+            const char *access = !want.write[s] ? "readonly" : kind == CACAOI_DESCRIPTOR_STORAGE_IMAGE ? "writeonly" : "";
+            snprintf(line, sizeof line, "#define CACAO_ACCESS_%s %s", cacaoi_slots[s].name, access);
+            CHECK(has_line(defines, line) == storage);
             snprintf(name, sizeof name, "#define CACAO_FORMAT_%s ", cacaoi_slots[s].name);
-            const bool formatted = want.descriptor[s] == CACAO_RESOURCE_STORAGE_IMAGE &&
+            const bool formatted = want.descriptor[s] == CACAOI_DESCRIPTOR_STORAGE_IMAGE &&
                                    *cacaoi_resources[want.resource[s]].glsl_format;
             const char *at = strstr(defines, name);
             CHECK((at != NULL) == formatted);
@@ -94,6 +153,7 @@ static void test_defines(void) {
                                   strlen(cacaoi_resources[want.resource[s]].glsl_format)) == 0);
         }
     }
+    free(keys);
 }
 
 static unsigned configs_checked;
@@ -126,7 +186,7 @@ static void check_config(const cacao_settings *s) {
 
         /* Rebinding keeps the row's format and layering. */
         cacaoi_module_expect want;
-        CHECK(cacaoi_pass_expect(&key, &want));
+        CHECK(cacaoi_key_expect(&key, &want));
         uint32_t reads = 0, writes = 0;
         bool bound[CACAO_BINDING_COUNT] = {false};
         for (uint32_t j = 0; j < st->binding_count; ++j) {
@@ -147,10 +207,10 @@ static void check_config(const cacao_settings *s) {
         CHECK(perm != NULL);
         if (!perm) continue;
         for (unsigned b = 0; b < CACAO_BINDING_COUNT; ++b) {
-            if ((perm->bindings[b] != CACAO_RESOURCE_NONE) != bound[b])
+            if ((perm->bindings[b] != CACAOI_DESCRIPTOR_NONE) != bound[b])
                 fprintf(stderr, "%s: slot %s bound %d, module %d\n", st->key_name, cacaoi_slots[b].name, bound[b],
                         perm->bindings[b]);
-            CHECK((perm->bindings[b] != CACAO_RESOURCE_NONE) == bound[b]);
+            CHECK((perm->bindings[b] != CACAOI_DESCRIPTOR_NONE) == bound[b]);
             if (bound[b]) CHECK(perm->bindings[b] == cacaoi_slots[b].descriptor);
         }
         CHECK(memcmp(perm->workgroup_size, want.workgroup, sizeof want.workgroup) == 0);
@@ -180,6 +240,7 @@ static void test_every_configuration(void) {
 
 int main(void) {
     test_rows();
+    test_slots();
     test_defines();
     test_every_configuration();
     return test_report("pass_table");

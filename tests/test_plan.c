@@ -169,9 +169,9 @@ static void test_small_mip_chain(void) {
         CHECK(depths->bytes == (uint64_t)cases[c].atlas_w * cases[c].atlas_h * 4 * 2);
         /* prepare.mips: constants, source depth, the atlas, the normals */
         const cacao_plan_binding *b = &p.steps[0].bindings[2];
-        CHECK(p.steps[0].binding_count == 4 && b->binding == CACAO_BINDING_DEPTHS_OUT0 && b->write &&
+        CHECK(p.steps[0].binding_count == 4 && b->binding == CACAO_BINDING_DEPTHS_IMAGE && b->write &&
               b->resource == CACAO_RES_DEPTHS);
-        CHECK(p.steps[0].bindings[3].binding == CACAO_BINDING_NORMALS_OUT && p.steps[0].bindings[3].write);
+        CHECK(p.steps[0].bindings[3].binding == CACAO_BINDING_NORMALS_IMAGE && p.steps[0].bindings[3].write);
     }
 }
 

@@ -36,19 +36,19 @@ int main(void) {
     CHECK(!sg_check_row(&m));
 
     CHECK(reflect_key("generate.q3", &m));
-    m.bindings[CACAO_BINDING_IMPORTANCE_IN] = CACAO_RESOURCE_NONE; /* a binding the row has, missing */
+    m.bindings[CACAO_BINDING_IMPORTANCE_MAP] = CACAOI_DESCRIPTOR_NONE; /* a binding the row has, missing */
     CHECK(!sg_check_row(&m));
 
     CHECK(reflect_key("prepare_depths.mips.native", &m));
-    m.image_format[CACAO_BINDING_DEPTHS_OUT0] = m.image_format[CACAO_BINDING_DEPTHS_OUT0] + 1; /* other format */
+    m.image_format[CACAO_BINDING_DEPTHS_IMAGE] = m.image_format[CACAO_BINDING_DEPTHS_IMAGE] + 1; /* other format */
     CHECK(!sg_check_row(&m));
 
     CHECK(reflect_key("blur.3.fp16", &m));
-    m.image_arrayed[CACAO_BINDING_SSAO_OUT] = false; /* a 2D image where the row's resource is layered */
+    m.image_arrayed[CACAO_BINDING_SSAO_IMAGE] = false; /* a 2D image where the row's resource is layered */
     CHECK(!sg_check_row(&m));
 
-    CHECK(reflect_key("slice_main.gtao", &m));
-    m.non_writable[CACAO_BINDING_DEPTHS_OUT0] = false; /* writable where the row only reads */
+    CHECK(reflect_key("horizon_main.gtao", &m));
+    m.non_writable[CACAO_BINDING_VIEW_DEPTH] = false; /* writable where the row only reads */
     CHECK(!sg_check_row(&m));
 
     CHECK(reflect_key("importance_a", &m));

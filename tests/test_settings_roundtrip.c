@@ -51,7 +51,7 @@ static bool plans_equal(const cacao_plan *a, const cacao_plan *b) {
 static unsigned blur_steps(const cacao_plan *p) {
     unsigned n = 0;
     for (uint32_t i = 0; i < p->step_count; ++i)
-        n += strncmp(p->steps[i].key_name, "blur.", 5) == 0 || strncmp(p->steps[i].key_name, "slice_denoise.", 14) == 0;
+        n += strncmp(p->steps[i].key_name, "blur.", 5) == 0 || strncmp(p->steps[i].key_name, "horizon_denoise.", 14) == 0;
     return n;
 }
 

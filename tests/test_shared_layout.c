@@ -41,7 +41,7 @@ int main(void) {
     unsigned checked = 0;
     for (uint32_t i = 0; i < cacaoi_embedded_table.permutation_count; ++i) {
         const cacao_permutation *p = &cacaoi_embedded_table.permutations[i];
-        if (p->bindings[CACAO_BINDING_CONSTANTS] != CACAO_RESOURCE_UNIFORM_BUFFER) continue;
+        if (p->bindings[CACAO_BINDING_CONSTANTS] != CACAOI_DESCRIPTOR_UNIFORM_BUFFER) continue;
         check_module(p);
         ++checked;
     }

@@ -154,13 +154,13 @@ def report(a, scenes, ours, amd, up_before, up_after, work, device):
     for scene in scenes:
         lines += ['## %s' % scene, '',
                   '| estimator | quality | depth reads / px | RMSE vs ao_gt_falloff (given / reconstructed normals) | '
-                  'RMSE vs ao_gt, binary visibility | total ms | slice_main ms |',
+                  'RMSE vs ao_gt, binary visibility | total ms | horizon_main ms |',
                   '|---|---|---|---|---|---|---|']
         for e in ESTIMATORS:
             for q in QUALITIES:
                 c = '%s_%s_native' % (e, q)
                 rs, rg, rb = ours[(scene, c)], ours[(scene, c + '_gennormals')], ours[(scene, 'binary:' + c)]
-                main = float(np.median([p['time_ms'] for r in rs for p in r['passes'] if p['name'].startswith('slice_main')]))
+                main = float(np.median([p['time_ms'] for r in rs for p in r['passes'] if p['name'].startswith('horizon_main')]))
                 lines.append('| %s | %s | %d | %.4f / %.4f | %.4f | %.1f | %.1f |' % (
                     e, q, READS[q], rmse(rs[0], 'ao_gt_falloff'), rmse(rg[0], 'ao_gt_falloff'),
                     rmse(rb[0], 'ao_gt'), med(rs), main))

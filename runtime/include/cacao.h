@@ -180,8 +180,17 @@ typedef struct cacao_plan_image {
     uint64_t bytes;             /* tightly packed size, all layers */
 } cacao_plan_image;
 
-#define CACAO_PLAN_MAX_STEPS 16
-#define CACAO_PLAN_MAX_BINDINGS 10
+#define CACAO_PLAN_MAX_STEPS 16     /* steps of any configuration (the longest has 12) */
+#define CACAO_PLAN_MAX_BINDINGS 10  /* bindings of any step (the most one makes: 9) */
+#define CACAO_PLAN_KEY_NAME_MAX 48  /* a step's key name, with its terminating zero */
+
+/* One buffer the plan needs (only those are allocated). */
+typedef struct cacao_plan_buffer {
+    cacao_resource resource;
+    uint64_t bytes;
+} cacao_plan_buffer;
+
+#define CACAO_PLAN_MAX_BUFFERS 3    /* constants, load counter, tiles */
 
 /* One binding of a step: descriptor binding number -> resource. */
 typedef struct cacao_plan_binding {
@@ -191,7 +200,7 @@ typedef struct cacao_plan_binding {
 } cacao_plan_binding;
 
 typedef struct cacao_plan_step {
-    char key_name[48];          /* permutation key, e.g. "generate.q2" */
+    char key_name[CACAO_PLAN_KEY_NAME_MAX]; /* permutation key, e.g. "generate.q2" */
     uint8_t key[5];             /* permutation key: pass, variant, downsampled, blur passes, fp16 */
     uint32_t dispatch[3];       /* workgroups (an indirect step: the most it can dispatch) */
     uint8_t list;               /* 0: dispatched directly; else the tile list it dispatches
@@ -206,12 +215,16 @@ typedef struct cacao_plan {
     cacao_settings settings;    /* resolved (cacao_settings_resolve: explicit zeros stay encoded) */
     uint32_t width, height;     /* full resolution */
     uint32_t slice_width, slice_height;           /* deinterleaved (SSAO) size */
-    uint32_t importance_width, importance_height; /* 0 unless HIGHEST */
-    uint32_t slice_count;       /* 2 at LOWEST, else 4 */
+    uint32_t importance_width, importance_height; /* CACAO: half the slice each way (HIGHEST reads
+                                   the map); 0 for the horizon estimators */
+    uint32_t slice_count;       /* CACAO: 2 at LOWEST, else 4; horizon estimators: 1 (the full-res
+                                   image is their one "slice") */
     uint32_t step_count;
     cacao_plan_step steps[CACAO_PLAN_MAX_STEPS];
     uint32_t image_count;
     cacao_plan_image images[CACAO_RES_COUNT];
+    uint32_t buffer_count;
+    cacao_plan_buffer buffers[CACAO_PLAN_MAX_BUFFERS];
     bool uses_load_counter;
     bool uses_tiles;            /* CACAO estimator: tile classification (docs/tiles.md) */
     uint32_t tiles_x, tiles_y;  /* tiles of CACAO_TILE x CACAO_TILE slice texels */

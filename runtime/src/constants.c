@@ -175,43 +175,43 @@ static void fill_pattern(cacao_constants *c) {
 
 /* spec: estimators.md sections 1-6 - the horizon-slice estimators' constants. k is the view scale
  * (every length scales with it, AO does not). */
-static void fill_slice_constants(const cacao_settings *s, const projection_view *v, float k, const cacao_plan *plan,
+static void fill_horizon_constants(const cacao_settings *s, const projection_view *v, float k, const cacao_plan *plan,
                                  const cacao_inputs *in, cacao_constants *c) {
     /* Depth denominator z_den[0] + z_den[1] d. Where z_den[0] is near 1 (standard Z), it is
      * written (z_den[0] - 1) + (1 - d): 1 - d is exact in fp32 for d >= 0.5, so the far range keeps
      * its precision instead of losing it to the cancellation in z_den[0] - d. */
     const double den0 = v->z_den[0];
     if (!v->ortho && fabs(den0 - 1.0) < 0.5 && v->z_den[1] == -1.0f) {
-        c->slice_depth_den_a = (float)(den0 - 1.0);
-        c->slice_depth_den_b = 0.0f;
-        c->slice_depth_den_c = 1.0f;
+        c->horizon_depth_den_a = (float)(den0 - 1.0);
+        c->horizon_depth_den_b = 0.0f;
+        c->horizon_depth_den_c = 1.0f;
     } else {
-        c->slice_depth_den_a = v->z_den[0];
-        c->slice_depth_den_b = v->z_den[1];
-        c->slice_depth_den_c = 0.0f;
+        c->horizon_depth_den_a = v->z_den[0];
+        c->horizon_depth_den_b = v->z_den[1];
+        c->horizon_depth_den_c = 0.0f;
     }
     /* Background: the far plane's raw depth (the end of [0,1] with the larger view z); an infinite
      * far plane gives no finite z there, which the shader treats as background anyway. */
     double z_at[2];
     depth_end_z(v, z_at);
-    c->slice_far_depth = z_at[1] >= z_at[0] ? 1.0f : 0.0f;
+    c->horizon_far_depth = z_at[1] >= z_at[0] ? 1.0f : 0.0f;
     const bool gtao = s->estimator == CACAO_ESTIMATOR_GTAO, binary = s->visibility == CACAO_VISIBILITY_BINARY;
     const float radius = k * s->radius;
-    c->slice_radius = gtao ? radius * (float)CACAO_SLICE_GTAO_RADIUS_FACTOR : radius;
-    const float falloff_range = (float)(binary ? CACAO_SLICE_GTAO_BINARY_FALLOFF_RANGE : CACAO_SLICE_GTAO_FALLOFF_RANGE);
-    c->slice_falloff_mul = 1.0f / (falloff_range * c->slice_radius);
-    const float thickness_factor = (float)(binary ? CACAO_SLICE_THICKNESS_BINARY : CACAO_SLICE_THICKNESS_FALLOFF);
-    c->slice_thickness = s->thickness > 0.0f ? k * s->thickness : thickness_factor * radius;
-    c->slice_pixel_size = fabsf(c->ndc_to_view_mul.y) / (float)plan->height;
-    c->slice_directions = s->horizon_slices;
-    c->slice_steps = s->horizon_steps;
-    c->slice_binary = binary ? 1 : 0;
-    c->slice_noise_offset = (int)(288u * (in->frame_index % 64u));
-    c->slice_ortho = v->ortho ? 1 : 0;
-    c->slice_denoise_sigma = (float)CACAO_SLICE_DENOISE_SIGMA;
+    c->horizon_radius = gtao ? radius * (float)CACAO_HORIZON_GTAO_RADIUS_FACTOR : radius;
+    const float falloff_range = (float)(binary ? CACAO_HORIZON_GTAO_BINARY_FALLOFF_RANGE : CACAO_HORIZON_GTAO_FALLOFF_RANGE);
+    c->horizon_falloff_mul = 1.0f / (falloff_range * c->horizon_radius);
+    const float thickness_factor = (float)(binary ? CACAO_HORIZON_THICKNESS_BINARY : CACAO_HORIZON_THICKNESS_FALLOFF);
+    c->horizon_thickness = s->thickness > 0.0f ? k * s->thickness : thickness_factor * radius;
+    c->horizon_pixel_size = fabsf(c->ndc_to_view_mul.y) / (float)plan->height;
+    c->horizon_directions = s->horizon_slices;
+    c->horizon_steps = s->horizon_steps;
+    c->horizon_binary = binary ? 1 : 0;
+    c->horizon_noise_offset = (int)(288u * (in->frame_index % 64u));
+    c->horizon_ortho = v->ortho ? 1 : 0;
+    c->horizon_denoise_sigma = (float)CACAO_HORIZON_DENOISE_SIGMA;
     const double step = 3.14159265358979323846 / s->horizon_slices;
-    c->slice_rotation_cos = (float)cos(step);
-    c->slice_rotation_sin = (float)sin(step);
+    c->horizon_rotation_cos = (float)cos(step);
+    c->horizon_rotation_sin = (float)sin(step);
 }
 
 /* Tile classification (docs/tiles.md). Background: the stored (R16F) view z of the far plane,
@@ -264,7 +264,7 @@ void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao
 
     const unsigned quality = cacaoi_key_quality(s->quality);
     float radius = fminf(fmaxf(s->radius, 0.0f), 100000.0f);
-    if (quality == CACAO_KEY_QUALITY_LOWEST) radius *= (float)CACAO_LOWEST_RADIUS_FACTOR;
+    radius *= cacaoi_qualities[quality].radius_scale;
     radius *= k;
     c->effect_radius = radius;
     c->effect_shadow_strength = fminf(fmaxf(s->shadow_multiplier * (float)CACAO_STRENGTH_MULTIPLIER, 0.0f), 10.0f);
@@ -275,7 +275,7 @@ void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao
     c->effect_horizon_angle_threshold = fminf(fmaxf(s->horizon_angle_threshold, 0.0f), 1.0f);
     /* Near limit from the raw radius, not the LOWEST-reduced one ([quirk] NEARLIMIT-RAW-RADIUS). */
     float near_limit = k * s->radius * (float)CACAO_NEAR_LIMIT_RADIUS_FACTOR;
-    if (quality <= CACAO_KEY_QUALITY_LOW) near_limit *= (float)CACAO_LOW_NEAR_LIMIT_FACTOR;
+    near_limit *= cacaoi_qualities[quality].near_limit_scale;
     near_limit /= tan_y;
     /* Orthographic: the footprint does not grow near the camera, so no near limit (factor 1). */
     c->effect_sampling_radius_near_limit_rec = v.ortho ? 1.0e30f : 1.0f / near_limit;
@@ -320,5 +320,5 @@ void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao
         for (int col = 0; col < 4; ++col)
             c->normals_to_view.m[4 * col + row] =
                 identity ? (row == col ? 1.0f : 0.0f) : mat_at(in->normals_to_view, rm, row, col);
-    if (s->estimator != CACAO_ESTIMATOR_CACAO) fill_slice_constants(s, &v, k, plan, in, c);
+    if (s->estimator != CACAO_ESTIMATOR_CACAO) fill_horizon_constants(s, &v, k, plan, in, c);
 }

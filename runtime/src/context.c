@@ -33,9 +33,9 @@ static cacao_result vk_fail(cacao_context *ctx, VkResult vr, const char *what) {
 /* Descriptor type of each binding of the one set layout (its slot row). */
 VkDescriptorType cacaoi_binding_type(unsigned binding) {
     switch (cacaoi_slots[binding].descriptor) {
-    case CACAO_RESOURCE_UNIFORM_BUFFER: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    case CACAO_RESOURCE_STORAGE_BUFFER: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    case CACAO_RESOURCE_SAMPLED_IMAGE: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    case CACAOI_DESCRIPTOR_UNIFORM_BUFFER: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case CACAOI_DESCRIPTOR_STORAGE_BUFFER: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    case CACAOI_DESCRIPTOR_SAMPLED_IMAGE: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     default: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     }
 }
@@ -179,7 +179,7 @@ static void release_images_and_buffers(cacao_context *ctx) {
         if (im->memory) vkFreeMemory(d, im->memory, ctx->alloc);
         memset(im, 0, sizeof *im);
     }
-    for (unsigned b = 0; b < CACAO_BUFFER_COUNT; ++b) {
+    for (unsigned b = 0; b < CACAO_RES_COUNT; ++b) {
         if (ctx->buffers[b]) vkDestroyBuffer(d, ctx->buffers[b], ctx->alloc);
         if (ctx->buffer_memory[b]) vkFreeMemory(d, ctx->buffer_memory[b], ctx->alloc);
         ctx->buffers[b] = VK_NULL_HANDLE;
@@ -294,11 +294,15 @@ static cacao_result create_image(cacao_context *ctx, const cacao_plan_image *pi)
     return CACAO_SUCCESS;
 }
 
-static cacao_result create_buffer(cacao_context *ctx, unsigned index, VkDeviceSize size, VkBufferUsageFlags usage) {
+/* A buffer of the plan, with its resource row's usage (and transfers: the frame's updates and
+ * resets, and copies for inspection). */
+static cacao_result create_buffer(cacao_context *ctx, const cacao_plan_buffer *pb) {
+    const unsigned index = pb->resource;
     const VkBufferCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
-        .size = size,
-        .usage = usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+        .size = pb->bytes,
+        .usage = cacaoi_resources[index].buffer_usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
     };
     VkResult vr = vkCreateBuffer(ctx->device, &info, ctx->alloc, &ctx->buffers[index]);
@@ -316,7 +320,7 @@ static bool step_matches_module(const cacao_plan_step *step, const cacao_permuta
     bool provided[CACAO_BINDING_COUNT] = {false};
     for (uint32_t i = 0; i < step->binding_count; ++i) provided[step->bindings[i].binding] = true;
     for (unsigned b = 0; b < CACAO_BINDING_COUNT; ++b)
-        if ((perm->bindings[b] != CACAO_RESOURCE_NONE) != provided[b]) return false;
+        if ((perm->bindings[b] != CACAOI_DESCRIPTOR_NONE) != provided[b]) return false;
     return true;
 }
 
@@ -392,13 +396,7 @@ cacao_result cacao_context_resize(cacao_context *ctx, uint32_t width, uint32_t h
     release_images_and_buffers(ctx);
     ctx->plan = plan;
     for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan.image_count; ++i) r = create_image(ctx, &plan.images[i]);
-    if (r == CACAO_SUCCESS)
-        r = create_buffer(ctx, CACAO_BUFFER_CONSTANTS, sizeof(cacao_constants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
-    if (r == CACAO_SUCCESS && plan.uses_load_counter)
-        r = create_buffer(ctx, CACAO_BUFFER_LOAD_COUNTER, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    if (r == CACAO_SUCCESS && plan.uses_tiles)
-        r = create_buffer(ctx, CACAO_BUFFER_TILES, plan.tile_buffer_bytes,
-                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+    for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan.buffer_count; ++i) r = create_buffer(ctx, &plan.buffers[i]);
     if (keep_pipelines)
         for (uint32_t i = 0; i < plan.step_count; ++i) ctx->memory.pipeline_count += pipeline_owner(&plan, i) == i;
     for (uint32_t i = 0; r == CACAO_SUCCESS && !keep_pipelines && i < plan.step_count; ++i) r = create_pipeline(ctx, i);
@@ -417,13 +415,9 @@ cacao_result cacao_context_intermediate(const cacao_context *ctx, cacao_resource
     if (!ctx || !ctx->ready || !image || !buffer) return CACAO_ERROR_INVALID_ARGUMENT;
     *image = VK_NULL_HANDLE;
     *buffer = VK_NULL_HANDLE;
-    if (resource == CACAO_RES_CONSTANTS)
-        *buffer = ctx->buffers[CACAO_BUFFER_CONSTANTS];
-    else if (resource == CACAO_RES_LOAD_COUNTER)
-        *buffer = ctx->buffers[CACAO_BUFFER_LOAD_COUNTER];
-    else if (resource == CACAO_RES_TILES)
-        *buffer = ctx->buffers[CACAO_BUFFER_TILES];
-    else if ((unsigned)resource < CACAO_RES_COUNT)
+    if ((unsigned)resource < CACAO_RES_COUNT) {
+        *buffer = ctx->buffers[resource];
         *image = ctx->images[resource].image;
+    }
     return (*image || *buffer) ? CACAO_SUCCESS : CACAO_ERROR_INVALID_ARGUMENT;
 }

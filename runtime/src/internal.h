@@ -7,6 +7,7 @@
 #include "cacao.h"
 #include "cacao_keys.h"
 #include "cacao_passes.h"
+#include "cacao_policy.h"
 #include "cacao_shared.h"
 #include "cacao_table.h"
 

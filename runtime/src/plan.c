@@ -13,6 +13,10 @@ const char *cacao_resource_name(cacao_resource resource) {
 
 static uint32_t div_up(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
 
+_Static_assert(CACAO_TILE_COMMAND(CACAO_LIST_COUNT) + 3 <= CACAO_TILE_COUNT_ACTIVE &&
+                   CACAO_TILE_LIST_ENTRIES(CACAO_LIST_COUNT) < CACAO_TILE_HEADER,
+               "the tile header holds the lists' commands, the class counts and the entry counts");
+_Static_assert(CACAO_TILE_COUNTS_BYTES == CACAO_TILE_HEADER * sizeof(uint32_t), "the tile counts are the header");
 _Static_assert(CACAO_DEPTH_MIP_COUNT == 4 && CACAO_DEPTH_MIP_LEVELS(8) == 4 && CACAO_DEPTH_MIP_LEVELS(7) == 3,
                "CACAO_DEPTH_MIP_LEVELS is written for a chain of 4 levels");
 
@@ -146,7 +150,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
         plan->slice_height = s.downsample ? div_up(div_up(height, 2), 2) : div_up(height, 2);
         plan->importance_width = div_up(plan->slice_width, 2);
         plan->importance_height = div_up(plan->slice_height, 2);
-        plan->slice_count = cacaoi_slice_count_for_quality(config.quality);
+        plan->slice_count = cacaoi_qualities[config.quality].slice_count;
     }
 
     cacaoi_step steps[CACAOI_SEQUENCE_MAX];
@@ -162,13 +166,18 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
         }
         const uint64_t tiles = (uint64_t)plan->tiles_x * plan->tiles_y;
         const uint64_t groups = (uint64_t)plan->blur_groups_x * plan->blur_groups_y;
-        plan->tile_buffer_bytes = sizeof(uint32_t) * (CACAO_TILE_HEADER + 3u * tiles + groups);
+        plan->tile_buffer_bytes = sizeof(uint32_t) * CACAO_TILE_BUFFER_UINTS(tiles, groups);
     }
-    cacaoi_pass_binding bindings[CACAOI_SEQUENCE_MAX][CACAOI_PASS_MAX_BINDINGS];
+    cacaoi_pass_binding bindings[CACAOI_SEQUENCE_MAX][CACAO_PLAN_MAX_BINDINGS];
     size_t binding_count[CACAOI_SEQUENCE_MAX];
     uint32_t mips[CACAO_RES_COUNT] = {0}; /* levels bound per resource, 0 = untouched */
     for (size_t i = 0; i < count; ++i) {
         binding_count[i] = cacaoi_step_bindings(&steps[i], bindings[i]);
+        if (binding_count[i] > CACAO_PLAN_MAX_BINDINGS) { /* a wrong pass table, not a user error */
+            cacaoi_set_error(error, error_size, "internal: pass %s binds %zu slots, more than CACAO_PLAN_MAX_BINDINGS %d",
+                             cacaoi_pass_name(steps[i].key.pass), binding_count[i], CACAO_PLAN_MAX_BINDINGS);
+            return CACAO_ERROR_INVALID_ARGUMENT;
+        }
         for (size_t j = 0; j < binding_count[i]; ++j) {
             const cacaoi_pass_binding *b = &bindings[i][j];
             const uint32_t levels = b->levels > 1 ? b->levels : 1;
@@ -176,17 +185,24 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
         }
     }
 
-    /* Intermediates: only those the steps touch, in resource order; then the buffers. */
+    /* Intermediates and buffers: only those the steps touch, in resource order. */
     for (unsigned res = 0; res < CACAO_RES_COUNT; ++res) {
         const uint8_t size = cacaoi_resources[res].size;
-        if (mips[res] && size != CACAOI_SIZE_CALLER && size != CACAOI_SIZE_BUFFER && size != CACAOI_SIZE_TILES)
+        if (!mips[res] || size == CACAOI_SIZE_CALLER) continue;
+        if (size == CACAOI_SIZE_BUFFER || size == CACAOI_SIZE_TILES) {
+            if (plan->buffer_count == CACAO_PLAN_MAX_BUFFERS) { /* a wrong resource table, not a user error */
+                cacaoi_set_error(error, error_size, "internal: more buffers than CACAO_PLAN_MAX_BUFFERS %d",
+                                 CACAO_PLAN_MAX_BUFFERS);
+                return CACAO_ERROR_INVALID_ARGUMENT;
+            }
+            const uint64_t bytes = size == CACAOI_SIZE_TILES ? plan->tile_buffer_bytes : cacaoi_resources[res].buffer_bytes;
+            plan->buffers[plan->buffer_count++] = (cacao_plan_buffer){res, bytes};
+            plan->total_bytes += bytes;
+        } else {
             add_image(plan, res, mips[res]);
+        }
     }
     plan->uses_load_counter = mips[CACAO_RES_LOAD_COUNTER] != 0;
-    for (unsigned res = 0; res < CACAO_RES_COUNT; ++res)
-        if (mips[res] && cacaoi_resources[res].size == CACAOI_SIZE_BUFFER)
-            plan->total_bytes += cacaoi_resources[res].buffer_bytes;
-    plan->total_bytes += plan->tile_buffer_bytes;
 
     plan_builder b = {plan, 0, 0};
     for (size_t i = 0; i < count; ++i) {

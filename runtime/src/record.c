@@ -124,20 +124,21 @@ static void record_frame_start(cacao_context *ctx, VkCommandBuffer cmd, const ca
 static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in) {
     cacao_constants constants;
     cacaoi_fill_constants(&ctx->plan, in, &constants);
-    vkCmdUpdateBuffer(cmd, ctx->buffers[CACAO_BUFFER_CONSTANTS], 0, sizeof constants, &constants);
+    vkCmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_CONSTANTS], 0, sizeof constants, &constants);
     if (ctx->plan.uses_load_counter)
-        vkCmdFillBuffer(cmd, ctx->buffers[CACAO_BUFFER_LOAD_COUNTER], 0, sizeof(uint32_t), 0);
+        vkCmdFillBuffer(cmd, ctx->buffers[CACAO_RES_LOAD_COUNTER], 0, sizeof(uint32_t), 0);
     if (ctx->plan.uses_tiles) { /* empty lists; the compact pass appends (docs/tiles.md) */
         uint32_t header[CACAO_TILE_HEADER] = {0};
         const cacao_plan *p = &ctx->plan;
         for (unsigned list = 1; list <= CACAO_LIST_COUNT; ++list) { /* x: the grid's width; rows 0 */
             const uint32_t width = list == CACAO_LIST_BLUR ? p->blur_groups_x : p->tiles_x;
-            header[3 * (list - 1)] = width ? width : 1;
-            header[3 * (list - 1) + 2] = p->slice_count; /* every list covers all layers */
+            header[CACAO_TILE_COMMAND(list)] = width ? width : 1;
+            header[CACAO_TILE_COMMAND(list) + 2] = p->slice_count; /* every list covers all layers */
         }
-        vkCmdUpdateBuffer(cmd, ctx->buffers[CACAO_BUFFER_TILES], 0, sizeof header, header);
-        const VkDeviceSize lists = sizeof(uint32_t) * (CACAO_TILE_HEADER + (VkDeviceSize)p->tiles_x * p->tiles_y);
-        vkCmdFillBuffer(cmd, ctx->buffers[CACAO_BUFFER_TILES], lists, VK_WHOLE_SIZE, CACAO_TILE_NO_ENTRY);
+        vkCmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], 0, sizeof header, header);
+        const VkDeviceSize lists =
+            sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_LIST_BASE(CACAO_LIST_GENERATE, (VkDeviceSize)p->tiles_x * p->tiles_y);
+        vkCmdFillBuffer(cmd, ctx->buffers[CACAO_RES_TILES], lists, VK_WHOLE_SIZE, CACAO_TILE_NO_ENTRY);
     }
     const VkMemoryBarrier memory = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
@@ -155,16 +156,12 @@ typedef union descriptor_info {
 
 static void describe(const cacao_context *ctx, const cacao_inputs *in, const cacao_plan_binding *b,
                      descriptor_info *info) {
+    const uint8_t size = cacaoi_resources[b->resource].size;
+    if (size == CACAOI_SIZE_BUFFER || size == CACAOI_SIZE_TILES) { /* the plan's buffers */
+        info->buffer = (VkDescriptorBufferInfo){ctx->buffers[b->resource], 0, VK_WHOLE_SIZE};
+        return;
+    }
     switch (b->resource) {
-    case CACAO_RES_CONSTANTS:
-        info->buffer = (VkDescriptorBufferInfo){ctx->buffers[CACAO_BUFFER_CONSTANTS], 0, sizeof(cacao_constants)};
-        return;
-    case CACAO_RES_LOAD_COUNTER:
-        info->buffer = (VkDescriptorBufferInfo){ctx->buffers[CACAO_BUFFER_LOAD_COUNTER], 0, sizeof(uint32_t)};
-        return;
-    case CACAO_RES_TILES:
-        info->buffer = (VkDescriptorBufferInfo){ctx->buffers[CACAO_BUFFER_TILES], 0, VK_WHOLE_SIZE};
-        return;
     case CACAO_RES_DEPTH_INPUT: info->image = (VkDescriptorImageInfo){0, in->depth.view, in->depth.layout}; return;
     case CACAO_RES_NORMALS_INPUT:
         info->image = (VkDescriptorImageInfo){0, in->normals.view, in->normals.layout};
@@ -212,8 +209,7 @@ static void record_step(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inp
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->pipelines[index]);
     ctx->push_descriptor(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->pipeline_layout, 0, step->binding_count, writes);
     if (step->list)
-        vkCmdDispatchIndirect(cmd, ctx->buffers[CACAO_BUFFER_TILES],
-                              (VkDeviceSize)(step->list - 1) * sizeof(VkDispatchIndirectCommand));
+        vkCmdDispatchIndirect(cmd, ctx->buffers[CACAO_RES_TILES], sizeof(uint32_t) * CACAO_TILE_COMMAND(step->list));
     else
         vkCmdDispatch(cmd, step->dispatch[0], step->dispatch[1], step->dispatch[2]);
 }
@@ -263,7 +259,7 @@ cacao_result cacao_record_tile_counts(cacao_context *ctx, VkCommandBuffer cmd, V
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before, 0,
                          NULL, 0, NULL);
     const VkBufferCopy region = {0, offset, CACAO_TILE_COUNTS_BYTES};
-    vkCmdCopyBuffer(cmd, ctx->buffers[CACAO_BUFFER_TILES], dst, 1, &region);
+    vkCmdCopyBuffer(cmd, ctx->buffers[CACAO_RES_TILES], dst, 1, &region);
     /* The next frame's header reset (a transfer write) waits for this read. */
     const VkMemoryBarrier after = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
                                    .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
@@ -276,10 +272,9 @@ cacao_result cacao_record_tile_counts(cacao_context *ctx, VkCommandBuffer cmd, V
 cacao_result cacao_tile_counts_decode(const cacao_context *ctx, const void *bytes, cacao_tile_counts *out) {
     if (!ctx || !bytes || !out || !ctx->ready || !ctx->plan.uses_tiles) return CACAO_ERROR_INVALID_ARGUMENT;
     uint32_t h[CACAO_TILE_COUNTS_BYTES / sizeof(uint32_t)];
-    _Static_assert(CACAO_TILE_COUNTS_BYTES == CACAO_TILE_HEADER * sizeof(uint32_t), "the header is what is copied");
     memcpy(h, bytes, sizeof h);
     const cacao_plan *p = &ctx->plan;
-#define LIST_X(list) h[CACAO_TILE_LIST_COUNT + (list)]
+#define LIST_X(list) h[CACAO_TILE_LIST_ENTRIES(list)]
     *out = (cacao_tile_counts){
         .tiles = p->tiles_x * p->tiles_y,
         .active = h[CACAO_TILE_COUNT_ACTIVE],

@@ -60,10 +60,6 @@ static const float_rule float_rules[] = {
     RULE(thickness, 0.0f, false, 0.0f, 1e30f, false), /* 0 stays 0: "relative to R", see the plan */
 };
 
-/* Budget of the horizon-slice estimators per quality level (LOWEST..HIGHEST): slices x steps per
- * side; 2 depth reads per step (spec: estimators.md section 6). */
-static const int slice_budget[CACAO_KEY_QUALITY_COUNT][2] = {{2, 2}, {3, 2}, {3, 3}, {3, 6}, {4, 8}};
-
 cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *out, char *error,
                                     size_t error_size) {
     if (!in || !out) {
@@ -113,14 +109,14 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
                         s.estimator == CACAO_ESTIMATOR_GTAO ? "gtao" : "bitmask");
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
-    if (s.horizon_slices < 0 || s.horizon_slices > CACAO_SLICE_MAX_DIRECTIONS) {
+    if (s.horizon_slices < 0 || s.horizon_slices > CACAO_HORIZON_MAX_DIRECTIONS) {
         cacaoi_set_error(error, error_size, "settings.horizon_slices = %d is outside 1..%d (0 = by quality)",
-                        s.horizon_slices, CACAO_SLICE_MAX_DIRECTIONS);
+                        s.horizon_slices, CACAO_HORIZON_MAX_DIRECTIONS);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
-    if (s.horizon_steps < 0 || s.horizon_steps > CACAO_SLICE_MAX_STEPS) {
+    if (s.horizon_steps < 0 || s.horizon_steps > CACAO_HORIZON_MAX_STEPS) {
         cacaoi_set_error(error, error_size, "settings.horizon_steps = %d is outside 1..%d (0 = by quality)",
-                        s.horizon_steps, CACAO_SLICE_MAX_STEPS);
+                        s.horizon_steps, CACAO_HORIZON_MAX_STEPS);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     if (s.blur_pass_count == 0) s.blur_pass_count = slice ? 1 : 2;
@@ -140,8 +136,8 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
     if (slice && s.precision == CACAO_PRECISION_FP16) s.precision = CACAO_PRECISION_FP32; /* documented */
     if (slice) {
         const unsigned q = cacaoi_key_quality(s.quality);
-        if (s.horizon_slices == 0) s.horizon_slices = slice_budget[q][0];
-        if (s.horizon_steps == 0) s.horizon_steps = slice_budget[q][1];
+        if (s.horizon_slices == 0) s.horizon_slices = cacaoi_qualities[q].horizon_slices; /* by quality */
+        if (s.horizon_steps == 0) s.horizon_steps = cacaoi_qualities[q].horizon_steps;
     }
     if ((int)s.precision != CACAO_PRECISION_FP32 && (int)s.precision != CACAO_PRECISION_FP16) {
         cacaoi_set_error(error, error_size, "settings.precision = %d is not a cacao_precision", (int)in->precision);

@@ -13,7 +13,6 @@ typedef struct cacao_intermediate {
     VkImageView view; /* all layers of its one level, for sampling and storage */
 } cacao_intermediate;
 
-enum { CACAO_BUFFER_CONSTANTS = 0, CACAO_BUFFER_LOAD_COUNTER = 1, CACAO_BUFFER_TILES = 2, CACAO_BUFFER_COUNT = 3 };
 
 struct cacao_context {
     VkPhysicalDevice physical_device;
@@ -34,8 +33,8 @@ struct cacao_context {
     VkPipelineLayout pipeline_layout;
     VkPipeline pipelines[CACAO_PLAN_MAX_STEPS]; /* one per plan step */
     cacao_intermediate images[CACAO_RES_COUNT];
-    VkBuffer buffers[CACAO_BUFFER_COUNT];
-    VkDeviceMemory buffer_memory[CACAO_BUFFER_COUNT];
+    VkBuffer buffers[CACAO_RES_COUNT];             /* the plan's buffers, by resource */
+    VkDeviceMemory buffer_memory[CACAO_RES_COUNT];
     cacao_memory_info memory;
     char last_error[256];
 };

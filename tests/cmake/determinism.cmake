@@ -1,9 +1,9 @@
 # Generator determinism: two runs of shadergen produce identical bytes in every output file.
-# Inputs: SHADERGEN, SOURCE, SHARED, WORK.
+# Inputs: SHADERGEN, SOURCE, WORK.
 file(REMOVE_RECURSE ${WORK})
 foreach(run a b)
   file(MAKE_DIRECTORY ${WORK}/${run})
-  execute_process(COMMAND ${SHADERGEN} --source ${SOURCE} --shared ${SHARED} --out ${WORK}/${run}
+  execute_process(COMMAND ${SHADERGEN} --source ${SOURCE} --out ${WORK}/${run}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   message("${out}${err}")
   if(NOT rc EQUAL 0)

@@ -1,8 +1,8 @@
 # generated/ reproduces byte for byte from shaders/ with the installed compilers.
-# Inputs: SHADERGEN, SOURCE, SHARED, GENERATED (committed dir), WORK.
+# Inputs: SHADERGEN, SOURCE, GENERATED (committed dir), WORK.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
-execute_process(COMMAND ${SHADERGEN} --source ${SOURCE} --shared ${SHARED} --out ${WORK}
+execute_process(COMMAND ${SHADERGEN} --source ${SOURCE} --out ${WORK}
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}${err}")
 if(NOT rc EQUAL 0)

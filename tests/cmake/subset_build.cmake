@@ -33,8 +33,8 @@ endforeach()
 set(expected prepare_depths.full.native prepare_depths.mips.native prepare_normals.native
     generate.q1 generate.q2 blur.1.fp32 blur.2.fp32 blur.3.fp32
     blur.4.fp32 blur.5.fp32 blur.6.fp32 blur.7.fp32 blur.8.fp32 apply.smart.fp32
-    slice_prepare.depth slice_prepare.input slice_main.gtao slice_main.bitmask slice_main.gtao_direct
-    slice_main.bitmask_direct slice_denoise.intermediate slice_denoise.final classify compact fill
+    horizon_prepare.depth horizon_prepare.input horizon_main.gtao horizon_main.bitmask horizon_main.gtao_direct
+    horizon_main.bitmask_direct horizon_denoise.intermediate horizon_denoise.final classify compact fill
     prepare.full.native prepare.mips.native)
 if(NOT names STREQUAL expected)
   message(FATAL_ERROR "subset table holds [${names}]\nexpected [${expected}]")

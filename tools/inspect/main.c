@@ -20,17 +20,17 @@
 #include <string.h>
 
 #include "cacao.h"
+#include "cacao_policy.h"
 #include "cacao_shared.h"
 #include "inputs.h"
 #include "options.h"
 #include "shadergen.h"
 #include "text_file.h"
 
-extern const char cacao_inspect_shader_source[];
-extern const char cacao_inspect_shared_header[];
+extern const sg_source cacao_inspect_sources[]; /* the shader's source files, entry first (embed.cmake) */
+extern const size_t cacao_inspect_source_count;
 
 static const cacao_table *table = &cacaoi_embedded_table;
-static const char *const resource_kinds[] = {"-", "uniform buffer", "storage buffer", "sampled image", "storage image"};
 
 static int fail(const char *fmt, const char *arg) {
     fprintf(stderr, "cacao-inspect: ");
@@ -219,12 +219,14 @@ static int cmd_show(int argc, char **argv) {
            p->workgroup_size[2], defines);
     printf("== descriptor bindings (set 0, from reflection)\n");
     for (int b = 0; b < CACAO_BINDING_COUNT; ++b)
-        if (p->bindings[b]) printf("  binding %2d: %s\n", b, resource_kinds[p->bindings[b]]);
+        if (p->bindings[b]) printf("  binding %2d: %s\n", b, cacaoi_descriptor_names[p->bindings[b]]);
     printf("push constants: %u bytes\n", p->push_constant_size);
     print_reflection(m);
 
     glslang_initialize_process();
-    char *text = sg_specialise(cacao_inspect_shader_source, cacao_inspect_shared_header, &key);
+    sg_sources sources = {.count = cacao_inspect_source_count};
+    for (size_t i = 0; i < sources.count && i < SG_MAX_SOURCES; ++i) sources.files[i] = cacao_inspect_sources[i];
+    char *text = sg_specialise(&sources, &key);
     char *pre = text ? sg_preprocess(text, p->name) : NULL;
     glslang_finalize_process();
     printf("\n== preprocessed GLSL\n%s\n", pre ? pre : "(preprocessing failed)");

@@ -1,0 +1,183 @@
+/* cacao_policy.c - quality levels, the sequence, keys per configuration, subsets (see cacao_policy.h). */
+#include "cacao_policy.h"
+
+#include <string.h>
+
+const char *const cacaoi_quality_names[CACAO_KEY_QUALITY_COUNT] = {"lowest", "low", "medium", "high", "highest"};
+
+/* spec: README "Quality levels", constants.md (radius and near limit), estimators.md section 6
+ * (budgets: 2 depth reads per step). */
+const cacaoi_quality_row cacaoi_qualities[CACAO_KEY_QUALITY_COUNT] = {
+    /*                          depths             generate            apply              upsample      slices radius near_limit  horizon */
+    [CACAO_KEY_QUALITY_LOWEST] = {CACAO_DEPTHS_HALF, CACAO_GENERATE_Q0, CACAO_OUTPUT_HALF, CACAO_OUTPUT_HALF, 2,
+                                  (float)CACAO_LOWEST_RADIUS_FACTOR, (float)CACAO_LOW_NEAR_LIMIT_FACTOR, 2, 2},
+    [CACAO_KEY_QUALITY_LOW] = {CACAO_DEPTHS_FULL, CACAO_GENERATE_Q0, CACAO_OUTPUT_NON_SMART, CACAO_OUTPUT_NON_SMART, 4,
+                               1.0f, (float)CACAO_LOW_NEAR_LIMIT_FACTOR, 3, 2},
+    [CACAO_KEY_QUALITY_MEDIUM] = {CACAO_DEPTHS_FULL, CACAO_GENERATE_Q1, CACAO_OUTPUT_SMART, CACAO_OUTPUT_NON_SMART, 4,
+                                  1.0f, 1.0f, 3, 3},
+    [CACAO_KEY_QUALITY_HIGH] = {CACAO_DEPTHS_MIPS, CACAO_GENERATE_Q2, CACAO_OUTPUT_SMART, CACAO_OUTPUT_SMART, 4, 1.0f,
+                                1.0f, 3, 6},
+    [CACAO_KEY_QUALITY_HIGHEST] = {CACAO_DEPTHS_MIPS, CACAO_GENERATE_Q3, CACAO_OUTPUT_SMART, CACAO_OUTPUT_SMART, 4,
+                                   1.0f, 1.0f, 4, 8},
+};
+
+size_t cacaoi_step_bindings(const cacaoi_step *step, cacaoi_pass_binding out[CACAO_PLAN_MAX_BINDINGS]) {
+    const size_t n = cacaoi_variant_bindings(step->key.pass, step->key.variant, out);
+    for (size_t i = 0; i < n && i < CACAO_PLAN_MAX_BINDINGS; ++i)
+        for (unsigned o = 0; o < step->override_count; ++o)
+            if (step->override_slot[o] == out[i].slot) out[i].resource = step->override_resource[o];
+    return n;
+}
+
+/* ---- The sequence (spec: README "Pass graph"; estimators.md for the slice estimators) ---- */
+
+static cacaoi_step *push(cacaoi_step *out, size_t *n, unsigned pass, unsigned variant, unsigned ds, unsigned blur,
+                         unsigned fp16) {
+    cacaoi_step *s = &out[(*n)++];
+    memset(s, 0, sizeof *s);
+    s->key = (cacao_key){(uint8_t)pass, (uint8_t)variant, (uint8_t)ds, (uint8_t)blur, (uint8_t)fp16};
+    return s;
+}
+
+static void rebind(cacaoi_step *s, unsigned slot, cacao_resource resource) {
+    s->override_slot[s->override_count] = (uint8_t)slot;
+    s->override_resource[s->override_count++] = (uint8_t)resource;
+}
+
+/* The longest sequences: CACAO with the caller's normals at HIGHEST with a blur (prepare twice,
+ * classify, compact, Q3 base, importance twice, generate, fill twice, blur, apply), and the
+ * horizon estimators with the most denoise passes. */
+_Static_assert(12 <= CACAOI_SEQUENCE_MAX && 2 + CACAO_KEY_MAX_BLUR_PASSES <= CACAOI_SEQUENCE_MAX,
+               "a plan holds every step of the longest sequence");
+
+/* Horizon estimators: prepare, the estimator (into the output when no denoise pass runs),
+ * then the denoise passes ping-ponging between AO_RAW and AO_PONG, the last into the output. */
+static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENCE_MAX]) {
+    if (c->downsampled) return 0; /* full resolution only */
+    size_t n = 0;
+    const unsigned blur = c->blur_passes;
+    push(out, &n, CACAO_PASS_HORIZON_PREPARE, c->normals_from_input ? CACAO_HORIZON_NORMALS_INPUT : CACAO_HORIZON_NORMALS_DEPTH,
+         0, 0, 0);
+    const unsigned main_variant = (c->estimator == CACAO_KEY_ESTIMATOR_GTAO ? CACAO_HORIZON_GTAO : CACAO_HORIZON_BITMASK) +
+                                  (blur == 0 ? CACAO_HORIZON_GTAO_DIRECT : 0);
+    push(out, &n, CACAO_PASS_HORIZON_MAIN, main_variant, 0, 0, 0);
+    cacao_resource ao = CACAO_RES_AO_RAW;
+    for (unsigned pass = 1; pass <= blur; ++pass) {
+        const bool last = pass == blur;
+        cacaoi_step *s = push(out, &n, CACAO_PASS_HORIZON_DENOISE, last ? CACAO_DENOISE_FINAL : CACAO_DENOISE_INTERMEDIATE,
+                              0, 0, 0);
+        const cacao_resource next = ao == CACAO_RES_AO_RAW ? CACAO_RES_AO_PONG : CACAO_RES_AO_RAW;
+        rebind(s, CACAO_BINDING_HORIZON_AO, ao);
+        if (!last) rebind(s, CACAO_BINDING_HORIZON_AO_OUT, next);
+        ao = next;
+    }
+    return n;
+}
+
+size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENCE_MAX]) {
+    if (c->estimator != CACAO_KEY_ESTIMATOR_CACAO) return horizon_sequence(c, out);
+    size_t n = 0;
+    const unsigned ds = c->downsampled ? 1 : 0, fp = c->fp16 ? 1 : 0;
+    const unsigned depths = cacaoi_qualities[c->quality].depths_variant;
+    if (c->normals_from_input) {
+        push(out, &n, CACAO_PASS_PREPARE_DEPTHS, depths, ds, 0, 0);
+        push(out, &n, CACAO_PASS_PREPARE_NORMALS, 0, ds, 0, 0);
+    } else {
+        push(out, &n, CACAO_PASS_PREPARE, depths, ds, 0, 0); /* depths and normals in one pass */
+    }
+    push(out, &n, CACAO_PASS_CLASSIFY, 0, 0, 0, 0);
+    push(out, &n, CACAO_PASS_COMPACT, 0, 0, 0, 0);
+    if (c->quality == CACAO_KEY_QUALITY_HIGHEST) {
+        push(out, &n, CACAO_PASS_GENERATE, CACAO_GENERATE_Q3_BASE, 0, 0, 0);
+        push(out, &n, CACAO_PASS_IMPORTANCE_A, 0, 0, 0, 0);
+        push(out, &n, CACAO_PASS_IMPORTANCE_B, 0, 0, 0, 0);
+    }
+    push(out, &n, CACAO_PASS_GENERATE, cacaoi_qualities[c->quality].generate_variant, 0, 0, 0);
+    /* The tiles generate skips read as AO 1 in its output and, where a blur runs, in the blur's
+     * (the blur and apply groups next to a needed tile read them). */
+    push(out, &n, CACAO_PASS_FILL, 0, 0, 0, 0);
+    if (c->blur_passes > 0) {
+        cacaoi_step *f = push(out, &n, CACAO_PASS_FILL, 0, 0, 0, 0);
+        rebind(f, CACAO_BINDING_SSAO_IMAGE, CACAO_RES_SSAO_PONG);
+        push(out, &n, CACAO_PASS_BLUR, 0, 0, c->blur_passes, fp);
+    }
+    cacaoi_step *s = push(out, &n, c->downsampled ? CACAO_PASS_UPSAMPLE : CACAO_PASS_APPLY,
+                          c->downsampled ? cacaoi_qualities[c->quality].output_downsampled : cacaoi_qualities[c->quality].output_native, 0, 0, fp);
+    if (c->blur_passes > 0) rebind(s, CACAO_BINDING_SSAO, CACAO_RES_SSAO_PONG);
+    return n;
+}
+
+/* The keys of the configuration's steps (cacaoi_sequence), each once, in first-dispatch order. */
+size_t cacaoi_keys_for_config(const cacao_key_config *c, cacao_key out[CACAO_KEY_CONFIG_MAX]) {
+    cacaoi_step steps[CACAOI_SEQUENCE_MAX];
+    const size_t count = cacaoi_sequence(c, steps);
+    size_t n = 0;
+    for (size_t i = 0; i < count; ++i) {
+        size_t j = 0;
+        while (j < n && cacaoi_key_compare(&out[j], &steps[i].key) != 0) ++j;
+        if (j == n) out[n++] = steps[i].key;
+    }
+    return n;
+}
+
+bool cacaoi_key_in_subset(const cacao_key *key, const cacao_key_subset *subset) {
+    for (unsigned q = 0; q < CACAO_KEY_QUALITY_COUNT; ++q) {
+        if (!(subset->quality_mask & (1u << q))) continue;
+        for (unsigned ds = 0; ds < 2; ++ds) {
+            if (!(subset->resolution_mask & (1u << ds))) continue;
+            for (unsigned fp = 0; fp < 2; ++fp) {
+                if (!(subset->precision_mask & (1u << fp))) continue;
+                for (unsigned ni = 0; ni < 2; ++ni)
+                    for (unsigned blur = 0; blur <= CACAO_KEY_MAX_BLUR_PASSES; ++blur)
+                        for (unsigned est = 0; est < CACAO_KEY_ESTIMATOR_COUNT; ++est) {
+                            cacao_key_config c = {q, ds != 0, fp != 0, ni != 0, blur, est};
+                            cacao_key keys[CACAO_KEY_CONFIG_MAX];
+                            size_t n = cacaoi_keys_for_config(&c, keys);
+                            for (size_t i = 0; i < n; ++i)
+                                if (cacaoi_key_compare(&keys[i], key) == 0) return true;
+                        }
+            }
+        }
+    }
+    return false;
+}
+
+/* Parses a ';' or ',' separated list of words into a bit mask using `words[0..count)`. */
+static bool parse_mask(const char *list, const char *const *words, unsigned count, unsigned *mask) {
+    unsigned m = 0;
+    const char *p = list;
+    while (*p) {
+        size_t len = strcspn(p, ";, ");
+        if (len > 0) {
+            unsigned i = 0;
+            while (i < count && !(strlen(words[i]) == len && strncmp(words[i], p, len) == 0)) ++i;
+            if (i == count) return false;
+            m |= 1u << i;
+        }
+        p += len;
+        if (*p) ++p;
+    }
+    if (m == 0) return false;
+    *mask = m;
+    return true;
+}
+
+bool cacaoi_key_subset_parse(const char *qualities, const char *downsample, const char *precision,
+                            cacao_key_subset *subset) {
+    cacao_key_subset s = CACAO_KEY_SUBSET_ALL;
+    if (qualities && *qualities && strcmp(qualities, "all") != 0 &&
+        !parse_mask(qualities, cacaoi_quality_names, CACAO_KEY_QUALITY_COUNT, &s.quality_mask))
+        return false;
+    if (downsample && *downsample) {
+        if (strcmp(downsample, "OFF") == 0 || strcmp(downsample, "native") == 0) s.resolution_mask = 1;
+        else if (strcmp(downsample, "ONLY") == 0) s.resolution_mask = 2;
+        else if (strcmp(downsample, "downsampled") == 0) s.resolution_mask = 2;
+        else if (strcmp(downsample, "ON") == 0 || strcmp(downsample, "all") == 0) s.resolution_mask = 3;
+        else return false;
+    }
+    if (precision && *precision && strcmp(precision, "all") != 0 &&
+        !parse_mask(precision, cacaoi_precision_names, 2, &s.precision_mask))
+        return false;
+    *subset = s;
+    return true;
+}

@@ -1,0 +1,341 @@
+/* horizon.glsl - the horizon estimators (GTAO and the visibility bitmask): prepare, the estimator,
+ * and the denoise passes. */
+
+#if CACAO_PASS == CACAO_PASS_HORIZON_PREPARE || CACAO_PASS == CACAO_PASS_HORIZON_MAIN || \
+    CACAO_PASS == CACAO_PASS_HORIZON_DENOISE
+/* spec: estimators.md. GTAO and the cosine-weighted visibility bitmask, at full resolution, one
+ * invocation per pixel, all in fp32. View z of background pixels (the far plane, or depth that
+ * gives no finite positive z: NaN, Inf, an infinite far plane) is stored as -1: such pixels output
+ * 1 and are ignored as samples and as denoise neighbours. */
+layout(local_size_x = CACAO_WG_HORIZON_X, local_size_y = CACAO_WG_HORIZON_Y) in;
+
+const float HORIZON_PI = 3.14159265358979;
+const float HORIZON_HALF_PI = 1.57079632679490;
+
+/* View-space position of pixel p's centre at view z (estimators.md section 1). */
+vec3 horizon_pos(ivec2 p, float z) { return view_pos((vec2(p) + 0.5) * CB.depth_buffer_inverse_dimensions, z); }
+
+/* Unit vector from the surface point towards the camera. */
+vec3 horizon_to_camera(vec3 pos) { return CB.horizon_ortho != 0 ? vec3(0.0, 0.0, -1.0) : -normalize(pos); }
+
+/* A stored normal, renormalised; zero or non-finite -> facing the camera. */
+vec3 horizon_normal(vec3 stored, vec3 to_camera)
+{
+    float len2 = dot(stored, stored);
+    return (len2 > 1e-12 && len2 < 1e30) ? stored * inversesqrt(len2) : to_camera;
+}
+
+#if CACAO_PASS == CACAO_PASS_HORIZON_PREPARE
+
+/* Raw depth -> view z, -1 for background (estimators.md section 1: the denominator keeps 1 - d
+ * exact where d is near 1). */
+float horizon_view_z(float d)
+{
+    if (d == CB.horizon_far_depth) return -1.0;
+    float z = (CB.depth_unpack.x + CB.depth_unpack_d.x * d) /
+              (CB.horizon_depth_den_a + CB.horizon_depth_den_b * d + CB.horizon_depth_den_c * (1.0 - d));
+    return (z > 0.0 && z < 3.0e38) ? z : -1.0; /* NaN fails z > 0 */
+}
+
+float load_view_z(ivec2 p, ivec2 size) { return in_rect(p, size) ? horizon_view_z(texelFetch(src_depth, p, 0).r) : -1.0; }
+
+#if CACAO_VARIANT == CACAO_HORIZON_NORMALS_DEPTH
+/* Unit direction from pc to a neighbour, zero where the neighbour is missing (off-image or
+ * background): its cross products then carry no weight. */
+vec3 neighbour_dir(vec3 pc, ivec2 q, float zq)
+{
+    if (!(zq > 0.0)) return vec3(0.0);
+    vec3 d = horizon_pos(q, zq) - pc;
+    float len2 = dot(d, d);
+    return len2 > 0.0 ? d * inversesqrt(len2) : vec3(0.0);
+}
+#endif
+
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = textureSize(src_depth, 0);
+    if (!in_rect(p, size)) return;
+    float z = load_view_z(p, size);
+    vec3 n = vec3(0.0, 0.0, -1.0);
+    if (z > 0.0) {
+        vec3 pc = horizon_pos(p, z);
+        vec3 to_camera = horizon_to_camera(pc);
+#if CACAO_VARIANT == CACAO_HORIZON_NORMALS_INPUT
+        vec3 rgb = texelFetch(src_normals, p, 0).rgb;
+        n = (CB.normals_to_view * vec4(rgb * CB.normals_unpack_mul + CB.normals_unpack_add, 0.0)).xyz;
+        n = horizon_normal(n, to_camera);
+#else
+        ivec2 ql = p - ivec2(1, 0), qr = p + ivec2(1, 0), qt = p - ivec2(0, 1), qb = p + ivec2(0, 1);
+        float zl = load_view_z(ql, size), zr = load_view_z(qr, size);
+        float zt = load_view_z(qt, size), zb = load_view_z(qb, size);
+        /* a missing neighbour counts as a full edge (weight 0) */
+        vec4 e = depth_edges(z, zl > 0.0 ? zl : 1e30, zr > 0.0 ? zr : 1e30, zt > 0.0 ? zt : 1e30,
+                             zb > 0.0 ? zb : 1e30);
+        n = normal_from_neighbours(neighbour_dir(pc, ql, zl), neighbour_dir(pc, qr, zr), neighbour_dir(pc, qt, zt),
+                                   neighbour_dir(pc, qb, zb), e);
+        n = horizon_normal(n, to_camera);
+#endif
+    }
+    imageStore(view_depth, p, vec4(z));
+    imageStore(view_normals, p, vec4(n, 0.0));
+}
+#endif /* HORIZON_PREPARE */
+
+#if CACAO_PASS == CACAO_PASS_HORIZON_MAIN || CACAO_PASS == CACAO_PASS_HORIZON_DENOISE
+float fetch_view_z(ivec2 p) { return imageLoad(view_depth, p).r; }
+vec3 fetch_stored_normal(ivec2 p) { return imageLoad(view_normals, p).xyz; }
+vec3 fetch_normal(ivec2 p, vec3 to_camera) { return horizon_normal(fetch_stored_normal(p), to_camera); }
+
+/* Into the caller's output where no (further) denoise pass runs, else the intermediate. */
+#ifdef CACAO_BIND_OUTPUT
+void store_visibility(ivec2 p, float v) { imageStore(output_image, p, vec4(v, 0.0, 0.0, 0.0)); }
+#else
+void store_visibility(ivec2 p, float v) { imageStore(horizon_ao_out, p, vec4(v)); }
+#endif
+#endif
+
+#if CACAO_PASS == CACAO_PASS_HORIZON_MAIN
+#define HORIZON_BITMASK (CACAO_VARIANT == CACAO_HORIZON_BITMASK || CACAO_VARIANT == CACAO_HORIZON_BITMASK_DIRECT)
+
+/* Hilbert-curve index of (x, y) in a 64x64 tile (estimators.md section 2.1). */
+uint hilbert_index(uint x, uint y)
+{
+    uint h = 0u;
+    [[unroll]] for (uint c = 32u; c > 0u; c >>= 1u) {
+        uint rx = (x & c) != 0u ? 1u : 0u, ry = (y & c) != 0u ? 1u : 0u;
+        h += c * c * ((3u * rx) ^ ry);
+        if (ry == 0u) {
+            if (rx == 1u) {
+                x = 63u - x;
+                y = 63u - y;
+            }
+            uint t = x;
+            x = y;
+            y = t;
+        }
+    }
+    return h;
+}
+
+/* frac(x) of a 0.32 fixed-point fraction, below 1 (24 significant bits). */
+float unit_fraction(uint fixed_point) { return float(fixed_point >> 8u) * (1.0 / 16777216.0); }
+
+/* R2 / R1 sequences in 0.32 fixed point: h * alpha mod 1 is exact in uint arithmetic, where the
+ * float product of XeGTAO loses bits at large h (alpha * 2^32: 0.7548776662, 0.5698402910,
+ * 0.6180339887; 2^31 is the 0.5 offset). */
+const uint R2_X = 3242174889u, R2_Y = 2447445414u, R1 = 2654435769u, HALF = 2147483648u;
+
+/* atan2(y, x) in [-pi, pi] by a minimax polynomial on [0, 1] (max error about 1e-5 rad, far below
+ * a 32nd of the half-circle); GLSL's atan costs several times more on lavapipe. */
+float fast_atan2(float y, float x)
+{
+    float ax = abs(x), ay = abs(y);
+    float a = min(ax, ay) / max(max(ax, ay), 1e-30);
+    float s = a * a;
+    float r = ((-0.0464964749 * s + 0.15931422) * s - 0.327622764) * s * a + a;
+    if (ay > ax) r = HORIZON_HALF_PI - r;
+    if (x < 0.0) r = HORIZON_PI - r;
+    return y < 0.0 ? -r : r;
+}
+
+/* One slice's frame (estimators.md section 2.2): tangent t, the normal's signed angle n from the
+ * view vector and cos n, sin n, the projected normal's length pl, F(n) = cos n + n sin n. Since
+ * t and v span the slice plane, pN . t = N . t and pN . v = N . v: no projection is needed. */
+struct horizon_frame {
+    vec3 t;
+    float n, cos_n, sin_n, pl, full;
+};
+
+horizon_frame make_horizon_frame(vec2 dir, vec3 v, vec3 nrm)
+{
+    horizon_frame f;
+    vec3 d3 = vec3(dir, 0.0);
+    float dv = dot(d3, v);
+    f.t = (d3 - dv * v) * inversesqrt(max(1.0 - dv * dv, 1e-12));
+    float nt = dot(nrm, f.t), nv = max(dot(nrm, v), 0.0); /* n is clamped to +-pi/2 */
+    f.pl = sqrt(nt * nt + nv * nv);
+    float inv_pl = f.pl > 0.0 ? 1.0 / f.pl : 0.0;
+    f.cos_n = nv * inv_pl;
+    f.sin_n = nt * inv_pl;
+    f.n = fast_atan2(nt, nv);
+    f.full = f.cos_n + f.n * f.sin_n;
+    return f;
+}
+
+/* 4 G(theta) of estimators.md section 2.3, with cos(2 theta) and sin(2 theta) given. */
+float arc_g4(float theta, float cos2, float sin2, horizon_frame f)
+{
+    return f.cos_n + 2.0 * theta * f.sin_n - (cos2 * f.cos_n + sin2 * f.sin_n);
+}
+
+#if HORIZON_BITMASK
+/* Fraction U of the slice's cosine-weighted half-circle below the direction (x, y) = (along v,
+ * along t) (estimators.md section 4.2); c_low4 = 4 C(n - pi/2), inv_full4 = 1 / (4 F(n)). */
+float sector_fraction(float x, float y, horizon_frame f, float c_low4, float inv_full4)
+{
+    float theta = fast_atan2(y, x);
+    if (theta >= f.n + HORIZON_HALF_PI) return 1.0;
+    if (theta <= f.n - HORIZON_HALF_PI) return 0.0;
+    float inv_r2 = 1.0 / max(x * x + y * y, 1e-30);
+    float c4 = arc_g4(theta, (x * x - y * y) * inv_r2, 2.0 * x * y * inv_r2, f);
+    return sat(((theta < 0.0 ? -c4 : c4) - c_low4) * inv_full4);
+}
+#endif
+
+float horizon_visibility(ivec2 p, float z, ivec2 size)
+{
+    vec3 pos = horizon_pos(p, z);
+    vec3 v = horizon_to_camera(pos);
+    vec3 nrm = fetch_normal(p, v);
+    const float radius = CB.horizon_radius, radius2 = radius * radius, inv_radius2 = 1.0 / radius2;
+    float rpx = radius / (CB.horizon_pixel_size * view_xy_scale(z)); /* radius in pixels */
+    float min_s = CACAO_HORIZON_MIN_OFFSET_PX / rpx;
+    uint h = hilbert_index(uint(p.x) & 63u, uint(p.y) & 63u) + uint(CB.horizon_noise_offset);
+    float xi_s = unit_fraction(h * R2_X + HALF);
+    uint xi_t = h * R2_Y + HALF;
+    const int ns = CB.horizon_directions, m = CB.horizon_steps;
+    const vec2 rotation = vec2(CB.horizon_rotation_cos, CB.horizon_rotation_sin);
+    float phi0 = HORIZON_PI * xi_s / float(ns);
+    vec2 dir = vec2(cos(phi0), sin(phi0)); /* slice i: angle pi (i + xi_s) / ns */
+    float sum_vis = 0.0, sum_full = 0.0;
+    for (int i = 0; i < ns; ++i) {
+        horizon_frame f = make_horizon_frame(dir, v, nrm);
+        vec2 offset_dir = vec2(dir.x, -dir.y); /* rows grow downwards */
+        dir = vec2(dir.x * rotation.x - dir.y * rotation.y, dir.x * rotation.y + dir.y * rotation.x);
+#if HORIZON_BITMASK
+        /* 4 C(n - pi/2) = -G4(n - pi/2) for n - pi/2 <= 0: cos(2 theta - n) = -cos n there */
+        float c_low4 = -(f.cos_n + 2.0 * (f.n - HORIZON_HALF_PI) * f.sin_n + f.cos_n);
+        float inv_full4 = 0.25 / max(f.full, 1e-12);
+        uint bits = 0u;
+        float occluded = 0.0;
+#else
+        float low_pos = -f.sin_n, low_neg = f.sin_n; /* cos(n +- pi/2): the half-circle edges */
+        float c_pos = low_pos, c_neg = low_neg;
+#endif
+        bool open_pos = true, open_neg = true; /* a side stops at its first off-screen sample */
+        for (int j = 0; j < m; ++j) {
+            float xi = unit_fraction(xi_t + uint(i + j * m) * R1);
+            float s = (float(j) + xi) / float(m);
+#if !HORIZON_BITMASK
+            s *= s; /* GTAO: quadratic step spacing */
+#endif
+            float len = (s + min_s) * rpx;
+            ivec2 delta = ivec2(roundEven(len * offset_dir));
+            [[unroll]] for (int side = 0; side < 2; ++side) {
+                bool positive = side == 0;
+                if (!(positive ? open_pos : open_neg)) continue;
+                ivec2 q = positive ? p + delta : p - delta;
+                if (!in_rect(q, size)) {
+                    if (positive) open_pos = false;
+                    else open_neg = false;
+                    continue;
+                }
+                float zq = fetch_view_z(q);
+                if (!(zq > 0.0)) continue; /* background: weight 0 */
+                vec3 sample_pos = horizon_pos(q, zq);
+                vec3 delta3 = sample_pos - pos;
+                float dist2 = dot(delta3, delta3);
+                float x = dot(delta3, v), y = dot(delta3, f.t);
+#if HORIZON_BITMASK
+                float w = CB.horizon_binary != 0 ? (dist2 <= radius2 ? 1.0 : 0.0) : max(0.0, 1.0 - dist2 * inv_radius2);
+                if (!(w > 0.0)) continue;
+                /* back point: T further along the sample's own view ray (y: S . t = delta . t) */
+                float xb = x, yb = y;
+                if (CB.horizon_ortho != 0) {
+                    xb -= CB.horizon_thickness * v.z;
+                } else {
+                    float along = CB.horizon_thickness * inversesqrt(dot(sample_pos, sample_pos));
+                    xb += along * dot(sample_pos, v);
+                    yb += along * y;
+                }
+                float u_front = sector_fraction(x, y, f, c_low4, inv_full4);
+                float u_back = sector_fraction(xb, yb, f, c_low4, inv_full4);
+                float u_lo = min(u_front, u_back), u_hi = max(u_front, u_back);
+                int b0 = int(floor(32.0 * u_lo));
+                int nb = clamp(int(roundEven(32.0 * (u_hi - u_lo))), 0, 32 - b0);
+                uint mask = nb == 0 ? 0u : (0xFFFFFFFFu >> uint(32 - nb)) << uint(b0);
+                occluded += w * float(bitCount(mask & ~bits));
+                bits |= mask;
+#else
+                float inv_dist = inversesqrt(dist2);
+                float w = sat((radius - dist2 * inv_dist) * CB.horizon_falloff_mul);
+                float cs = x * inv_dist;
+                if (positive) c_pos = max(c_pos, low_pos + (cs - low_pos) * w);
+                else c_neg = max(c_neg, low_neg + (cs - low_neg) * w);
+#endif
+            }
+#if HORIZON_BITMASK
+            if (bits == 0xFFFFFFFFu) break; /* every sector is taken: later samples change nothing */
+#endif
+        }
+#if HORIZON_BITMASK
+        sum_vis += f.pl * f.full * occluded * (1.0 / 32.0); /* occluded share, summed as O_i */
+#else
+        /* theta1 = acos(c+) in [0, pi], theta0 = -acos(c-): cos 2 theta = 2 c^2 - 1,
+         * sin 2 theta = 2 c sin theta with sin theta = +-sqrt(1 - c^2) */
+        c_pos = clamp(c_pos, -1.0, 1.0);
+        c_neg = clamp(c_neg, -1.0, 1.0);
+        float s_pos = sqrt(1.0 - c_pos * c_pos), s_neg = -sqrt(1.0 - c_neg * c_neg);
+        float g4 = arc_g4(acos(c_pos), 2.0 * c_pos * c_pos - 1.0, 2.0 * c_pos * s_pos, f) +
+                   arc_g4(-acos(c_neg), 2.0 * c_neg * c_neg - 1.0, 2.0 * c_neg * s_neg, f);
+        sum_vis += f.pl * 0.25 * g4;
+#endif
+        sum_full += f.pl * f.full;
+    }
+#if HORIZON_BITMASK
+    float vis = sat(1.0 - sum_vis / max(sum_full, 1e-9));
+#else
+    float vis = sat(sum_vis / max(sum_full, 1e-9));
+#endif
+    /* the fade-out distance range of the settings: occlusion fades to none */
+    return 1.0 - (1.0 - vis) * sat(z * CB.effect_fade_out_mul + CB.effect_fade_out_add);
+}
+
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(view_depth);
+    if (!in_rect(p, size)) return;
+    float z = fetch_view_z(p);
+    store_visibility(p, z > 0.0 ? horizon_visibility(p, z, size) : 1.0);
+}
+#endif /* HORIZON_MAIN */
+
+#if CACAO_PASS == CACAO_PASS_HORIZON_DENOISE
+
+/* 3x3 bilateral filter (estimators.md section 5): weight by the distance of the neighbour's point
+ * from this pixel's tangent plane (relative to sigma z) and by the agreement of the normals. */
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(view_depth);
+    if (!in_rect(p, size)) return;
+    float z = fetch_view_z(p);
+    if (!(z > 0.0)) {
+        store_visibility(p, 1.0);
+        return;
+    }
+    vec3 pos = horizon_pos(p, z);
+    vec3 nrm = fetch_normal(p, horizon_to_camera(pos));
+    float inv_scale = 1.0 / max(CB.horizon_denoise_sigma * z, 1e-30);
+    float sum = imageLoad(horizon_ao, p).r, weight_sum = 1.0;
+    [[unroll]] for (int j = -1; j <= 1; ++j) {
+        [[unroll]] for (int i = -1; i <= 1; ++i) {
+            ivec2 q = p + ivec2(i, j);
+            if ((i == 0 && j == 0) || !in_rect(q, size)) continue;
+            float zq = fetch_view_z(q);
+            if (!(zq > 0.0)) continue;
+            /* the stored normal as it is: unit to 8 bits, and one that is zero only weighs 0 */
+            float plane = dot(nrm, horizon_pos(q, zq) - pos) * inv_scale;
+            float agree = sat(dot(nrm, fetch_stored_normal(q)));
+            agree *= agree;
+            float w = exp2(-1.44269504 * plane * plane) * agree * agree; /* exp(-plane^2) */
+            sum += w * imageLoad(horizon_ao, q).r;
+            weight_sum += w;
+        }
+    }
+    store_visibility(p, sum / weight_sum);
+}
+#endif /* HORIZON_DENOISE */
+#endif /* horizon estimators */

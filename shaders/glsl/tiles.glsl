@@ -1,0 +1,130 @@
+/* tiles.glsl - tile classification (docs/tiles.md; the buffer's layout in cacao_shared.h): the
+ * lists a pass dispatches from, and the classify, compact and fill passes. */
+
+#if CACAO_PASS == CACAO_PASS_CLASSIFY || CACAO_PASS == CACAO_PASS_COMPACT || CACAO_LIST != CACAO_LIST_NONE
+/* First uint of a list's entries (cacao_shared.h). */
+uint list_base(int list) { return uint(CACAO_TILE_LIST_BASE(list, CB.tiles_x * CB.tiles_y)); }
+
+/* A list's grid width: the host writes it as the command's x (record.c). */
+uint list_width(int list) { return uint(list == CACAO_LIST_BLUR ? CB.blur_groups_x : CB.tiles_x); }
+#endif
+
+/* The group this workgroup computes, false for none. Over a list: the entry at y width + x,
+ * where width is the grid's (cb); past the last entry the host's fill left
+ * CACAO_TILE_NO_ENTRY, and the group returns at once (uniformly, so also before a barrier).
+ * One buffer load per invocation (lavapipe loads per lane). */
+bool group_of(out ivec2 g)
+{
+#if CACAO_LIST != CACAO_LIST_NONE
+    uint e = tiles[list_base(CACAO_LIST) + gl_WorkGroupID.y * list_width(CACAO_LIST) + gl_WorkGroupID.x];
+    g = ivec2(int(e & 0xffffu), int(e >> 16));
+    return e != CACAO_TILE_NO_ENTRY;
+#else
+    g = ivec2(gl_WorkGroupID.xy);
+    return true;
+#endif
+}
+
+/* The invocation's texel in group g: a macro, since gl_WorkGroupSize is only known after each
+ * pass declares its local size (glslang takes 1 x 1 x 1 before). */
+#define texel_of(g) ((g) * ivec2(gl_WorkGroupSize.xy) + ivec2(gl_LocalInvocationID.xy))
+
+/* ---- classify ---- */
+#if CACAO_PASS == CACAO_PASS_CLASSIFY
+/* docs/tiles.md: one invocation per tile, no barriers. A texel is quiet where every layer's
+ * stored view z is background or faded (with the margin of CB.quiet_margin, so that generate
+ * finds it faded too); the tile is active when some texel is not quiet (the scan stops there),
+ * else faded when some texel is not background, else background. Gathers read 2x2 texels; past
+ * the slice's edge they clamp to texels of the same tile. */
+layout(local_size_x = CACAO_WG_CLASSIFY, local_size_y = CACAO_WG_CLASSIFY) in;
+
+void main()
+{
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    if (!in_rect(t, ivec2(CB.tiles_x, CB.tiles_y))) return;
+    ivec2 size = slice_size();
+    ivec2 image_size = textureSize(depths, 0).xy;
+    vec2 inv_d = 1.0 / vec2(image_size);
+    /* The largest gather corner: the slice's edge, where the sampler clamps; or where the atlas
+     * continues past the slice (cacao_shared.h), one texel inside it (the gather then also reads
+     * texel n - 2, of this tile or its neighbour: at most a tile more is computed). */
+    ivec2 corner_max = size - ivec2(greaterThan(image_size, size));
+    uint flags = CB.tiles_all != 0 ? 1u : 0u; /* 1: not quiet, 2: not background */
+    for (int layer = 0; layer < CB.slice_count && flags < 1u; ++layer) {
+        for (int y = 0; y < CACAO_TILE && (flags & 1u) == 0u; y += 2) {
+            for (int x = 0; x < CACAO_TILE; x += 2) {
+                ivec2 corner = min(t * CACAO_TILE + ivec2(x, y) + 1, corner_max);
+                vec4 z = textureGather(depths, vec3(vec2(corner) * inv_d, float(layer)), 0);
+                bvec4 background = greaterThanEqual(z, vec4(CB.background_z));
+                bvec4 faded = lessThan((z * CB.depth_precision_offset_mod) * CB.effect_fade_out_mul +
+                                           CB.effect_fade_out_add, vec4(-CB.quiet_margin));
+                if (!all(background)) flags |= 2u;
+                if (!all(bvec4(uvec4(background) | uvec4(faded)))) flags |= 1u;
+            }
+        }
+    }
+    uint cls = (flags & 1u) != 0u ? CACAO_TILE_CLASS_ACTIVE
+             : (flags & 2u) != 0u ? CACAO_TILE_CLASS_FADED : CACAO_TILE_CLASS_BACKGROUND;
+    tiles[CACAO_TILE_CLASSES + t.y * CB.tiles_x + t.x] = cls;
+    atomicAdd(tiles[CACAO_TILE_COUNT_ACTIVE + cls], 1u);
+}
+#endif /* CLASSIFY */
+
+/* ---- compact ---- */
+#if CACAO_PASS == CACAO_PASS_COMPACT
+/* docs/tiles.md: one invocation per tile, then one per blur group; each goes into the list that
+ * computes it (or, a tile, into the one that fills it with 1). Order within a list is arbitrary:
+ * every group writes only its own texels. */
+layout(local_size_x = CACAO_WG_COMPACT) in;
+
+/* Some tile within one tile of the tiles [t0, t1] is active: a needed tile lies in [t0, t1]. */
+bool touches_needed(ivec2 t0, ivec2 t1)
+{
+    ivec2 last = ivec2(CB.tiles_x, CB.tiles_y) - 1;
+    t0 = clamp(t0 - 1, ivec2(0), last);
+    t1 = clamp(t1 + 1, ivec2(0), last);
+    for (int y = t0.y; y <= t1.y; ++y)
+        for (int x = t0.x; x <= t1.x; ++x)
+            if (tiles[CACAO_TILE_CLASSES + y * CB.tiles_x + x] == CACAO_TILE_CLASS_ACTIVE) return true;
+    return false;
+}
+
+/* Entry i goes to grid row i / width: the command's rows cover every entry. */
+void append(int list, ivec2 g)
+{
+    uint i = atomicAdd(tiles[CACAO_TILE_LIST_ENTRIES(list)], 1u);
+    tiles[list_base(list) + i] = uint(g.x) | (uint(g.y) << 16);
+    atomicMax(tiles[CACAO_TILE_COMMAND(list) + 1], i / list_width(list) + 1u); /* the command's y */
+}
+
+void main()
+{
+    int i = int(gl_GlobalInvocationID.x);
+    int t = CB.tiles_x * CB.tiles_y, b = CB.blur_groups_x * CB.blur_groups_y;
+    if (i < t) {
+        ivec2 g = ivec2(i % CB.tiles_x, i / CB.tiles_x);
+        append(touches_needed(g, g) ? CACAO_LIST_GENERATE : CACAO_LIST_FILL_SLICES, g);
+    } else if (i < t + b) {
+        i -= t;
+        ivec2 g = ivec2(i % CB.blur_groups_x, i / CB.blur_groups_x);
+        ivec2 out_size = ivec2(CB.blur_out_x, CB.blur_out_y);
+        ivec2 lo = g * out_size, hi = lo + out_size - 1; /* its output texels */
+        if (touches_needed(lo / CACAO_TILE, hi / CACAO_TILE)) append(CACAO_LIST_BLUR, g);
+    }
+}
+#endif /* COMPACT */
+
+/* ---- fill ---- */
+#if CACAO_PASS == CACAO_PASS_FILL
+/* docs/tiles.md: AO 1, the value the full computation gives every texel of a tile that is not
+ * needed (edges 1: nothing reads them there). */
+layout(local_size_x = CACAO_TILE, local_size_y = CACAO_TILE) in;
+
+void main()
+{
+    ivec2 group;
+    if (!group_of(group)) return;
+    ivec2 p = texel_of(group);
+    if (in_rect(p, imageSize(ssao_image).xy)) imageStore(ssao_image, ivec3(p, int(gl_WorkGroupID.z)), vec4(1.0, 1.0, 0.0, 0.0));
+}
+#endif /* FILL */
