@@ -1,10 +1,8 @@
-/* cacao_keys.c - the permutation key space (see cacao_keys.h) and lookups in a generated table. */
+/* cacao_keys.c - the permutation key space (see cacao_keys.h). */
 #include "cacao_keys.h"
 
 #include <stdio.h>
 #include <string.h>
-
-#include "cacao_table.h"
 
 _Static_assert(CACAO_PLAN_KEY_NAME_MAX >= 32, "key names need room");
 
@@ -148,17 +146,4 @@ size_t cacaoi_key_defines(const cacao_key *key, char *buf, size_t buf_size) {
     }
     if (!ok) buf[0] = '\0'; /* never a cut text */
     return ok ? len : 0;
-}
-
-const cacao_permutation *cacaoi_table_find(const cacao_table *table, const cacao_key *key) {
-    if (!table || !key) return NULL;
-    uint32_t lo = 0, hi = table->permutation_count;
-    while (lo < hi) {
-        uint32_t mid = lo + (hi - lo) / 2;
-        int c = cacaoi_key_compare(&table->permutations[mid].key, key);
-        if (c == 0) return &table->permutations[mid];
-        if (c < 0) lo = mid + 1;
-        else hi = mid;
-    }
-    return NULL;
 }

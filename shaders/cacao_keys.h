@@ -1,6 +1,6 @@
 /* cacao_keys.h - the permutation key space: one struct, its enumerations (in cacao_shared.h), and
- * the functions that list every valid key, name it, parse it, give the shader defines that
- * specialise the source for it, and find it in a generated table. Compiled into both the generator
+ * the functions that list every valid key, name it, parse it, and give the shader defines that
+ * specialise the source for it (cacao_table.h finds a key in a generated table). Compiled into both the generator
  * and the runtime, so both agree on it. Which keys a configuration of settings needs is the
  * policy's (cacao_policy.h).
  *

@@ -40,7 +40,18 @@ typedef struct cacao_table {
 /* The table linked into this build (the committed full set, or a build-tree subset). */
 extern const cacao_table cacaoi_embedded_table;
 
-/* Binary search by key; NULL when the key is not embedded in this build (cacao_keys.c). */
-const cacao_permutation *cacaoi_table_find(const cacao_table *table, const cacao_key *key);
+/* Binary search by key; NULL when the key is not embedded in this build. */
+static inline const cacao_permutation *cacaoi_table_find(const cacao_table *table, const cacao_key *key) {
+    if (!table || !key) return NULL;
+    uint32_t lo = 0, hi = table->permutation_count;
+    while (lo < hi) {
+        const uint32_t mid = lo + (hi - lo) / 2;
+        const int c = cacaoi_key_compare(&table->permutations[mid].key, key);
+        if (c == 0) return &table->permutations[mid];
+        if (c < 0) lo = mid + 1;
+        else hi = mid;
+    }
+    return NULL;
+}
 
 #endif /* CACAO_TABLE_H */

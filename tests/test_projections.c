@@ -1,6 +1,10 @@
 /* test_projections - orthographic, off-centre and jittered projections on the GPU (lavapipe,
  * validation on), with scenes the project ray-casts itself through the same lens:
- *  - an orthographic floor meeting a wall: the open floor is unoccluded, the crease darkened;
+ *  - an orthographic floor meeting a wall: the open floor is unoccluded, the crease darkened, for
+ *    every estimator (CACAO, GTAO, bitmask: the bitmask's thickness interval once ran towards the
+ *    camera under an orthographic projection, and a flat floor came out at 0.09);
+ *  - the same scene at world scales 2^-100 and 1e-30 (near plane, far plane, radius): every
+ *    estimator gives the output of scale 1 (the horizon estimators once gave 0 everywhere there);
  *  - orthographic against perspective cameras backed away with the frame held: the look
  *    converges on the orthographic one as the focal length grows;
  *  - a frustum made off-centre by k pixels moves the output by k pixels (a quarter-width
@@ -65,6 +69,8 @@ static void diff_shifted(const float *a, const float *b, uint32_t w, uint32_t h,
     free(d);
 }
 
+static const char *const estimator_names[] = {"", "cacao", "gtao", "bitmask"};
+
 /* An orthographic view of a floor (y = 0) meeting a wall (z = -6), looking down 30 degrees. */
 static void test_ortho_crease(vkdev *dev) {
     const cacao_prim prims[] = {{CACAO_PRIM_PLANE, {0, 0, 0}, {0, 1, 0}, 0},
@@ -80,9 +86,11 @@ static void test_ortho_crease(vkdev *dev) {
         if ((n0 > 0.5f) != (n1 > 0.5f)) crease = (int)y;
     }
     CHECK(crease > 20 && crease < (int)b.h - 20);
+    for (int est = CACAO_ESTIMATOR_CACAO; est <= CACAO_ESTIMATOR_BITMASK; ++est)
     for (int reversed = 0; reversed < 2; ++reversed)
         for (int q = CACAO_QUALITY_LOW; q <= CACAO_QUALITY_HIGHEST; ++q) {
-            const cacao_settings s = {.quality = q, .radius = 0.6f, .blur_pass_count = CACAO_BLUR_NONE};
+            const cacao_settings s = {.estimator = (cacao_estimator)est, .quality = q, .radius = 0.6f,
+                                      .blur_pass_count = CACAO_BLUR_NONE};
             if (!lens_run(dev, &scene, &lens, &b, reversed, &s)) continue;
             CHECK(all_finite_unit(b.ao, (size_t)b.w * b.h));
             /* Open floor (>= 10 px below the crease, where the radius does not reach the wall) and
@@ -100,8 +108,8 @@ static void test_ortho_crease(vkdev *dev) {
                         crease_mean += v, ++nc;
                 }
             floor_mean /= nf, crease_mean /= nc, wall_mean /= nw;
-            printf("orthographic floor/wall (%s, %s): open floor %.4f, open wall %.4f, crease %.4f\n",
-                   reversed ? "reversed" : "standard",
+            printf("orthographic floor/wall (%s, %s, %s): open floor %.4f, open wall %.4f, crease %.4f\n",
+                   estimator_names[est], reversed ? "reversed" : "standard",
                    q == 2   ? "low"
                    : q == 3 ? "medium"
                    : q == 4 ? "high"
@@ -110,6 +118,54 @@ static void test_ortho_crease(vkdev *dev) {
             CHECK(floor_mean > 0.97 && wall_mean > 0.97);
             CHECK(crease_mean < floor_mean - 0.15);
         }
+    lens_free(&b);
+}
+
+/* The floor and wall of test_ortho_crease through a perspective camera, at world scale 1 and at
+ * tiny scales (the near and far planes, the radius and the fade-out distances scaled; the depth
+ * buffer of a scaled scene is the same):
+ *  - 2^-100 (about 7.9e-31): every estimator gives the AO of scale 1 (a power of two changes no
+ *    rounding, so only an underflow could make a difference: the horizon estimators once gave 0);
+ *  - 1e-30: the horizon estimators the same AO within rounding; CACAO within the rounding of its
+ *    R16F depths, which quantise a scene scaled by other than a power of two differently (the
+ *    bound is the measured 0.00072 x 1.25 + 0.0002, as test_amd_reference bounds). */
+static void test_tiny_world_scale(vkdev *dev) {
+    const cacao_prim prims[] = {{CACAO_PRIM_PLANE, {0, 0, 0}, {0, 1, 0}, 0},
+                                {CACAO_PRIM_PLANE, {0, 0, -6}, {0, 0, 1}, 0}};
+    cacao_scene scene = {prims, 2, {128, 96, 60.0, 0.1, 60.0, {0, 3.0, 0}, {0, 0, -5.196}, {0, 1, 0}}, 0.6};
+    const cacao_lens lens = {0};
+    lens_buffers b;
+    lens_render(&scene, &lens, &b);
+    float *ref = malloc(sizeof(float) * b.w * b.h);
+    const double scales[2] = {ldexp(1.0, -100), 1e-30};
+    for (int est = CACAO_ESTIMATOR_CACAO; est <= CACAO_ESTIMATOR_BITMASK; ++est) {
+        cacao_settings s = {.estimator = (cacao_estimator)est, .quality = CACAO_QUALITY_HIGH, .radius = 0.6f,
+                            .blur_pass_count = CACAO_BLUR_NONE};
+        scene.camera.near_z = 0.1, scene.camera.far_z = 60.0;
+        if (!lens_run(dev, &scene, &lens, &b, false, &s)) continue;
+        memcpy(ref, b.ao, sizeof(float) * b.w * b.h);
+        double ref_mean = 0.0;
+        for (size_t i = 0; i < (size_t)b.w * b.h; ++i) ref_mean += ref[i];
+        ref_mean /= (double)b.w * b.h;
+        CHECK(ref_mean > 0.5 && ref_mean < 0.999); /* a scene with occlusion to lose */
+        for (int i = 0; i < 2; ++i) {
+            const double scale = scales[i];
+            s.radius = (float)(0.6 * scale); /* and the fade-out's distances (defaults 50, 300) */
+            s.fade_out_from = (float)(50.0 * scale), s.fade_out_to = (float)(300.0 * scale);
+            scene.camera.near_z = 0.1 * scale, scene.camera.far_z = 60.0 * scale;
+            if (!lens_run(dev, &scene, &lens, &b, false, &s)) continue;
+            CHECK(all_finite_unit(b.ao, (size_t)b.w * b.h));
+            double mean, p99;
+            diff_shifted(b.ao, ref, b.w, b.h, 0, 0, 0, &mean, &p99);
+            printf("world scale %.3g (%s): mean AO at scale 1 %.4f; |scaled - scale 1|: mean %.6f, p99 %.6f\n", scale,
+                   estimator_names[est], ref_mean, mean, p99);
+            if (i == 0 || est != CACAO_ESTIMATOR_CACAO)
+                CHECK(mean <= 0.1 / 255.0 && p99 <= 1.0 / 255.0);
+            else
+                CHECK(mean <= 0.00072 * 1.25 + 0.0002);
+        }
+    }
+    free(ref);
     lens_free(&b);
 }
 
@@ -352,6 +408,7 @@ int main(int argc, char **argv) {
     vkdev dev;
     open_device(&dev);
     test_ortho_crease(&dev);
+    test_tiny_world_scale(&dev);
     test_ortho_vs_long_focal(&dev);
     test_off_centre_shift(&dev);
     test_subpixel_jitter(&dev);

@@ -283,6 +283,20 @@ typedef struct cacao_memory_info {
 cacao_result cacao_context_resize(cacao_context *context, uint32_t width, uint32_t height,
                                   cacao_memory_info *out_info);
 
+/* Creates the pipelines the current settings need, before any size is known and without any
+ * image or memory: load-time warm-up. A later cacao_context_resize with the same settings creates
+ * no pipeline (a resize with other settings, or a set_settings that changes the steps, replaces
+ * them). Calling it again with the same settings does nothing. Works on a device that can create
+ * pipelines and nothing else (a GPU compiler's null device, for pipeline statistics). out_info
+ * (may be NULL) gives pipeline_count; cacao_context_plan stays NULL until a resize. */
+cacao_result cacao_context_create_pipelines(cacao_context *context, cacao_memory_info *out_info);
+
+/* The pipeline step `step` of the settings' plan dispatches (after cacao_context_create_pipelines
+ * or a resize; steps in cacao_plan_build's order, which the size does not change), for tools that
+ * inspect, name or profile pipelines; steps with one permutation share one pipeline.
+ * VK_NULL_HANDLE before either call or for a step past the plan's. */
+VkPipeline cacao_context_pipeline(const cacao_context *context, uint32_t step);
+
 /* The plan the context records (valid after a successful resize; NULL before). */
 const cacao_plan *cacao_context_plan(const cacao_context *context);
 

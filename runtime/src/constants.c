@@ -75,17 +75,33 @@ static void depth_end_z(const projection_view *v, double z_at[2]) {
 }
 
 /* View-space scale that keeps the far plane inside half's range (see cacaoi_fill_constants), but
- * never pushes the near plane into half's subnormals. */
+ * never pushes the near plane into half's subnormals; a near plane inside them (a world scaled
+ * down to 1e-30) is scaled up, by a power of two, as far as the far plane allows. */
 static float view_scale(const projection_view *v) {
     double z_at[2], z_far = 0.0, z_near = INFINITY;
     depth_end_z(v, z_at);
     for (int d = 0; d <= 1; ++d)
         if (isfinite(z_at[d])) z_far = fmax(z_far, z_at[d]), z_near = fmin(z_near, z_at[d]);
     const double limit = 60000.0, smallest_normal = 6.2e-5;
+    if (isfinite(z_near) && z_near < smallest_normal && z_far <= limit) {
+        const int up = (int)ceil(log2(smallest_normal / z_near));
+        const int room = z_far > 0.0 ? (int)floor(log2(limit / z_far)) : up;
+        return (float)ldexp(1.0, up < room ? up : room);
+    }
     if (!(z_far > limit)) return 1.0f;
     double k = limit / z_far;
     if (isfinite(z_near) && z_near * k < smallest_normal) k = fmin(1.0, smallest_normal / z_near);
     return (float)k;
+}
+
+/* The horizon estimators work in fp32 throughout; their view space is scaled by a further power of
+ * two that brings the radius near 1, so that squared distances neither underflow (a near plane of
+ * 1e-30 with a matching radius) nor overflow. A power of two scales every product exactly, so AO
+ * is unchanged wherever nothing left fp32's range. */
+static float horizon_scale(float k, float radius) {
+    const double r = (double)k * radius;
+    if (!(r > 0.0) || !isfinite(r)) return k;
+    return (float)ldexp(k, -(int)lround(log2(r)));
 }
 
 cacao_result cacaoi_check_projection(const cacao_inputs *in, char *error, size_t error_size) {
@@ -247,8 +263,9 @@ void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao
     /* The deinterleaved view z is R16F (largest value 65504): when the far plane lies beyond that,
      * the whole view space is scaled by k < 1 (positions, radius, fade-out, near limit, bilateral
      * distance), which AO does not see; half's relative precision is the same at every scale.
-     * k stays 1 for a far plane within range and for an infinite one. */
-    const float k = view_scale(&v);
+     * k stays 1 for a far plane within range and for an infinite one. The horizon estimators
+     * scale it further by a power of two (horizon_scale). */
+    const float k = s->estimator == CACAO_ESTIMATOR_CACAO ? view_scale(&v) : horizon_scale(view_scale(&v), s->radius);
     c->depth_unpack = v2(k * v.z_num[0], v.z_den[0]);
     c->depth_unpack_d = v2(k * v.z_num[1], v.z_den[1]);
     c->view_xy_z = v.ortho ? v2(0.0f, 1.0f) : v2(1.0f, 0.0f);

@@ -161,6 +161,8 @@ static uint32_t pipeline_owner(const cacao_plan *plan, uint32_t index) {
 }
 
 static void release_pipelines(cacao_context *ctx) {
+    ctx->pipelines_only = false;
+    ctx->memory.pipeline_count = 0;
     for (uint32_t i = 0; i < CACAO_PLAN_MAX_STEPS; ++i) {
         bool shared = false;
         for (uint32_t j = 0; j < i && !shared; ++j) shared = ctx->pipelines[j] == ctx->pipelines[i];
@@ -186,7 +188,8 @@ static void release_images_and_buffers(cacao_context *ctx) {
         ctx->buffer_memory[b] = VK_NULL_HANDLE;
     }
     ctx->ready = false;
-    ctx->memory = (cacao_memory_info){0};
+    ctx->memory.total_bytes = 0;
+    ctx->memory.image_count = 0;
 }
 
 /* Frees everything resize created (not the layouts). */
@@ -372,39 +375,79 @@ static cacao_result create_pipeline(cacao_context *ctx, uint32_t index) {
     return CACAO_SUCCESS;
 }
 
-cacao_result cacao_context_resize(cacao_context *ctx, uint32_t width, uint32_t height, cacao_memory_info *out_info) {
-    if (!ctx) return CACAO_ERROR_INVALID_ARGUMENT;
+/* The plan of the context's settings at this size (fp16 falling back to fp32 where the device
+ * lacks it), with every permutation it needs embedded: checked before anything is created, so a
+ * missing one leaves nothing behind. */
+static cacao_result plan_settings(cacao_context *ctx, uint32_t width, uint32_t height, cacao_plan *plan) {
     cacao_settings settings = ctx->settings;
     cacao_settings resolved;
     cacao_result r = cacao_settings_resolve(&settings, &resolved, ctx->last_error, sizeof ctx->last_error);
     if (r != CACAO_SUCCESS) return r;
     if (resolved.precision == CACAO_PRECISION_FP16 && !ctx->fp16_available)
         settings.precision = CACAO_PRECISION_FP32; /* documented fallback; cacao_context_precision tells */
-    cacao_plan plan;
-    r = cacao_plan_build(&settings, width, height, &plan, ctx->last_error, sizeof ctx->last_error);
+    r = cacao_plan_build(&settings, width, height, plan, ctx->last_error, sizeof ctx->last_error);
     if (r != CACAO_SUCCESS) return r;
-    /* Check every permutation before creating anything, so a missing one leaves nothing behind. */
-    for (uint32_t i = 0; i < plan.step_count; ++i) {
-        const cacao_key key = cacaoi_plan_step_key(&plan.steps[i]);
+    for (uint32_t i = 0; i < plan->step_count; ++i) {
+        const cacao_key key = cacaoi_plan_step_key(&plan->steps[i]);
         if (!cacaoi_table_find(&cacaoi_embedded_table, &key))
             return cacaoi_fail(ctx, CACAO_ERROR_PERMUTATION_MISSING,
-                               "permutation '%s' is not embedded in this build (subset %s)", plan.steps[i].key_name,
+                               "permutation '%s' is not embedded in this build (subset %s)", plan->steps[i].key_name,
                                cacaoi_embedded_table.subset);
     }
+    return CACAO_SUCCESS;
+}
+
+/* A pipeline depends on its step's key, never on the size: the plan at any size names the
+ * pipelines of the settings. */
+#define PIPELINE_PLAN_SIZE 64
+
+cacao_result cacao_context_create_pipelines(cacao_context *ctx, cacao_memory_info *out_info) {
+    if (!ctx) return CACAO_ERROR_INVALID_ARGUMENT;
+    cacao_plan plan;
+    cacao_result r = plan_settings(ctx, PIPELINE_PLAN_SIZE, PIPELINE_PLAN_SIZE, &plan);
+    if (r != CACAO_SUCCESS) return r;
+    if (ctx->ready || ctx->pipelines_only) {
+        if (pipelines_fit(ctx, &plan)) { /* the settings' pipelines exist already */
+            if (out_info) *out_info = ctx->memory;
+            return CACAO_SUCCESS;
+        }
+    }
+    release_frame_resources(ctx); /* other settings: their pipelines, and the intermediates of a size */
+    ctx->plan = plan;
+    for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan.step_count; ++i) r = create_pipeline(ctx, i);
+    if (r != CACAO_SUCCESS) {
+        release_frame_resources(ctx);
+        return r;
+    }
+    ctx->pipelines_only = true;
+    ctx->last_error[0] = '\0';
+    if (out_info) *out_info = ctx->memory;
+    return CACAO_SUCCESS;
+}
+
+VkPipeline cacao_context_pipeline(const cacao_context *ctx, uint32_t step) {
+    if (!ctx || !(ctx->ready || ctx->pipelines_only) || step >= ctx->plan.step_count) return VK_NULL_HANDLE;
+    return ctx->pipelines[step];
+}
+
+cacao_result cacao_context_resize(cacao_context *ctx, uint32_t width, uint32_t height, cacao_memory_info *out_info) {
+    if (!ctx) return CACAO_ERROR_INVALID_ARGUMENT;
+    cacao_plan plan;
+    cacao_result r = plan_settings(ctx, width, height, &plan);
+    if (r != CACAO_SUCCESS) return r;
     const bool keep_pipelines = pipelines_fit(ctx, &plan);
     if (!keep_pipelines) release_pipelines(ctx);
     release_images_and_buffers(ctx);
     ctx->plan = plan;
     for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan.image_count; ++i) r = create_image(ctx, &plan.images[i]);
     for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan.buffer_count; ++i) r = create_buffer(ctx, &plan.buffers[i]);
-    if (keep_pipelines)
-        for (uint32_t i = 0; i < plan.step_count; ++i) ctx->memory.pipeline_count += pipeline_owner(&plan, i) == i;
     for (uint32_t i = 0; r == CACAO_SUCCESS && !keep_pipelines && i < plan.step_count; ++i) r = create_pipeline(ctx, i);
     if (r != CACAO_SUCCESS) {
         release_frame_resources(ctx);
         return r;
     }
     ctx->ready = true;
+    ctx->pipelines_only = false;
     ctx->last_error[0] = '\0';
     if (out_info) *out_info = ctx->memory;
     return CACAO_SUCCESS;

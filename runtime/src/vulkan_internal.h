@@ -26,6 +26,8 @@ struct cacao_context {
 
     cacao_settings settings; /* as given (zero = default) */
     bool ready;              /* plan, intermediates and pipelines exist */
+    bool pipelines_only;     /* the pipelines of the settings exist (cacao_context_create_pipelines),
+                                no intermediates: plan holds the steps at a nominal size */
     cacao_plan plan;
 
     VkSampler nearest_sampler, linear_sampler;

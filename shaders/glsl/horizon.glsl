@@ -240,10 +240,12 @@ float horizon_visibility(ivec2 p, float z, ivec2 size)
 #if HORIZON_BITMASK
                 float w = CB.horizon_binary != 0 ? (dist2 <= radius2 ? 1.0 : 0.0) : max(0.0, 1.0 - dist2 * inv_radius2);
                 if (!(w > 0.0)) continue;
-                /* back point: T further along the sample's own view ray (y: S . t = delta . t) */
+                /* back point: T further along the sample's own view ray, away from the camera
+                 * (y: S . t = delta . t). Orthographic: the ray is -v, so x loses T and y (t is
+                 * orthogonal to v) keeps its value. */
                 float xb = x, yb = y;
                 if (CB.horizon_ortho != 0) {
-                    xb -= CB.horizon_thickness * v.z;
+                    xb -= CB.horizon_thickness;
                 } else {
                     float along = CB.horizon_thickness * inversesqrt(dot(sample_pos, sample_pos));
                     xb += along * dot(sample_pos, v);
