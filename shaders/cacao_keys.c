@@ -7,7 +7,7 @@
 #include <string.h>
 
 static const char *const resolution_names[] = {"native", "downsampled"};
-static const char *const precision_names[] = {"fp32", "fp16"};
+const char *const cacaoi_precision_names[2] = {"fp32", "fp16"};
 
 const char *cacaoi_pass_name(unsigned pass) {
     return pass < CACAO_PASS_COUNT ? cacaoi_passes[pass].name : NULL;
@@ -61,7 +61,7 @@ size_t cacaoi_key_name(const cacao_key *key, char *buf, size_t buf_size) {
     if (a->has_resolution)
         len += snprintf(tmp + len, sizeof tmp - (size_t)len, ".%s", resolution_names[key->downsampled]);
     if (a->has_precision)
-        len += snprintf(tmp + len, sizeof tmp - (size_t)len, ".%s", precision_names[key->fp16]);
+        len += snprintf(tmp + len, sizeof tmp - (size_t)len, ".%s", cacaoi_precision_names[key->fp16]);
     if ((size_t)len + 1 > buf_size) return 0;
     memcpy(buf, tmp, (size_t)len + 1);
     return (size_t)len;
@@ -195,7 +195,7 @@ bool cacaoi_key_subset_parse(const char *qualities, const char *downsample, cons
         else return false;
     }
     if (precision && *precision && strcmp(precision, "all") != 0 &&
-        !parse_mask(precision, precision_names, 2, &s.precision_mask))
+        !parse_mask(precision, cacaoi_precision_names, 2, &s.precision_mask))
         return false;
     *subset = s;
     return true;

@@ -26,6 +26,9 @@
 
 /* The one list of quality names, indexed by key quality: "lowest" .. "highest". */
 extern const char *const cacaoi_quality_names[CACAO_KEY_QUALITY_COUNT];
+/* The one list of precision names, indexed by the key's fp16: "fp32", "fp16". cacao.h's names
+ * (cacao_quality_name, cacao_precision_name) are these two lists. */
+extern const char *const cacaoi_precision_names[2];
 /* Key quality of a public (1-based) cacao_quality value. */
 #define cacaoi_key_quality(api_quality) ((unsigned)(api_quality) - 1u)
 #define CACAO_KEY_MAX_BLUR_PASSES 8

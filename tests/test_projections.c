@@ -101,12 +101,7 @@ static void test_ortho_crease(vkdev *dev) {
                 }
             floor_mean /= nf, crease_mean /= nc, wall_mean /= nw;
             printf("orthographic floor/wall (%s, %s): open floor %.4f, open wall %.4f, crease %.4f\n",
-                   reversed ? "reversed" : "standard",
-                   q == 2   ? "low"
-                   : q == 3 ? "medium"
-                   : q == 4 ? "high"
-                            : "highest",
-                   floor_mean, wall_mean, crease_mean);
+                   reversed ? "reversed" : "standard", cacao_quality_name(q), floor_mean, wall_mean, crease_mean);
             CHECK(floor_mean > 0.97 && wall_mean > 0.97);
             CHECK(crease_mean < floor_mean - 0.15);
         }
