@@ -7,7 +7,6 @@
 #include <string.h>
 
 static const char *const resolution_names[] = {"native", "downsampled"};
-const char *const cacaoi_precision_names[2] = {"fp32", "fp16"};
 
 const char *cacaoi_pass_name(unsigned pass) {
     return pass < CACAO_PASS_COUNT ? cacaoi_passes[pass].name : NULL;
@@ -178,8 +177,6 @@ static bool parse_mask(const char *list, const char *const *words, unsigned coun
     *mask = m;
     return true;
 }
-
-const char *const cacaoi_quality_names[CACAO_KEY_QUALITY_COUNT] = {"lowest", "low", "medium", "high", "highest"};
 
 bool cacaoi_key_subset_parse(const char *qualities, const char *downsample, const char *precision,
                             cacao_key_subset *subset) {

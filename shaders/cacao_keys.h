@@ -24,11 +24,13 @@
 #define CACAO_KEY_QUALITY_HIGHEST 4
 #define CACAO_KEY_QUALITY_COUNT 5
 
-/* The one list of quality names, indexed by key quality: "lowest" .. "highest". */
+/* The words of the settings enums, each list written once (cacao_names.c); cacao.h's
+ * cacao_*_name return them. Quality by key quality ("lowest" .. "highest"), precision by the key's
+ * fp16 ("fp32", "fp16"), estimator and visibility by their cacao.h value - 1. */
 extern const char *const cacaoi_quality_names[CACAO_KEY_QUALITY_COUNT];
-/* The one list of precision names, indexed by the key's fp16: "fp32", "fp16". cacao.h's names
- * (cacao_quality_name, cacao_precision_name) are these two lists. */
 extern const char *const cacaoi_precision_names[2];
+extern const char *const cacaoi_estimator_names[3];
+extern const char *const cacaoi_visibility_names[2];
 /* Key quality of a public (1-based) cacao_quality value. */
 #define cacaoi_key_quality(api_quality) ((unsigned)(api_quality) - 1u)
 #define CACAO_KEY_MAX_BLUR_PASSES 8

@@ -42,13 +42,11 @@ typedef struct enum_names {
     int default_value;
 } enum_names;
 
-static const char *const estimator_words[] = {"cacao", "gtao", "bitmask"};
-static const char *const visibility_words[] = {"falloff", "binary"};
 #define NAMES(words, default_value) {words, (int)(sizeof words / sizeof words[0]), default_value}
 static const enum_names quality_names = NAMES(cacaoi_quality_names, CACAO_QUALITY_HIGHEST);
 static const enum_names precision_names = NAMES(cacaoi_precision_names, CACAO_PRECISION_FP32);
-static const enum_names estimator_names = NAMES(estimator_words, CACAO_ESTIMATOR_CACAO);
-static const enum_names visibility_names = NAMES(visibility_words, CACAO_VISIBILITY_FALLOFF);
+static const enum_names estimator_names = NAMES(cacaoi_estimator_names, CACAO_ESTIMATOR_CACAO);
+static const enum_names visibility_names = NAMES(cacaoi_visibility_names, CACAO_VISIBILITY_FALLOFF);
 
 static const char *name_of(const enum_names *e, int value) {
     if (value == 0) value = e->default_value;
