@@ -7,7 +7,6 @@
 _Static_assert(CACAO_PLAN_KEY_NAME_MAX >= 32, "key names need room");
 
 const char *const cacaoi_resolution_names[2] = {"native", "downsampled"};
-const char *const cacaoi_precision_names[2] = {"fp32", "fp16"};
 
 const char *cacaoi_pass_name(unsigned pass) {
     return pass < CACAO_PASS_COUNT ? cacaoi_passes[pass].name : NULL;

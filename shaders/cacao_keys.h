@@ -15,6 +15,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "cacao_names.h"
 #include "cacao_passes.h"
 
 #define CACAO_KEY_MAX_BLUR_PASSES 8
@@ -35,9 +36,9 @@ typedef struct cacao_key {
 /* Longest text cacaoi_key_defines writes, including the terminating zero. */
 #define CACAO_KEY_DEFINES_MAX 2048
 
-/* The words of the resolution and precision axes in key names (and in build subsets). */
+/* The words of the resolution axis in key names (and in build subsets); the precision axis's are
+ * cacaoi_precision_names (cacao_names.h). */
 extern const char *const cacaoi_resolution_names[2]; /* "native", "downsampled" */
-extern const char *const cacaoi_precision_names[2];  /* "fp32", "fp16" */
 
 /* Writes every valid key, in canonical (sorted) order, into out[0..cap) and returns the total
  * number of valid keys (which may exceed cap; pass out = NULL, cap = 0 to count). */

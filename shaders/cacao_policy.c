@@ -3,8 +3,6 @@
 
 #include <string.h>
 
-const char *const cacaoi_quality_names[CACAO_KEY_QUALITY_COUNT] = {"lowest", "low", "medium", "high", "highest"};
-
 /* spec: README "Quality levels", constants.md (radius and near limit), estimators.md section 6
  * (budgets: 2 depth reads per step). */
 const cacaoi_quality_row cacaoi_qualities[CACAO_KEY_QUALITY_COUNT] = {

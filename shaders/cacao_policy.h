@@ -24,9 +24,8 @@
 #define CACAO_KEY_QUALITY_HIGHEST 4
 #define CACAO_KEY_QUALITY_COUNT 5
 
-/* The one list of quality names, indexed by key quality: "lowest" .. "highest". */
-extern const char *const cacaoi_quality_names[CACAO_KEY_QUALITY_COUNT];
-/* Key quality of a public (1-based) cacao_quality value. */
+_Static_assert(CACAO_KEY_QUALITY_COUNT == CACAO_QUALITY_HIGHEST, "key qualities are cacao_quality - 1");
+/* Names: cacaoi_quality_names (cacao_names.h), indexed by key quality. Key quality of a public (1-based) cacao_quality value. */
 #define cacaoi_key_quality(api_quality) ((unsigned)(api_quality) - 1u)
 
 /* What one quality level selects (spec: README "Quality levels"; estimators.md section 6). The

@@ -4,7 +4,6 @@
 
 static const cacao_quality all_qualities[] = {CACAO_QUALITY_LOWEST, CACAO_QUALITY_LOW, CACAO_QUALITY_MEDIUM,
                                               CACAO_QUALITY_HIGH, CACAO_QUALITY_HIGHEST};
-static const char *const quality_names[] = {"", "lowest", "low", "medium", "high", "highest"};
 
 /* A plane facing the camera occludes nothing: every sample lies in the tangent plane, so the
  * cosine term is 0 and AO must be 1 everywhere, at every quality, resolution and normals source. */
@@ -23,7 +22,7 @@ static void test_facing_plane(vkdev *dev) {
                 float mn = 1.0f;
                 for (size_t i = 0; i < (size_t)b.width * b.height; ++i) mn = fminf(mn, ao[i]);
                 if (mn < 0.995f)
-                    fprintf(stderr, "facing plane: %s %s %s: min AO %.4f\n", quality_names[all_qualities[q]],
+                    fprintf(stderr, "facing plane: %s %s %s: min AO %.4f\n", cacao_quality_name(all_qualities[q]),
                             ds ? "downsampled" : "native", given ? "normals given" : "normals from depth", mn);
                 CHECK(mn >= 0.995f);
             }
@@ -72,7 +71,7 @@ static void test_corner(vkdev *dev) {
                 if (!run(dev, &s, &f, ao)) continue;
                 region_means m = corner_regions(&b, ao);
                 printf("corner %-7s %-11s radius %.2f: crease %.3f, open floor %.3f\n",
-                       quality_names[all_qualities[q]], ds ? "downsampled" : "native", radius, m.crease, m.open);
+                       cacao_quality_name(all_qualities[q]), ds ? "downsampled" : "native", radius, m.crease, m.open);
                 CHECK(m.open > 0.98);
                 /* At 0.25 m the radius spans under two slice texels in downsampled mode at this
                  * size, below what a screen-space method can resolve; require the crease from 0.5 m. */
@@ -119,7 +118,7 @@ static void test_blur_reduces_noise(vkdev *dev) {
         }
         const double bound = BLUR_RATIO_MARGIN * measured_blur_ratio[q];
         printf("blur %-7s: high-frequency energy %.2f without blur, %.2f with 4 passes (ratio %.4f, bound %.4f)\n",
-               quality_names[all_qualities[q]], energy[0], energy[1], energy[1] / energy[0], bound);
+               cacao_quality_name(all_qualities[q]), energy[0], energy[1], energy[1] / energy[0], bound);
         CHECK(energy[0] > 0.0 && energy[1] <= bound * energy[0]);
     }
     free(ao);
@@ -162,7 +161,7 @@ static void test_grazing_floor(vkdev *dev) {
                 previous = (int)y;
             }
             printf("grazing floor %-7s %-11s: min AO %.4f, largest row-to-row change %.5f\n",
-                   quality_names[all_qualities[q]], ds ? "downsampled" : "native", min_ao, worst_step);
+                   cacao_quality_name(all_qualities[q]), ds ? "downsampled" : "native", min_ao, worst_step);
             CHECK(worst_step < 1.0 / 255.0);
             CHECK(min_ao > 0.99);
         }
@@ -456,7 +455,7 @@ static void test_faded_is_one(vkdev *dev) {
                 for (size_t i = 0; i < n; ++i) not_one += checked[i] && ao[i] != 1.0f;
                 if (not_one)
                     fprintf(stderr, "faded: %s %s blur %d: %zu pixels beyond the fade are not 1\n",
-                            quality_names[all_qualities[q]], ds ? "downsampled" : "native", blur ? 2 : 0, not_one);
+                            cacao_quality_name(all_qualities[q]), ds ? "downsampled" : "native", blur ? 2 : 0, not_one);
                 CHECK(not_one == 0);
                 /* The same pixels without the fade see the crease: the 1s above are the fade's. */
                 cacao_settings unfaded = s;

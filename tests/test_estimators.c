@@ -192,7 +192,7 @@ static void test_unoccluded(vkdev *dev) {
                 }
                 mean /= (double)counted;
                 printf("unoccluded %-5s %-7s quality %d: mean %.5f, lowest %.5f\n", cases[c].name,
-                       e == CACAO_ESTIMATOR_GTAO ? "gtao" : "bitmask", q, mean, lowest);
+                       cacao_estimator_name(e), q, mean, lowest);
                 CHECK(all_finite_unit(ao, (size_t)CREASE_W * CREASE_H));
                 /* Means over the image (measured: wall bitmask 0.99999-1.0, GTAO 0.9988-0.9997;
                  * floor to the horizon bitmask 0.9954-0.9983, GTAO 0.9861-0.9945). Single pixels dip
@@ -249,8 +249,7 @@ static void test_groove(vkdev *dev) {
                 if (!run(dev, &s, &f, ao)) continue;
                 const double m = row_mean(ao, w, (int)mid, 40, w - 41);
                 printf("V-groove %.0f deg, %s %s 8x16: bottom row %.4f, closed form sin(alpha/2) %.4f\n", openings[k],
-                       e == CACAO_ESTIMATOR_GTAO ? "gtao" : "bitmask",
-                       v == CACAO_VISIBILITY_BINARY ? "binary" : "falloff", m, truth);
+                       cacao_estimator_name(e), cacao_visibility_name(v), m, truth);
                 /* measured 0.023-0.052 below: the groove runs along a pixel row, so samples snapped
                  * to the next row sit on a wall at a steeper elevation than the slice's own (spec
                  * pitfall 6); both estimators share it. Bound: 1.25 x the worst. */
@@ -277,7 +276,7 @@ static void test_invariance(vkdev *dev) {
         vkdev_frame f = scene_frame(&b, false, true), fr = scene_frame(&b, true, true);
         if (run(dev, &s, &f, ref) && run(dev, &s, &fr, ao)) {
             const double m = mean_abs_diff(ref, ao, n);
-            printf("%s reverse-Z vs standard: mean |diff| %.6f\n", e == CACAO_ESTIMATOR_GTAO ? "gtao" : "bitmask", m);
+            printf("%s reverse-Z vs standard: mean |diff| %.6f\n", cacao_estimator_name(e), m);
             CHECK(m < 0.5 / 255.0);
         }
         scene_buffers_free(&b);
@@ -293,8 +292,7 @@ static void test_invariance(vkdev *dev) {
             vkdev_frame fs = scene_frame(&bs, false, true);
             if (run(dev, &ss, &fs, ao)) {
                 const double m = mean_abs_diff(ref, ao, n);
-                printf("%s world scale x%g vs x1: mean |diff| %.6f\n", e == CACAO_ESTIMATOR_GTAO ? "gtao" : "bitmask",
-                       sc, m);
+                printf("%s world scale x%g vs x1: mean |diff| %.6f\n", cacao_estimator_name(e), sc, m);
                 CHECK(m <= 1.0 / 255.0);
             }
             scene_buffers_free(&bs);
@@ -332,8 +330,8 @@ static void test_invalid_depth(vkdev *dev) {
         if (!run(dev, &s, &f, far)) continue;
         size_t differ = 0;
         for (size_t i = 0; i < n; ++i) differ += dirty[i] != far[i];
-        printf("%s NaN/Inf block vs the same block at the far plane: %zu pixels differ\n",
-               e == CACAO_ESTIMATOR_GTAO ? "gtao" : "bitmask", differ);
+        printf("%s NaN/Inf block vs the same block at the far plane: %zu pixels differ\n", cacao_estimator_name(e),
+               differ);
         CHECK(all_finite_unit(dirty, n));
         CHECK(differ == 0);
     }

@@ -25,7 +25,6 @@
 #define ESTIMATE_MULTIPLIER 0.5f
 
 static const char *const scenes[] = {"interior_fzkhaus", "statues_scanned", "street_track"};
-static const char *const qualities[] = {"lowest", "low", "medium", "high", "highest"};
 
 /* RMSE per scene (order of scenes[]) and quality: {look, estimate}, as printed by this test. */
 static const double measured_rmse[3][5][2] = {
@@ -88,11 +87,12 @@ static void run_scene(vkdev *dev, const char *shared, int index) {
         }
     printf("%s: RMSE vs ao_gt_falloff, native\n  quality  | look (AMD defaults) | estimate\n", scene);
     for (int q = 0; q < 5; ++q) {
-        printf("  %-8s | %.5f             | %.5f\n", qualities[q], look[q], estimate[q]);
+        const char *quality = cacao_quality_name(CACAO_QUALITY_LOWEST + q);
+        printf("  %-8s | %.5f             | %.5f\n", quality, look[q], estimate[q]);
         for (int mode = 0; mode < 2; ++mode) {
             const double got = (mode ? estimate : look)[q], bound = RMSE_MARGIN * measured_rmse[index][q][mode];
             if (!(got <= bound)) {
-                fprintf(stderr, "  ^ %s %s: %s RMSE %.5f above its bound %.5f (measured %.5f)\n", scene, qualities[q],
+                fprintf(stderr, "  ^ %s %s: %s RMSE %.5f above its bound %.5f (measured %.5f)\n", scene, quality,
                         mode ? "estimate" : "look", got, bound, measured_rmse[index][q][mode]);
                 ++test_failures;
             }

@@ -69,8 +69,6 @@ static void diff_shifted(const float *a, const float *b, uint32_t w, uint32_t h,
     free(d);
 }
 
-static const char *const estimator_names[] = {"", "cacao", "gtao", "bitmask"};
-
 /* An orthographic view of a floor (y = 0) meeting a wall (z = -6), looking down 30 degrees. */
 static void test_ortho_crease(vkdev *dev) {
     const cacao_prim prims[] = {{CACAO_PRIM_PLANE, {0, 0, 0}, {0, 1, 0}, 0},
@@ -109,12 +107,8 @@ static void test_ortho_crease(vkdev *dev) {
                 }
             floor_mean /= nf, crease_mean /= nc, wall_mean /= nw;
             printf("orthographic floor/wall (%s, %s, %s): open floor %.4f, open wall %.4f, crease %.4f\n",
-                   estimator_names[est], reversed ? "reversed" : "standard",
-                   q == 2   ? "low"
-                   : q == 3 ? "medium"
-                   : q == 4 ? "high"
-                            : "highest",
-                   floor_mean, wall_mean, crease_mean);
+                   cacao_estimator_name((cacao_estimator)est), reversed ? "reversed" : "standard",
+                   cacao_quality_name((cacao_quality)q), floor_mean, wall_mean, crease_mean);
             CHECK(floor_mean > 0.97 && wall_mean > 0.97);
             CHECK(crease_mean < floor_mean - 0.15);
         }
@@ -158,7 +152,7 @@ static void test_tiny_world_scale(vkdev *dev) {
             double mean, p99;
             diff_shifted(b.ao, ref, b.w, b.h, 0, 0, 0, &mean, &p99);
             printf("world scale %.3g (%s): mean AO at scale 1 %.4f; |scaled - scale 1|: mean %.6f, p99 %.6f\n", scale,
-                   estimator_names[est], ref_mean, mean, p99);
+                   cacao_estimator_name((cacao_estimator)est), ref_mean, mean, p99);
             if (i == 0 || est != CACAO_ESTIMATOR_CACAO)
                 CHECK(mean <= 0.1 / 255.0 && p99 <= 1.0 / 255.0);
             else

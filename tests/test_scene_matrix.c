@@ -17,7 +17,6 @@
 #include "gpu_scene.h"
 
 static const char *const scenes[] = {"interior_fzkhaus", "statues_scanned", "street_track"};
-static const char *const quality_names[] = {"", "lowest", "low", "medium", "high", "highest"};
 
 typedef struct axes {
     bool downsample, normals_given, reversed, fp16;
@@ -112,7 +111,7 @@ int main(int argc, char **argv) {
             }
             printf("%-17s %-7s %-11s normals %-5s blur %d %s %s: mean AO %.4f, %zu values outside [0,1], "
                    "mean |AO - reference| %.6f\n",
-                   scenes[run % 3], quality_names[q], a->downsample ? "downsampled" : "native",
+                   scenes[run % 3], cacao_quality_name(q), a->downsample ? "downsampled" : "native",
                    a->normals_given ? "given" : "depth", a->blur, a->fp16 ? "fp16" : "fp32",
                    a->reversed ? "reverse-Z" : "standard", sum / (double)n, bad, diff);
             CHECK(bad == 0);

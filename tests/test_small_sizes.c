@@ -33,8 +33,6 @@ static const uint32_t strips[][2] = {{1, 64}, {64, 1}, {1, 129}, {129, 1}, {2, 9
 #define FLAT_MIN_BOUND 0.99
 #define CROP_MAX_BOUND (1.0 / 255.0)
 
-static const char *const quality_names[] = {"", "lowest", "low", "medium", "high", "highest"};
-
 static void size_at(size_t i, uint32_t *w, uint32_t *h) {
     const size_t nh = sizeof heights / sizeof heights[0], grid = sizeof widths / sizeof widths[0] * nh;
     if (i < grid)
@@ -116,7 +114,7 @@ static double sweep_quality(vkdev *dev, cacao_estimator estimator, int quality, 
                 const double flat_bound = estimator == CACAO_ESTIMATOR_CACAO ? FLAT_MIN_BOUND : 0.98;
                 if (!ok || (!crease_scene && !(mn >= flat_bound))) {
                     fprintf(stderr, "%s %ux%u %s %s blur %d %s: %s, smallest AO %.4f\n",
-                            crease_scene ? "crease" : "plane", w, h, quality_names[quality],
+                            crease_scene ? "crease" : "plane", w, h, cacao_quality_name(quality),
                             downsample ? "downsampled" : "native", variants[v].blur,
                             variants[v].precision == CACAO_PRECISION_FP16 ? "fp16" : "fp32",
                             ok ? "finite, [0,1]" : "NOT finite/[0,1] or not written", mn);
@@ -223,7 +221,7 @@ static void test_crop(vkdev *dev) {
                     }
                 printf("crop %ux%u at (%u,%u) %s: radius up to %.2f slice texels: %d pixels, max |diff| %.4f (%.4f "
                        "with the border)\n",
-                       cw, ch, x0, y0, quality_names[q], largest_rpx, n, mx, border_mx);
+                       cw, ch, x0, y0, cacao_quality_name(q), largest_rpx, n, mx, border_mx);
                 if (!(mx <= CROP_MAX_BOUND)) ++test_failures;
                 worst = fmax(worst, mx);
                 compared += n;

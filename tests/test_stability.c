@@ -6,8 +6,6 @@
 
 #include "gpu_scene.h"
 
-static const char *const quality_names[] = {"", "lowest", "low", "medium", "high", "highest"};
-
 /* The figures for docs/stability.md: every case adds one row (case, figure, bound, pass, what the
  * library does); main writes them as markdown when given a path (cmake --build B --target
  * stability-doc). */
@@ -224,7 +222,7 @@ static void test_flicker(vkdev *dev) {
             double m = 0;
             for (int k = 1; k < 8 && ok; ++k) m += mean_abs_diff(ao + k * n, ao + (k - 1) * n, n) / 7.0;
             char name[96];
-            snprintf(name, sizeof name, "flicker: %s, blur %d, 8 sub-pixel jitters", quality_names[q],
+            snprintf(name, sizeof name, "flicker: %s, blur %d, 8 sub-pixel jitters", cacao_quality_name(q),
                      blurs[bi] == CACAO_BLUR_NONE ? 0 : blurs[bi]);
             report(name, ok, "measured", "jitter honoured through P(0,2), P(1,2)",
                    "mean frame-to-frame |change| %.5f (%.2f/255)", m, m * 255.0);
@@ -285,7 +283,8 @@ static void test_odd_sizes(vkdev *dev) {
                 const cacao_settings s = {.quality = q, .downsample = ds, .radius = 1.0f, .blur_pass_count = 3};
                 if (!run_floor_scene(dev, w, h, &s, ao) || !run_floor_scene(dev, rw, h, &s, ref)) continue;
                 const bool ok = all_finite_unit(ao, (size_t)w * h);
-                if (!ok) fprintf(stderr, "odd size %ux%u %s ds %d: output outside [0,1]\n", w, h, quality_names[q], ds);
+                if (!ok)
+                    fprintf(stderr, "odd size %ux%u %s ds %d: output outside [0,1]\n", w, h, cacao_quality_name(q), ds);
                 CHECK(ok);
                 double worst = 0, mean = 0;
                 for (uint32_t y = 0; y < h; ++y)
@@ -300,7 +299,7 @@ static void test_odd_sizes(vkdev *dev) {
                 largest_mean = fmax(largest_mean, mean);
                 if (!(worst <= ODD_WORST_BOUND && mean <= ODD_MEAN_BOUND)) {
                     fprintf(stderr, "odd size %ux%u %s %s: |AO - %ux%u reference| worst %.4f, mean %.5f\n", w, h,
-                            quality_names[q], ds ? "downsampled" : "native", rw, h, worst, mean);
+                            cacao_quality_name(q), ds ? "downsampled" : "native", rw, h, worst, mean);
                     ++test_failures;
                 }
             }
@@ -341,7 +340,7 @@ static void test_nan_depth(vkdev *dev) {
                 if (!(dirty[i] >= 0.0f && dirty[i] <= 1.0f) && bad++ == 0) first_bad = i;
             if (bad)
                 fprintf(stderr, "NaN depth %s ds %d: %zu outputs outside [0,1], first at (%zu, %zu) = %f\n",
-                        quality_names[q], ds, bad, first_bad % b.width, first_bad / b.width, dirty[first_bad]);
+                        cacao_quality_name(q), ds, bad, first_bad % b.width, first_bad / b.width, dirty[first_bad]);
             CHECK(bad == 0);
             size_t changed_far = 0;
             for (uint32_t y = 0; y < b.height; ++y)
@@ -350,8 +349,8 @@ static void test_nan_depth(vkdev *dev) {
                     if (far && clean[(size_t)y * b.width + x] != dirty[(size_t)y * b.width + x]) ++changed_far;
                 }
             if (changed_far)
-                fprintf(stderr, "NaN depth %s ds %d: %zu pixels changed far from the bad block\n", quality_names[q], ds,
-                        changed_far);
+                fprintf(stderr, "NaN depth %s ds %d: %zu pixels changed far from the bad block\n",
+                        cacao_quality_name(q), ds, changed_far);
             CHECK(changed_far == 0);
         }
     report("NaN, +Inf, -Inf depth block (30x16 px), every quality", test_failures == failures_before,
@@ -381,7 +380,7 @@ static void test_reverse_z(vkdev *dev) {
             stats_diff(a, r, n, &mean, &max);
             worst_mean = fmax(worst_mean, mean);
             worst_max = fmax(worst_max, max);
-            printf("reverse-Z vs standard %-7s %-11s: mean |diff| %.6f, max %.4f\n", quality_names[q],
+            printf("reverse-Z vs standard %-7s %-11s: mean |diff| %.6f, max %.4f\n", cacao_quality_name(q),
                    ds ? "downsampled" : "native", mean, max);
             CHECK(all_finite_unit(r, n));
             CHECK(mean < 0.5 / 255.0);
@@ -420,7 +419,7 @@ static void test_depth_ranges(vkdev *dev) {
             double worst = 1.0;
             for (size_t i = n - 8 * b.width; i < n; ++i) worst = fmin(worst, ao[i]);
             if (worst < 0.99)
-                fprintf(stderr, "depth range %s mode %d: open floor AO %.4f\n", quality_names[q], mode, worst);
+                fprintf(stderr, "depth range %s mode %d: open floor AO %.4f\n", cacao_quality_name(q), mode, worst);
             CHECK(worst >= 0.99);
         }
     report("near 0.01 / far 1e6: standard, reverse-Z, infinite reverse-Z", test_failures == failures_before,
@@ -458,7 +457,7 @@ static void test_fp16(vkdev *dev) {
             stats_diff(a, h, n, &mean, &max);
             worst_mean = fmax(worst_mean, mean);
             worst_max = fmax(worst_max, max);
-            printf("fp16 vs fp32 %-7s %-11s: mean |diff| %.6f, max %.4f\n", quality_names[q],
+            printf("fp16 vs fp32 %-7s %-11s: mean |diff| %.6f, max %.4f\n", cacao_quality_name(q),
                    ds ? "downsampled" : "native", mean, max);
             CHECK(all_finite_unit(h, n));
             CHECK(mean < 0.25 / 255.0);

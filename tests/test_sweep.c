@@ -15,8 +15,6 @@
  * usage: test_sweep [WIDTH HEIGHT] */
 #include "gpu_scene.h"
 
-static const char *const quality_names[] = {"", "lowest", "low", "medium", "high", "highest"};
-
 int main(int argc, char **argv) {
     const uint32_t w = argc > 2 ? (uint32_t)atoi(argv[1]) : 64, h = argc > 2 ? (uint32_t)atoi(argv[2]) : 48;
     vkdev dev;
@@ -31,7 +29,6 @@ int main(int argc, char **argv) {
         return 1;
     }
     unsigned configs = 0, failed = 0;
-    static const char *const estimator_names[] = {"", "cacao", "gtao", "bitmask"};
     for (int e = CACAO_ESTIMATOR_CACAO; e <= CACAO_ESTIMATOR_BITMASK; ++e)
         for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
             for (int ds = 0; ds < 2; ++ds)
@@ -64,8 +61,8 @@ int main(int argc, char **argv) {
                             if (r == CACAO_SUCCESS)
                                 r = vkdev_run_context(&dev, ctx, &f, 1, fp16 ? ao : ao32, NULL, err, sizeof err);
                             if (r != CACAO_SUCCESS) {
-                                fprintf(stderr, "%s %s %s blur %d normals %s %s: %s: %s%s\n", estimator_names[e],
-                                        quality_names[q], ds ? "downsampled" : "native", blur,
+                                fprintf(stderr, "%s %s %s blur %d normals %s %s: %s: %s%s\n", cacao_estimator_name(e),
+                                        cacao_quality_name(q), ds ? "downsampled" : "native", blur,
                                         given ? "given" : "reconstructed", fp16 ? "fp16" : "fp32",
                                         cacao_result_string(r), err, cacao_context_last_error(ctx));
                                 ++test_failures;
@@ -83,8 +80,8 @@ int main(int argc, char **argv) {
                             }
                             CHECK(dev.validation_messages == messages);
                             if ((uint32_t)test_failures != before) {
-                                fprintf(stderr, "  ^ %s %s %s blur %d normals %s %s\n", estimator_names[e],
-                                        quality_names[q], ds ? "downsampled" : "native", blur,
+                                fprintf(stderr, "  ^ %s %s %s blur %d normals %s %s\n", cacao_estimator_name(e),
+                                        cacao_quality_name(q), ds ? "downsampled" : "native", blur,
                                         given ? "given" : "reconstructed", fp16 ? "fp16" : "fp32");
                                 ++failed;
                             }

@@ -41,6 +41,18 @@ extern "C" {
 #define CACAO_VERSION_MINOR 1
 #define CACAO_VERSION_PATCH 0
 
+/* Marks the functions the library exports. It is built with hidden visibility, so these (every
+ * function this header declares) are the only global symbols of libcacao.a and the only dynamic
+ * symbols of libcacao.so. Define CACAO_API before including this header to mark them otherwise
+ * (for instance __declspec(dllimport)). */
+#ifndef CACAO_API
+#if defined(__GNUC__) || defined(__clang__)
+#define CACAO_API __attribute__((visibility("default")))
+#else
+#define CACAO_API
+#endif
+#endif
+
 /* ---- Results ------------------------------------------------------------------------------- */
 
 typedef enum cacao_result {
@@ -56,7 +68,7 @@ typedef enum cacao_result {
 } cacao_result;
 
 /* Short English description of a result code ("invalid argument", ...). Never NULL. */
-const char *cacao_result_string(cacao_result result);
+CACAO_API const char *cacao_result_string(cacao_result result);
 
 /* Largest accepted width or height. */
 #define CACAO_MAX_SIZE 16384
@@ -95,6 +107,25 @@ typedef enum cacao_visibility {
     CACAO_VISIBILITY_FALLOFF,     /* occluders count max(0, 1 - t^2 / R^2) at hit distance t */
     CACAO_VISIBILITY_BINARY,      /* occluders within R count fully, beyond R not at all */
 } cacao_visibility;
+
+/* Names of the values above, as the cacao command, its settings JSON and the tools spell them:
+ * quality "lowest", "low", "medium", "high", "highest"; precision "fp32", "fp16"; estimator
+ * "cacao", "gtao", "bitmask"; visibility "falloff", "binary". A DEFAULT (0) gives the name of the
+ * value it stands for (cacao_quality_name(CACAO_QUALITY_DEFAULT) is "highest"); a value outside
+ * the enum gives NULL, so the choices are listed by
+ *     for (cacao_quality q = CACAO_QUALITY_LOWEST; cacao_quality_name(q); ++q) ...
+ * The strings are static. */
+CACAO_API const char *cacao_quality_name(cacao_quality quality);
+CACAO_API const char *cacao_precision_name(cacao_precision precision);
+CACAO_API const char *cacao_estimator_name(cacao_estimator estimator);
+CACAO_API const char *cacao_visibility_name(cacao_visibility visibility);
+
+/* The reverse: the value a name above spells, exactly (case matters); never a DEFAULT. A name
+ * that is none of them, or NULL, gives CACAO_ERROR_INVALID_ARGUMENT and leaves *out unchanged. */
+CACAO_API cacao_result cacao_quality_from_name(const char *name, cacao_quality *out);
+CACAO_API cacao_result cacao_precision_from_name(const char *name, cacao_precision *out);
+CACAO_API cacao_result cacao_estimator_from_name(const char *name, cacao_estimator *out);
+CACAO_API cacao_result cacao_visibility_from_name(const char *name, cacao_visibility *out);
 
 /* Asks for an explicit 0 in a float field whose 0 would otherwise mean "default". */
 #define CACAO_ZERO (-1.0f)
@@ -141,8 +172,8 @@ typedef struct cacao_settings {
  * encoding (CACAO_ZERO, CACAO_BLUR_NONE) in *out, so resolving *out again gives *out and
  * cacao_plan_build(&plan->settings, ...) rebuilds the same plan. On error returns
  * CACAO_ERROR_INVALID_ARGUMENT and, when error is not NULL, writes a message naming the field. */
-cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *out, char *error,
-                                    size_t error_size);
+CACAO_API cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *out, char *error,
+                                              size_t error_size);
 
 /* ---- The pass plan: what one frame dispatches, as pure data (no Vulkan) ------------------- */
 
@@ -168,7 +199,7 @@ typedef enum cacao_resource {
 } cacao_resource;
 
 /* Name of a resource ("depths", "ssao_ping", ...). */
-const char *cacao_resource_name(cacao_resource resource);
+CACAO_API const char *cacao_resource_name(cacao_resource resource);
 
 /* One intermediate the plan needs (only those are allocated). */
 typedef struct cacao_plan_image {
@@ -234,11 +265,11 @@ typedef struct cacao_plan {
 } cacao_plan;
 
 /* Builds the plan for these settings and size. Pure: no Vulkan calls, no allocation. */
-cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, uint32_t height,
-                              cacao_plan *plan, char *error, size_t error_size);
+CACAO_API cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, uint32_t height,
+                                        cacao_plan *plan, char *error, size_t error_size);
 
 /* Writes a human-readable plan (one line per step, then the intermediates). */
-void cacao_plan_print(const cacao_plan *plan, FILE *out);
+CACAO_API void cacao_plan_print(const cacao_plan *plan, FILE *out);
 
 /* ---- Context -------------------------------------------------------------------------------- */
 
@@ -259,15 +290,15 @@ typedef struct cacao_context_desc {
 } cacao_context_desc;
 
 /* Creates a context. Creates no pipelines and allocates no images yet. */
-cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context **out_context);
+CACAO_API cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context **out_context);
 
 /* Destroys everything the context created. The caller makes sure the GPU is done with it. NULL is
  * ignored; destroying the same context twice is undefined behaviour, as with free(). */
-void cacao_context_destroy(cacao_context *context);
+CACAO_API void cacao_context_destroy(cacao_context *context);
 
 /* Replaces the settings (validated; see cacao_settings_resolve). Takes effect at the next
  * cacao_context_resize, which must follow before the next cacao_record. */
-cacao_result cacao_context_set_settings(cacao_context *context, const cacao_settings *settings);
+CACAO_API cacao_result cacao_context_set_settings(cacao_context *context, const cacao_settings *settings);
 
 /* Memory the context holds for its intermediates. */
 typedef struct cacao_memory_info {
@@ -280,8 +311,8 @@ typedef struct cacao_memory_info {
  * creates exactly the intermediates and pipelines it uses (nothing else); a resize that only
  * changes the size keeps the pipelines. The GPU must be done with earlier frames. out_info may be
  * NULL. */
-cacao_result cacao_context_resize(cacao_context *context, uint32_t width, uint32_t height,
-                                  cacao_memory_info *out_info);
+CACAO_API cacao_result cacao_context_resize(cacao_context *context, uint32_t width, uint32_t height,
+                                            cacao_memory_info *out_info);
 
 /* Creates the pipelines the current settings need, before any size is known and without any
  * image or memory: load-time warm-up. A later cacao_context_resize with the same settings creates
@@ -289,19 +320,19 @@ cacao_result cacao_context_resize(cacao_context *context, uint32_t width, uint32
  * them). Calling it again with the same settings does nothing. Works on a device that can create
  * pipelines and nothing else (a GPU compiler's null device, for pipeline statistics). out_info
  * (may be NULL) gives pipeline_count; cacao_context_plan stays NULL until a resize. */
-cacao_result cacao_context_create_pipelines(cacao_context *context, cacao_memory_info *out_info);
+CACAO_API cacao_result cacao_context_create_pipelines(cacao_context *context, cacao_memory_info *out_info);
 
 /* The pipeline step `step` of the settings' plan dispatches (after cacao_context_create_pipelines
  * or a resize; steps in cacao_plan_build's order, which the size does not change), for tools that
  * inspect, name or profile pipelines; steps with one permutation share one pipeline.
  * VK_NULL_HANDLE before either call or for a step past the plan's. */
-VkPipeline cacao_context_pipeline(const cacao_context *context, uint32_t step);
+CACAO_API VkPipeline cacao_context_pipeline(const cacao_context *context, uint32_t step);
 
 /* The plan the context records (valid after a successful resize; NULL before). */
-const cacao_plan *cacao_context_plan(const cacao_context *context);
+CACAO_API const cacao_plan *cacao_context_plan(const cacao_context *context);
 
 /* Message of the last error on this context, naming the offending field; "" if none. */
-const char *cacao_context_last_error(const cacao_context *context);
+CACAO_API const char *cacao_context_last_error(const cacao_context *context);
 
 /* ---- Recording ------------------------------------------------------------------------------ */
 
@@ -370,8 +401,7 @@ typedef struct cacao_inputs {
  *     overwrite the AO directly (another queue needs the caller's semaphore, as always). A caller
  *     that moves the output to another layout afterwards records that transition as usual,
  *     naming COMPUTE_SHADER / SHADER_WRITE as its source. */
-cacao_result cacao_record(cacao_context *context, VkCommandBuffer command_buffer,
-                          const cacao_inputs *inputs);
+CACAO_API cacao_result cacao_record(cacao_context *context, VkCommandBuffer command_buffer, const cacao_inputs *inputs);
 
 /* ---- Tiles skipped (docs/tiles.md) ---------------------------------------------------------
  * The CACAO estimator classifies tiles of 8x8 slice texels (16x16 pixels native, 32x32
@@ -392,24 +422,25 @@ typedef struct cacao_tile_counts {
  * around it (our writes before the copy; the copy before the caller's later host or transfer
  * reads, which the caller orders as usual). CACAO_ERROR_INVALID_ARGUMENT for the GTAO/BITMASK
  * estimators, which have no tiles. */
-cacao_result cacao_record_tile_counts(cacao_context *context, VkCommandBuffer command_buffer, VkBuffer dst,
-                                      VkDeviceSize offset);
+CACAO_API cacao_result cacao_record_tile_counts(cacao_context *context, VkCommandBuffer command_buffer, VkBuffer dst,
+                                                VkDeviceSize offset);
 
 /* Decodes the bytes such a copy wrote. */
-cacao_result cacao_tile_counts_decode(const cacao_context *context, const void *bytes, cacao_tile_counts *out);
+CACAO_API cacao_result cacao_tile_counts_decode(const cacao_context *context, const void *bytes,
+                                                cacao_tile_counts *out);
 
 /* For tools and tests: the handle of one of the context's intermediates (image or buffer, the
  * other is set to VK_NULL_HANDLE), to copy it out after cacao_record. Images are in GENERAL
  * layout and were last written by the compute stage; treat them as read-only. Returns
  * CACAO_ERROR_INVALID_ARGUMENT when the current plan has no such resource. */
-cacao_result cacao_context_intermediate(const cacao_context *context, cacao_resource resource, VkImage *image,
-                                        VkBuffer *buffer);
+CACAO_API cacao_result cacao_context_intermediate(const cacao_context *context, cacao_resource resource, VkImage *image,
+                                                  VkBuffer *buffer);
 
 /* The precision that actually runs (FP32 when FP16 was asked but the device lacks it). */
-cacao_precision cacao_context_precision(const cacao_context *context);
+CACAO_API cacao_precision cacao_context_precision(const cacao_context *context);
 
 /* Number of permutations embedded in this build. */
-uint32_t cacao_embedded_permutation_count(void);
+CACAO_API uint32_t cacao_embedded_permutation_count(void);
 
 #ifdef __cplusplus
 }

@@ -238,17 +238,15 @@ static void print_resources(FILE *out, const cacao_plan_step *s, bool write) {
 
 void cacao_plan_print(const cacao_plan *p, FILE *out) {
     const int blur = p->settings.blur_pass_count == CACAO_BLUR_NONE ? 0 : p->settings.blur_pass_count;
-    static const char *const estimator_names[] = {"default", "cacao", "gtao", "bitmask"};
     fprintf(out, "plan: %ux%u, estimator %s, quality %s, %s, blur %d, %s, normals %s\n", p->width, p->height,
-            estimator_names[p->settings.estimator], cacaoi_quality_names[cacaoi_key_quality(p->settings.quality)],
-            p->settings.downsample ? "downsampled" : "native", blur,
-            p->settings.precision == CACAO_PRECISION_FP16 ? "fp16" : "fp32",
+            cacao_estimator_name(p->settings.estimator), cacao_quality_name(p->settings.quality),
+            p->settings.downsample ? "downsampled" : "native", blur, cacao_precision_name(p->settings.precision),
             p->settings.generate_normals ? "from depth" : "from input");
     if (p->settings.estimator != CACAO_ESTIMATOR_CACAO) {
         fprintf(out, "horizon slices: %d x %d steps per side = %d depth reads per pixel, %s visibility\n",
                 p->settings.horizon_slices, p->settings.horizon_steps,
                 2 * p->settings.horizon_slices * p->settings.horizon_steps,
-                p->settings.visibility == CACAO_VISIBILITY_BINARY ? "binary" : "falloff");
+                cacao_visibility_name(p->settings.visibility));
     } else {
         fprintf(out, "slices: %u of %ux%u", p->slice_count, p->slice_width, p->slice_height);
         if (p->uses_load_counter) fprintf(out, "; importance map %ux%u", p->importance_width, p->importance_height);

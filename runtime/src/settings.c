@@ -2,6 +2,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "internal.h"
 
@@ -30,6 +31,48 @@ const char *cacao_result_string(cacao_result result) {
     }
     return "unknown result";
 }
+
+/* ---- Names of the enum settings ------------------------------------------------------------ */
+
+/* One enum's names, indexed by value - 1, and the value its DEFAULT (0) stands for: the one place
+ * each default is written (cacao_settings_resolve fills it from here). */
+typedef struct enum_names {
+    const char *const *names;
+    int count;
+    int default_value;
+} enum_names;
+
+#define NAMES(words, default_value) {words, (int)(sizeof words / sizeof words[0]), default_value}
+static const enum_names quality_names = NAMES(cacaoi_quality_names, CACAO_QUALITY_HIGHEST);
+static const enum_names precision_names = NAMES(cacaoi_precision_names, CACAO_PRECISION_FP32);
+static const enum_names estimator_names = NAMES(cacaoi_estimator_names, CACAO_ESTIMATOR_CACAO);
+static const enum_names visibility_names = NAMES(cacaoi_visibility_names, CACAO_VISIBILITY_FALLOFF);
+
+static const char *name_of(const enum_names *e, int value) {
+    if (value == 0) value = e->default_value;
+    return value >= 1 && value <= e->count ? e->names[value - 1] : NULL;
+}
+
+/* The value name spells, or 0 (no name spells the DEFAULT). */
+static int value_of(const enum_names *e, const char *name) {
+    for (int i = 0; name && i < e->count; ++i)
+        if (strcmp(name, e->names[i]) == 0) return i + 1;
+    return 0;
+}
+
+/* cacao_<kind>_name and cacao_<kind>_from_name of one enum (cacao.h), over its names above. */
+#define ENUM_NAME_FUNCTIONS(kind, list)                                                                                \
+    const char *cacao_##kind##_name(cacao_##kind value) { return name_of(&list, (int)value); }                         \
+    cacao_result cacao_##kind##_from_name(const char *name, cacao_##kind *out) {                                       \
+        const int value = value_of(&list, name);                                                                       \
+        if (!value || !out) return CACAO_ERROR_INVALID_ARGUMENT;                                                       \
+        *out = (cacao_##kind)value;                                                                                    \
+        return CACAO_SUCCESS;                                                                                          \
+    }
+ENUM_NAME_FUNCTIONS(quality, quality_names)
+ENUM_NAME_FUNCTIONS(precision, precision_names)
+ENUM_NAME_FUNCTIONS(estimator, estimator_names)
+ENUM_NAME_FUNCTIONS(visibility, visibility_names)
 
 /* How a float field defaults and which values it accepts. */
 typedef struct float_rule {
@@ -91,12 +134,12 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
                         (double)s.fade_out_to, (double)fade_from);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
-    if (s.estimator == CACAO_ESTIMATOR_DEFAULT) s.estimator = CACAO_ESTIMATOR_CACAO;
+    if (s.estimator == CACAO_ESTIMATOR_DEFAULT) s.estimator = (cacao_estimator)estimator_names.default_value;
     if ((int)s.estimator < CACAO_ESTIMATOR_CACAO || (int)s.estimator > CACAO_ESTIMATOR_BITMASK) {
         cacaoi_set_error(error, error_size, "settings.estimator = %d is not a cacao_estimator", (int)in->estimator);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
-    if (s.visibility == CACAO_VISIBILITY_DEFAULT) s.visibility = CACAO_VISIBILITY_FALLOFF;
+    if (s.visibility == CACAO_VISIBILITY_DEFAULT) s.visibility = (cacao_visibility)visibility_names.default_value;
     if ((int)s.visibility < CACAO_VISIBILITY_FALLOFF || (int)s.visibility > CACAO_VISIBILITY_BINARY) {
         cacaoi_set_error(error, error_size, "settings.visibility = %d is not a cacao_visibility", (int)in->visibility);
         return CACAO_ERROR_INVALID_ARGUMENT;
@@ -104,9 +147,9 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
     const bool slice = s.estimator != CACAO_ESTIMATOR_CACAO;
     if (slice && s.downsample) {
         cacaoi_set_error(error, error_size,
-                        "settings.downsample: the %s estimator runs at full resolution only (use quality for a "
-                        "cheaper budget)",
-                        s.estimator == CACAO_ESTIMATOR_GTAO ? "gtao" : "bitmask");
+                         "settings.downsample: the %s estimator runs at full resolution only (use quality for a "
+                         "cheaper budget)",
+                         cacao_estimator_name(s.estimator));
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     if (s.horizon_slices < 0 || s.horizon_slices > CACAO_HORIZON_MAX_DIRECTIONS) {
@@ -127,12 +170,12 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
                         s.blur_pass_count, CACAO_BLUR_NONE);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
-    if (s.quality == CACAO_QUALITY_DEFAULT) s.quality = CACAO_QUALITY_HIGHEST;
+    if (s.quality == CACAO_QUALITY_DEFAULT) s.quality = (cacao_quality)quality_names.default_value;
     if ((int)s.quality < CACAO_QUALITY_LOWEST || (int)s.quality > CACAO_QUALITY_HIGHEST) {
         cacaoi_set_error(error, error_size, "settings.quality = %d is not a cacao_quality", (int)in->quality);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
-    if (s.precision == CACAO_PRECISION_DEFAULT) s.precision = CACAO_PRECISION_FP32;
+    if (s.precision == CACAO_PRECISION_DEFAULT) s.precision = (cacao_precision)precision_names.default_value;
     if (slice && s.precision == CACAO_PRECISION_FP16) s.precision = CACAO_PRECISION_FP32; /* documented */
     if (slice) {
         const unsigned q = cacaoi_key_quality(s.quality);

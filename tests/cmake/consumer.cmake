@@ -1,8 +1,10 @@
 # Engine integration, three ways, each building and running examples/headless.c (a real frame on
 # the first Vulkan device): MODE=subdir (add_subdirectory), MODE=package (cmake --install of this
 # build into a temporary prefix, then find_package), MODE=pkgconfig (pkg-config --cflags --libs
-# cacao with the same prefix). Inputs: MODE, SOURCE_DIR, BUILD_DIR, WORK, GENERATOR, C_FLAGS, and
-# RUN_ENV ("|"-separated VAR=value; the sanitizer build's preloads, see cacao_sanitizer_env).
+# cacao with the same prefix). The library is the kind the build makes: LIBRARY (libcacao.a, or
+# libcacao.so with -DBUILD_SHARED_LIBS=ON, which the subdir consumer then asks for too). Inputs:
+# MODE, SOURCE_DIR, BUILD_DIR, WORK, GENERATOR, C_FLAGS, LIBRARY, SHARED, and RUN_ENV
+# ("|"-separated VAR=value; the sanitizer build's preloads, see cacao_sanitizer_env).
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 function(run)
@@ -15,12 +17,12 @@ endfunction()
 set(flags "-DCMAKE_C_FLAGS=${C_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${C_FLAGS}")
 if(MODE STREQUAL "subdir")
   run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/consumer/subdir -B ${WORK}/build -G ${GENERATOR}
-      -DCACAO_SOURCE_DIR=${SOURCE_DIR} ${flags})
+      -DCACAO_SOURCE_DIR=${SOURCE_DIR} "-DBUILD_SHARED_LIBS=${SHARED}" ${flags})
   run(${CMAKE_COMMAND} --build ${WORK}/build)
   set(exe ${WORK}/build/headless)
 else()
   run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK}/prefix)
-  foreach(f include/cacao.h lib/libcacao.a lib/cmake/cacao/cacaoConfig.cmake lib/cmake/cacao/cacaoConfigVersion.cmake
+  foreach(f include/cacao.h lib/${LIBRARY} lib/cmake/cacao/cacaoConfig.cmake lib/cmake/cacao/cacaoConfigVersion.cmake
           lib/pkgconfig/cacao.pc bin/cacao bin/cacao-inspect)
     if(NOT EXISTS ${WORK}/prefix/${f})
       message(FATAL_ERROR "cmake --install did not install ${f}")
@@ -39,7 +41,8 @@ else()
     separate_arguments(pc_list UNIX_COMMAND "${pc_flags}")
     separate_arguments(extra UNIX_COMMAND "${C_FLAGS}")
     message("pkg-config --cflags --libs cacao: ${pc_flags}")
-    run(cc -std=c11 ${extra} ${SOURCE_DIR}/examples/headless.c ${pc_list} -lm -o ${WORK}/headless)
+    run(cc -std=c11 ${extra} ${SOURCE_DIR}/examples/headless.c ${pc_list} -lm -Wl,-rpath,${WORK}/prefix/lib
+        -o ${WORK}/headless)
     set(exe ${WORK}/headless)
   endif()
 endif()

@@ -3,7 +3,7 @@
 # entry includes them in order), and each object of the key-space library calls only functions
 # defined in objects of lower layers. Inputs: SHADERS (the folder), NM, OBJECTS (;-list of the
 # cacao_keys library's objects).
-set(layers "cacao_shared.h" "cacao_passes.h|cacao_passes.c" "cacao_keys.h|cacao_keys.c" "cacao_table.h"
+set(layers "cacao_shared.h|cacao_names.h|cacao_names.c" "cacao_passes.h|cacao_passes.c" "cacao_keys.h|cacao_keys.c" "cacao_table.h"
            "cacao_policy.h|cacao_policy.c")
 # The layer of each file: its index in the list above (one layer: a header and its source).
 set(index 0)

@@ -23,7 +23,6 @@
 #include "vkdev.h"
 
 const char *const bench_truth_names[BENCH_TRUTHS] = {"ao_gt_falloff", "ao_gt"};
-static const char *const quality_words[] = {"lowest", "low", "medium", "high", "highest"};
 
 /* Prints one line "cacao-bench: ..." to stderr; returns false. */
 static bool fail(const char *fmt, ...) {
@@ -196,11 +195,10 @@ static uint32_t full_sweep(bench_config *out) {
                                             .reconstruct_normals = gen};
                         char blur_part[16] = "";
                         if (b != 2) snprintf(blur_part, sizeof blur_part, "_blur%d", b);
-                        snprintf(c->name, sizeof c->name, "%s_%s%s%s%s", quality_words[q],
+                        snprintf(c->name, sizeof c->name, "%s_%s%s%s%s", cacao_quality_name(c->quality),
                                  ds ? "downsampled" : "native", blur_part, fp16 ? "_fp16" : "",
                                  gen ? "_gennormals" : "");
                     }
-    static const char *const estimator_words[] = {"gtao", "bitmask"};
     for (int e = 0; e < 2; ++e)
         for (int q = 0; q < 5; ++q)
             for (int gen = 0; gen < 2; ++gen)
@@ -214,8 +212,8 @@ static uint32_t full_sweep(bench_config *out) {
                                         .reconstruct_normals = gen};
                     char blur_part[16] = "";
                     if (b != 1) snprintf(blur_part, sizeof blur_part, "_blur%d", b);
-                    snprintf(c->name, sizeof c->name, "%s_%s_native%s%s", estimator_words[e], quality_words[q],
-                             blur_part, gen ? "_gennormals" : "");
+                    snprintf(c->name, sizeof c->name, "%s_%s_native%s%s", cacao_estimator_name(c->estimator),
+                             cacao_quality_name(c->quality), blur_part, gen ? "_gennormals" : "");
                 }
     return n;
 }

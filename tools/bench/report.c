@@ -26,11 +26,6 @@ int bench_plot_truth(const bench_scene *scene) {
     return -1;
 }
 
-static const char *quality_name(cacao_quality q) {
-    static const char *const names[] = {"?", "lowest", "low", "medium", "high", "highest"};
-    return (int)q >= 0 && (int)q <= 5 ? names[q] : "?";
-}
-
 /* ---- Table ------------------------------------------------------------------------------------ */
 
 static void print_error_cells(FILE *out, const bench_result *r, int t) {
@@ -195,7 +190,7 @@ static cJSON *run_json(const bench_run *run) {
         const bench_config *c = &run->configs[i];
         cJSON *o = cJSON_CreateObject();
         cJSON_AddStringToObject(o, "name", c->name);
-        cJSON_AddStringToObject(o, "quality", quality_name(c->quality));
+        cJSON_AddStringToObject(o, "quality", cacao_quality_name(c->quality));
         cJSON_AddStringToObject(o, "resolution", c->downsample ? "downsampled" : "native");
         cJSON_AddNumberToObject(o, "blur", c->blur);
         cJSON_AddStringToObject(o, "precision", c->fp16 ? "fp16" : "fp32");
@@ -304,9 +299,9 @@ static void append_row(text_buffer *b, const bench_run *run, const bench_result 
     const cacao_timings *t = &r->timings;
     append_field(b, s->name);
     append_field(b, c->name);
-    append(b, "%s,%s,%d,%s,%s,%u,%u,", quality_name(c->quality), c->downsample ? "downsampled" : "native", c->blur,
-           c->fp16 ? "fp16" : "fp32", c->reconstruct_normals ? "reconstructed" : "as given", s->inputs.depth.width,
-           s->inputs.depth.height);
+    append(b, "%s,%s,%d,%s,%s,%u,%u,", cacao_quality_name(c->quality), c->downsample ? "downsampled" : "native",
+           c->blur, c->fp16 ? "fp16" : "fp32", c->reconstruct_normals ? "reconstructed" : "as given",
+           s->inputs.depth.width, s->inputs.depth.height);
     append_field(b, run->device);
     append_field(b, run->driver);
     append(b, "%u,%u,%.6f,%.6f,%.6f,", t->warmup, t->repeat, t->total.median_ms, t->total.min_ms, t->total.max_ms);

@@ -40,15 +40,15 @@ typedef struct flag_def {
     const char *help;
     size_t offset2; /* SET_FLOAT_PAIR: the second field */
     const char *json2;
-    const char *const *names; /* SET_ENUM: names by enum value (index 0 = the runtime's default, unnamed) */
-    int name_count;
+    const char *(*name_of)(int value); /* SET_ENUM: the runtime's name of a value; NULL past the last */
     int int_max; /* SET_INT: largest value */
 } flag_def;
 
-static const char *const quality_names[] = {NULL, "lowest", "low", "medium", "high", "highest"};
-static const char *const precision_names[] = {NULL, "fp32", "fp16"};
-static const char *const estimator_names[] = {NULL, "cacao", "gtao", "bitmask"};
-static const char *const visibility_names[] = {NULL, "falloff", "binary"};
+/* cacao.h's names of the enum settings, for the int the table stores. */
+static const char *quality_name(int value) { return cacao_quality_name((cacao_quality)value); }
+static const char *precision_name(int value) { return cacao_precision_name((cacao_precision)value); }
+static const char *estimator_name(int value) { return cacao_estimator_name((cacao_estimator)value); }
+static const char *visibility_name(int value) { return cacao_visibility_name((cacao_visibility)value); }
 
 #define SECTION(title)                                                                                                 \
     { .name = title, .kind = FLAG_SECTION }
@@ -109,8 +109,7 @@ static const flag_def flags[] = {
      .offset = offsetof(cacao_settings, quality),
      .json = "quality",
      .help = "lowest, low, medium, high or highest",
-     .names = quality_names,
-     .name_count = 6},
+     .name_of = quality_name},
     SET("--downsample", NULL, SET_BOOL, downsample, "compute AO at quarter resolution, bilateral upsample"),
     SET("--blur", "N", SET_BLUR, blur_pass_count, "edge-aware blur passes, 0 (none) to 8"),
     SET("--radius", "R", SET_FLOAT, radius, "world-space AO radius; a camera's ao_radius_world replaces the default"),
@@ -138,8 +137,7 @@ static const flag_def flags[] = {
      .offset = offsetof(cacao_settings, precision),
      .json = "precision",
      .help = "fp32 or fp16 (fp16 falls back to fp32 where the device lacks it)",
-     .names = precision_names,
-     .name_count = 3},
+     .name_of = precision_name},
     SET("--no-normals", NULL, SET_BOOL, generate_normals,
         "reconstruct normals from depth even when normals are given (automatic without normals)"),
     SET("--all-tiles", NULL, SET_BOOL, compute_all_tiles,
@@ -153,8 +151,7 @@ static const flag_def flags[] = {
      .json = "estimator",
      .help = "cacao (AMD CACAO's look), gtao or bitmask (horizon-slice estimators of ray-traced visibility, full "
              "resolution; --quality picks their budget, --blur their denoise passes)",
-     .names = estimator_names,
-     .name_count = 4},
+     .name_of = estimator_name},
     {.name = "--visibility",
      .value = "V",
      .kind = SET_ENUM,
@@ -162,8 +159,7 @@ static const flag_def flags[] = {
      .json = "visibility",
      .help = "gtao/bitmask: falloff (occluders weighted 1 - t^2/R^2 by hit distance t) or binary (occluded "
              "within R)",
-     .names = visibility_names,
-     .name_count = 3},
+     .name_of = visibility_name},
     OPT("--frame", NULL, "N", FLAG_COUNT0, frame_index,
         "gtao/bitmask: frame index of the sample pattern (temporal accumulation; 0 = deterministic)"),
     SET("--thickness", "T", SET_FLOAT, thickness,
@@ -267,14 +263,15 @@ static bool store_int(const flag_def *def, double literal, cacao_settings *s, co
 
 static bool store_enum(const flag_def *def, const char *name, cacao_settings *s, const char *label, char *err,
                        size_t n) {
-    for (int i = 1; i < def->name_count; ++i)
-        if (strcmp(name, def->names[i]) == 0) {
+    for (int i = 1; def->name_of(i); ++i)
+        if (strcmp(name, def->name_of(i)) == 0) {
             *int_field(s, def->offset) = i;
             return true;
         }
     char choices[128] = "";
-    for (int i = 1; i < def->name_count; ++i)
-        snprintf(choices + strlen(choices), sizeof choices - strlen(choices), "%s%s", i > 1 ? ", " : "", def->names[i]);
+    for (int i = 1; def->name_of(i); ++i)
+        snprintf(choices + strlen(choices), sizeof choices - strlen(choices), "%s%s", i > 1 ? ", " : "",
+                 def->name_of(i));
     cacao_set_err(err, n, "%s: unknown value '%s' (one of %s)", label, name, choices);
     return false;
 }
@@ -569,8 +566,8 @@ cJSON *cli_settings_to_json(const cacao_settings *resolved) {
             cJSON_AddNumberToObject(root, def->json, s.blur_pass_count == CACAO_BLUR_NONE ? 0 : s.blur_pass_count);
             break;
         case SET_ENUM: {
-            const int v = *int_field(&s, def->offset);
-            cJSON_AddStringToObject(root, def->json, v > 0 && v < def->name_count ? def->names[v] : "?");
+            const char *name = def->name_of(*int_field(&s, def->offset));
+            cJSON_AddStringToObject(root, def->json, name ? name : "?");
             break;
         }
         case SET_BOOL:
@@ -615,7 +612,7 @@ static void default_text(const flag_def *def, const cacao_settings *d, char *tex
         snprintf(text, size, "%d", s.blur_pass_count);
         break;
     case SET_ENUM:
-        snprintf(text, size, "%s", def->names[*int_field(&s, def->offset)]);
+        snprintf(text, size, "%s", def->name_of(*int_field(&s, def->offset)));
         break;
     case SET_INT:
         snprintf(text, size, "%d", *int_field(&s, def->offset));

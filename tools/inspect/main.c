@@ -39,10 +39,10 @@ static int fail(const char *fmt, const char *arg) {
     return 1;
 }
 
+/* Key quality (0-based) of a quality name, or -1. */
 static int quality_from_word(const char *w) {
-    for (int q = 0; q < CACAO_KEY_QUALITY_COUNT; ++q)
-        if (strcmp(w, cacaoi_quality_names[q]) == 0) return q;
-    return -1;
+    cacao_quality q;
+    return cacao_quality_from_name(w, &q) == CACAO_SUCCESS ? (int)cacaoi_key_quality(q) : -1;
 }
 
 /* Keys that share a module with permutation i, as "name, name". */
@@ -433,7 +433,8 @@ static int cmd_verify(void) {
                         for (uint32_t i = 0; i < plan.step_count; ++i) {
                             const cacao_key key = cacaoi_plan_step_key(&plan.steps[i]);
                             if (!cacaoi_table_find(table, &key)) {
-                                fprintf(stderr, "missing: %s (quality %s)\n", plan.steps[i].key_name, cacaoi_quality_names[q]);
+                                fprintf(stderr, "missing: %s (quality %s)\n", plan.steps[i].key_name,
+                                        cacao_quality_name(s.quality));
                                 ++missing;
                             }
                         }
