@@ -9,6 +9,7 @@
  *                                                             the device, with its tiles and the work
  *                                                             each step skipped (also --depth/--camera)
  *   cacao-inspect stats                                       counts, dedup, bytes per pass
+ *   cacao-inspect facts                                       the counts and limits the docs state, as JSON
  *   cacao-inspect verify                                      re-validate modules, check plan keys are embedded
  *
  * Everything comes from the embedded table (generated/), reflection of the modules (SPIRV-Cross)
@@ -362,25 +363,66 @@ static int cmd_plan(int argc, char **argv) {
     return missing ? 1 : 0;
 }
 
-static int cmd_stats(void) {
-    uint64_t total = 0, per_pass[CACAO_PASS_COUNT] = {0};
-    uint32_t count[CACAO_PASS_COUNT] = {0};
+/* Keys and SPIR-V bytes per pass of the embedded table, each module counted once. */
+typedef struct table_totals {
+    uint32_t keys[CACAO_PASS_COUNT];
+    uint64_t bytes[CACAO_PASS_COUNT], total_bytes;
+} table_totals;
+
+static void count_table(table_totals *t) {
+    memset(t, 0, sizeof *t);
     bool counted[1024] = {false};
     for (uint32_t i = 0; i < table->permutation_count; ++i) {
         const cacao_permutation *p = &table->permutations[i];
-        count[p->key.pass]++;
+        t->keys[p->key.pass]++;
         if (p->module < 1024 && !counted[p->module]) {
             counted[p->module] = true;
-            per_pass[p->key.pass] += table->modules[p->module].word_count * 4u;
-            total += table->modules[p->module].word_count * 4u;
+            t->bytes[p->key.pass] += table->modules[p->module].word_count * 4u;
+            t->total_bytes += table->modules[p->module].word_count * 4u;
         }
     }
+}
+
+static int cmd_stats(void) {
+    table_totals t;
+    count_table(&t);
     printf("subset: %s\ncompilers: %s, %s\n", table->subset, table->glslang_version, table->spirv_tools_version);
     printf("permutations: %u before dedup, %u unique modules after (%u removed)\n", table->permutation_count,
            table->module_count, table->permutation_count - table->module_count);
-    printf("embedded SPIR-V: %llu bytes\n%-16s %6s %10s\n", (unsigned long long)total, "pass", "keys", "bytes");
+    printf("embedded SPIR-V: %llu bytes\n%-16s %6s %10s\n", (unsigned long long)t.total_bytes, "pass", "keys", "bytes");
     for (unsigned p = 0; p < CACAO_PASS_COUNT; ++p)
-        if (count[p]) printf("%-16s %6u %10llu\n", cacaoi_pass_name(p), count[p], (unsigned long long)per_pass[p]);
+        if (t.keys[p]) printf("%-16s %6u %10llu\n", cacaoi_pass_name(p), t.keys[p], (unsigned long long)t.bytes[p]);
+    return 0;
+}
+
+/* The counts and limits the documentation states, as JSON (tools/refresh-docs.py writes them into
+ * README.md and docs/): the embedded table, the rows of the pass table, the API's limits. Keys and
+ * bytes per pass or key: `list --json`. */
+static int cmd_facts(void) {
+    table_totals t;
+    count_table(&t);
+    unsigned caller_resources = 0;
+    for (unsigned r = 0; r < CACAO_RES_COUNT; ++r) caller_resources += cacaoi_resources[r].size == CACAOI_SIZE_CALLER;
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "subset", table->subset);
+    cJSON_AddNumberToObject(o, "key_space", (double)cacaoi_key_list(NULL, 0));
+    cJSON_AddNumberToObject(o, "permutations", table->permutation_count);
+    cJSON_AddNumberToObject(o, "modules", table->module_count);
+    cJSON_AddNumberToObject(o, "duplicates_removed", table->permutation_count - table->module_count);
+    cJSON_AddNumberToObject(o, "spirv_bytes", (double)t.total_bytes);
+    cJSON_AddNumberToObject(o, "passes", CACAO_PASS_COUNT);
+    cJSON_AddNumberToObject(o, "resources", CACAO_RES_COUNT);
+    cJSON_AddNumberToObject(o, "caller_resources", caller_resources);
+    cJSON_AddNumberToObject(o, "binding_slots", CACAO_BINDING_COUNT);
+    cJSON_AddNumberToObject(o, "max_size", CACAO_MAX_SIZE);
+    cJSON_AddNumberToObject(o, "tile_texels", CACAO_TILE);
+    cJSON *blur = cJSON_AddArrayToObject(o, "blur_group_texels"); /* output of a group, fewest passes */
+    cJSON_AddItemToArray(blur, cJSON_CreateNumber(CACAO_BLUR_OUT_X(1)));
+    cJSON_AddItemToArray(blur, cJSON_CreateNumber(CACAO_BLUR_OUT_Y(1)));
+    char *text = cJSON_Print(o);
+    printf("%s\n", text);
+    free(text);
+    cJSON_Delete(o);
     return 0;
 }
 
@@ -452,6 +494,7 @@ static void usage(FILE *out) {
                  "       cacao-inspect plan --scene DIR | --depth FILE --camera FILE [settings flags]\n"
                  "                          (runs one frame on --device, default lavapipe: tiles and skipped work)\n"
                  "       cacao-inspect stats\n"
+                 "       cacao-inspect facts   (the counts and limits the docs state, as JSON)\n"
                  "       cacao-inspect verify\n");
 }
 
@@ -465,6 +508,7 @@ int main(int argc, char **argv) {
     if (strcmp(cmd, "show") == 0) return cmd_show(argc - 2, argv + 2);
     if (strcmp(cmd, "plan") == 0) return cmd_plan(argc - 2, argv + 2);
     if (strcmp(cmd, "stats") == 0 && argc == 2) return cmd_stats();
+    if (strcmp(cmd, "facts") == 0 && argc == 2) return cmd_facts();
     if (strcmp(cmd, "verify") == 0 && argc == 2) return cmd_verify();
     usage(stderr);
     return fail("unknown command '%s'", cmd);
