@@ -287,6 +287,10 @@ typedef struct cacao_context_desc {
                                                        with it: a power of two in the device's
                                                        VK_EXT_subgroup_size_control range, with
                                                        subgroupSizeControl enabled on the device */
+    VkPipelineCreateFlags pipeline_create_flags;    /* optional: added to every compute pipeline's
+                                                       flags, e.g. CAPTURE_STATISTICS_BIT_KHR (with
+                                                       pipelineExecutableInfo enabled) for tools that
+                                                       read a compiler's statistics */
 } cacao_context_desc;
 
 /* Creates a context. Creates no pipelines and allocates no images yet. */

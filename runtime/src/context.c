@@ -127,6 +127,7 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
     ctx->alloc = desc->allocation_callbacks;
     ctx->pipeline_cache = desc->pipeline_cache;
     ctx->required_subgroup_size = desc->required_subgroup_size;
+    ctx->pipeline_create_flags = desc->pipeline_create_flags;
 
     ctx->push_descriptor = (PFN_vkCmdPushDescriptorSetKHR)vkGetDeviceProcAddr(ctx->device, "vkCmdPushDescriptorSetKHR");
     cacao_result r = CACAO_SUCCESS;
@@ -361,6 +362,7 @@ static cacao_result create_pipeline(cacao_context *ctx, uint32_t index) {
         .requiredSubgroupSize = ctx->required_subgroup_size};
     const VkComputePipelineCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .flags = ctx->pipeline_create_flags,
         .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
                   .pNext = ctx->required_subgroup_size ? &subgroup : NULL,
                   .stage = VK_SHADER_STAGE_COMPUTE_BIT,
