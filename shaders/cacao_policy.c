@@ -19,6 +19,14 @@ const cacaoi_quality_row cacaoi_qualities[CACAO_KEY_QUALITY_COUNT] = {
                                    1.0f, 1.0f, 4, 8},
 };
 
+unsigned cacaoi_form_pass(unsigned pass, bool gpu_forms) {
+    if (!gpu_forms) return pass;
+    return pass == CACAO_PASS_BLUR       ? CACAO_PASS_BLUR_GPU
+           : pass == CACAO_PASS_APPLY    ? CACAO_PASS_APPLY_GPU
+           : pass == CACAO_PASS_UPSAMPLE ? CACAO_PASS_UPSAMPLE_GPU
+                                         : pass;
+}
+
 size_t cacaoi_step_bindings(const cacaoi_step *step, cacaoi_pass_binding out[CACAO_PLAN_MAX_BINDINGS]) {
     const size_t n = cacaoi_variant_bindings(step->key.pass, step->key.variant, out);
     for (size_t i = 0; i < n && i < CACAO_PLAN_MAX_BINDINGS; ++i)
@@ -97,9 +105,9 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     if (c->blur_passes > 0) {
         cacaoi_step *f = push(out, &n, CACAO_PASS_FILL, 0, 0, 0, 0);
         rebind(f, CACAO_BINDING_SSAO_IMAGE, CACAO_RES_SSAO_PONG);
-        push(out, &n, CACAO_PASS_BLUR, 0, 0, c->blur_passes, fp);
+        push(out, &n, cacaoi_form_pass(CACAO_PASS_BLUR, c->gpu_forms), 0, 0, c->blur_passes, fp);
     }
-    cacaoi_step *s = push(out, &n, c->downsampled ? CACAO_PASS_UPSAMPLE : CACAO_PASS_APPLY,
+    cacaoi_step *s = push(out, &n, cacaoi_form_pass(c->downsampled ? CACAO_PASS_UPSAMPLE : CACAO_PASS_APPLY, c->gpu_forms),
                           c->downsampled ? cacaoi_qualities[c->quality].output_downsampled : cacaoi_qualities[c->quality].output_native, 0, 0, fp);
     if (c->blur_passes > 0) rebind(s, CACAO_BINDING_SSAO, CACAO_RES_SSAO_PONG);
     return n;
@@ -127,13 +135,14 @@ bool cacaoi_key_in_subset(const cacao_key *key, const cacao_key_subset *subset) 
                 if (!(subset->precision_mask & (1u << fp))) continue;
                 for (unsigned ni = 0; ni < 2; ++ni)
                     for (unsigned blur = 0; blur <= CACAO_KEY_MAX_BLUR_PASSES; ++blur)
-                        for (unsigned est = 0; est < CACAO_KEY_ESTIMATOR_COUNT; ++est) {
-                            cacao_key_config c = {q, ds != 0, fp != 0, ni != 0, blur, est};
-                            cacao_key keys[CACAO_KEY_CONFIG_MAX];
-                            size_t n = cacaoi_keys_for_config(&c, keys);
-                            for (size_t i = 0; i < n; ++i)
-                                if (cacaoi_key_compare(&keys[i], key) == 0) return true;
-                        }
+                        for (unsigned est = 0; est < CACAO_KEY_ESTIMATOR_COUNT; ++est)
+                            for (unsigned gpu = 0; gpu < 2; ++gpu) { /* both forms: the device decides */
+                                cacao_key_config c = {q, ds != 0, fp != 0, ni != 0, blur, est, gpu != 0};
+                                cacao_key keys[CACAO_KEY_CONFIG_MAX];
+                                size_t n = cacaoi_keys_for_config(&c, keys);
+                                for (size_t i = 0; i < n; ++i)
+                                    if (cacaoi_key_compare(&keys[i], key) == 0) return true;
+                            }
             }
         }
     }

@@ -32,7 +32,12 @@
 /* Prepare with normals from depth: the depths (CACAO_DEPTHS_* variants) and the normals in one
  * pass; PREPARE_DEPTHS and PREPARE_NORMALS run instead where the caller gives normals. */
 #define CACAO_PASS_PREPARE 14
-#define CACAO_PASS_COUNT 15
+/* The GPU forms (cacao_shader_forms) of the blur, apply and upsample: the same arithmetic and
+ * output, shaped for a GPU (shared memory and few texels per invocation, the hardware sampler). */
+#define CACAO_PASS_BLUR_GPU 15
+#define CACAO_PASS_APPLY_GPU 16
+#define CACAO_PASS_UPSAMPLE_GPU 17
+#define CACAO_PASS_COUNT 18
 
 /* Depth-prepare variants (spec: prepare.md). HALF = slices 0 and 3 only (LOWEST), FULL = four
  * slices, MIPS = four slices plus mips 1..3 (HIGH and HIGHEST; MEDIUM never reads mips). */
@@ -151,6 +156,11 @@
 /* Output texels of a blur group of n passes: all its blocks, or its padded tile less n each side. */
 #define CACAO_BLUR_OUT_X(n) (CACAO_WG_BLUR_X * CACAO_BLUR_BLOCK_X - ((n) <= CACAO_BLUR_REGISTER_PASSES ? 0 : 2 * (n)))
 #define CACAO_BLUR_OUT_Y(n) (CACAO_WG_BLUR_Y * CACAO_BLUR_BLOCK_Y - ((n) <= CACAO_BLUR_REGISTER_PASSES ? 0 : 2 * (n)))
+/* The GPU form: 16x16 threads of 2x2 texels, a 32x32 padded tile in shared memory for every n. */
+#define CACAO_WG_BLUR_GPU_X 16
+#define CACAO_WG_BLUR_GPU_Y 16
+#define CACAO_BLUR_GPU_BLOCK 2
+#define CACAO_BLUR_GPU_OUT(n) (CACAO_WG_BLUR_GPU_X * CACAO_BLUR_GPU_BLOCK - 2 * (n))
 #define CACAO_WG_APPLY_X 8
 #define CACAO_WG_APPLY_Y 8
 #define CACAO_WG_UPSAMPLE_X 8
@@ -158,6 +168,10 @@
 #define CACAO_UPSAMPLE_BLOCK 2           /* each upsample thread filters BxB half-res positions */
 #define CACAO_UPSAMPLE_SPAN_X (CACAO_WG_UPSAMPLE_X * CACAO_UPSAMPLE_BLOCK) /* half-res per group */
 #define CACAO_UPSAMPLE_SPAN_Y (CACAO_WG_UPSAMPLE_Y * CACAO_UPSAMPLE_BLOCK)
+/* The GPU form: one half-res position per thread, the same span per group. */
+#define CACAO_WG_UPSAMPLE_GPU_X 16
+#define CACAO_WG_UPSAMPLE_GPU_Y 16
+#define CACAO_UPSAMPLE_GPU_BLOCK 1
 #define CACAO_WG_HORIZON_X 8               /* slice prepare, main and denoise: one pixel per thread */
 #define CACAO_WG_HORIZON_Y 8
 

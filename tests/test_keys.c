@@ -8,14 +8,16 @@
 #include "cacao_policy.h"
 #include "test_util.h"
 
+#define MAX_KEYS 128
+
 static void test_names_round_trip(void) {
-    cacao_key keys[64];
-    size_t n = cacaoi_key_list(keys, 64);
+    cacao_key keys[MAX_KEYS];
+    size_t n = cacaoi_key_list(keys, MAX_KEYS);
     /* 6 prepare_depths + 2 prepare_normals (from the input) + 5 generate + 2 importance (A, B: the
      * map itself comes from generate.q3base) + 16 blur + 6 apply + 6 upsample + 2 horizon_prepare
      * + 4 horizon_main + 2 horizon_denoise + classify + compact + fill + 6 prepare (depths and normals
-     * from depth) */
-    CHECK(n == 60);
+     * from depth) + the GPU forms: 16 blur_gpu + 6 apply_gpu + 6 upsample_gpu */
+    CHECK(n == 88 && n <= MAX_KEYS);
     for (size_t i = 0; i < n; ++i) {
         char name[CACAO_KEY_NAME_MAX];
         CHECK(cacaoi_key_is_valid(&keys[i]));
@@ -76,9 +78,14 @@ static void test_subset(void) {
                               "blur.7.fp32", "blur.8.fp32", "apply.smart.fp32", "horizon_prepare.depth",
                               "horizon_prepare.input", "horizon_main.gtao", "horizon_main.bitmask",
                               "horizon_main.gtao_direct", "horizon_main.bitmask_direct",
-                              "horizon_denoise.intermediate", "horizon_denoise.final", "classify", "compact", "fill"};
-    cacao_key keys[64];
-    size_t n = cacaoi_key_list(keys, 64), kept = 0;
+                              "horizon_denoise.intermediate", "horizon_denoise.final", "classify", "compact", "fill",
+                              /* the GPU forms: a build embeds both, the device chooses */
+                              "blur_gpu.1.fp32", "blur_gpu.2.fp32", "blur_gpu.3.fp32", "blur_gpu.4.fp32",
+                              "blur_gpu.5.fp32", "blur_gpu.6.fp32", "blur_gpu.7.fp32", "blur_gpu.8.fp32",
+                              "apply_gpu.smart.fp32"};
+    cacao_key keys[MAX_KEYS];
+    size_t n = cacaoi_key_list(keys, MAX_KEYS), kept = 0;
+    CHECK(n <= MAX_KEYS);
     for (size_t i = 0; i < n; ++i) {
         char name[CACAO_KEY_NAME_MAX];
         cacaoi_key_name(&keys[i], name, sizeof name);

@@ -32,7 +32,7 @@ int main(void) {
     open_device(&dev);
     cacao_context *ctx = NULL;
     CHECK(vkdev_context_create(&dev, &ctx) == CACAO_SUCCESS);
-    CHECK(cacao_embedded_permutation_count() == 27); /* 16 CACAO keys, the 8 of the horizon-slice estimators, 3 tile passes */
+    CHECK(cacao_embedded_permutation_count() == 36); /* 16 CACAO keys, the 8 of the horizon estimators, 3 tile passes, 9 GPU forms */
     expect_missing(&dev, ctx, &(cacao_settings){.quality = CACAO_QUALITY_HIGHEST}, "generate.q3base");
     expect_missing(&dev, ctx, &(cacao_settings){.quality = CACAO_QUALITY_LOW}, "generate.q0");
     expect_missing(&dev, ctx, &(cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true},

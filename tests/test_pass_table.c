@@ -224,8 +224,10 @@ static void test_every_configuration(void) {
             for (int ds = 0; ds < 2; ++ds)
                 for (int fp = CACAO_PRECISION_FP32; fp <= CACAO_PRECISION_FP16; ++fp)
                     for (int gen = 0; gen < 2; ++gen)
-                        for (int blur = 0; blur <= 8; ++blur) {
+                        for (int blur = 0; blur <= 8; ++blur)
+                        for (int forms = CACAO_SHADER_FORMS_CPU; forms <= CACAO_SHADER_FORMS_GPU; ++forms) {
                             const cacao_settings s = {.estimator = (cacao_estimator)est,
+                                                      .shader_forms = (cacao_shader_forms)forms,
                                                       .quality = (cacao_quality)q,
                                                       .downsample = ds != 0,
                                                       .precision = (cacao_precision)fp,
@@ -233,9 +235,10 @@ static void test_every_configuration(void) {
                                                       .blur_pass_count = blur ? blur : CACAO_BLUR_NONE};
                             check_config(&s);
                         }
-    /* 5 qualities x 2 x 2 x 2 x 9 for CACAO, the same less downsampling for each slice estimator */
+    /* 5 qualities x 2 x 2 x 2 x 9 for CACAO, the same less downsampling for each horizon
+     * estimator; each with the CPU and the GPU shader forms */
     printf("%u configurations checked\n", configs_checked);
-    CHECK(configs_checked == 360 + 2 * 180);
+    CHECK(configs_checked == 1440); /* 2 x (360 + 2 x 180) */
 }
 
 int main(void) {

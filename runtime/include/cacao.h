@@ -108,9 +108,22 @@ typedef enum cacao_visibility {
     CACAO_VISIBILITY_BINARY,      /* occluders within R count fully, beyond R not at all */
 } cacao_visibility;
 
+/* The shapes of the blur, apply and upsample shaders (the arithmetic, and so the output, is the
+ * same: bit for bit on lavapipe in fp32). A CPU rasterizer runs large blocks of texels per
+ * invocation in registers fastest; a GPU spills such blocks to memory and wants shared memory, one
+ * or a few texels per invocation and its hardware sampler. */
+typedef enum cacao_shader_forms {
+    CACAO_SHADER_FORMS_DEFAULT = 0, /* a context picks by its device: CPU on a CPU device (lavapipe),
+                                       GPU on every other (cacao_context_desc.shader_forms overrides);
+                                       cacao_plan_build without a context: CPU */
+    CACAO_SHADER_FORMS_CPU,
+    CACAO_SHADER_FORMS_GPU,
+} cacao_shader_forms;
+
 /* Names of the values above, as the cacao command, its settings JSON and the tools spell them:
  * quality "lowest", "low", "medium", "high", "highest"; precision "fp32", "fp16"; estimator
- * "cacao", "gtao", "bitmask"; visibility "falloff", "binary". A DEFAULT (0) gives the name of the
+ * "cacao", "gtao", "bitmask"; visibility "falloff", "binary"; shader forms "cpu", "gpu". A DEFAULT
+ * (0) gives the name of the
  * value it stands for (cacao_quality_name(CACAO_QUALITY_DEFAULT) is "highest"); a value outside
  * the enum gives NULL, so the choices are listed by
  *     for (cacao_quality q = CACAO_QUALITY_LOWEST; cacao_quality_name(q); ++q) ...
@@ -119,6 +132,7 @@ CACAO_API const char *cacao_quality_name(cacao_quality quality);
 CACAO_API const char *cacao_precision_name(cacao_precision precision);
 CACAO_API const char *cacao_estimator_name(cacao_estimator estimator);
 CACAO_API const char *cacao_visibility_name(cacao_visibility visibility);
+CACAO_API const char *cacao_shader_forms_name(cacao_shader_forms forms);
 
 /* The reverse: the value a name above spells, exactly (case matters); never a DEFAULT. A name
  * that is none of them, or NULL, gives CACAO_ERROR_INVALID_ARGUMENT and leaves *out unchanged. */
@@ -126,6 +140,7 @@ CACAO_API cacao_result cacao_quality_from_name(const char *name, cacao_quality *
 CACAO_API cacao_result cacao_precision_from_name(const char *name, cacao_precision *out);
 CACAO_API cacao_result cacao_estimator_from_name(const char *name, cacao_estimator *out);
 CACAO_API cacao_result cacao_visibility_from_name(const char *name, cacao_visibility *out);
+CACAO_API cacao_result cacao_shader_forms_from_name(const char *name, cacao_shader_forms *out);
 
 /* Asks for an explicit 0 in a float field whose 0 would otherwise mean "default". */
 #define CACAO_ZERO (-1.0f)
@@ -166,6 +181,7 @@ typedef struct cacao_settings {
     bool compute_all_tiles;         /* CACAO: true computes every tile (no skipping of background and
                                        faded tiles: docs/tiles.md); the output is the same, only
                                        slower. For measurement and tests. */
+    cacao_shader_forms shader_forms; /* 0 = the context's choice (see cacao_shader_forms) */
 } cacao_settings;
 
 /* Fills every defaulted field of *in into *out and checks every field. An explicit zero keeps its
@@ -291,6 +307,9 @@ typedef struct cacao_context_desc {
                                                        flags, e.g. CAPTURE_STATISTICS_BIT_KHR (with
                                                        pipelineExecutableInfo enabled) for tools that
                                                        read a compiler's statistics */
+    cacao_shader_forms shader_forms;                /* DEFAULT: CPU forms on a CPU device, GPU forms
+                                                       on others; CPU or GPU: those on any device (the
+                                                       settings' own shader_forms, if set, wins) */
 } cacao_context_desc;
 
 /* Creates a context. Creates no pipelines and allocates no images yet. */

@@ -248,8 +248,11 @@ static void fill_tile_constants(const cacao_plan *plan, const projection_view *v
     c->blur_groups_x = (int)plan->blur_groups_x;
     c->blur_groups_y = (int)plan->blur_groups_y;
     const int blur = plan->settings.blur_pass_count == CACAO_BLUR_NONE ? 0 : plan->settings.blur_pass_count;
-    c->blur_out_x = CACAO_BLUR_OUT_X(blur);
-    c->blur_out_y = CACAO_BLUR_OUT_Y(blur);
+    uint32_t blur_out[2];
+    cacaoi_blur_out(cacaoi_form_pass(CACAO_PASS_BLUR, plan->settings.shader_forms == CACAO_SHADER_FORMS_GPU),
+                    (unsigned)blur, blur_out);
+    c->blur_out_x = (int)blur_out[0];
+    c->blur_out_y = (int)blur_out[1];
 }
 
 void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao_constants *c) {

@@ -128,10 +128,18 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
     ctx->pipeline_cache = desc->pipeline_cache;
     ctx->required_subgroup_size = desc->required_subgroup_size;
     ctx->pipeline_create_flags = desc->pipeline_create_flags;
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(ctx->physical_device, &props);
+    ctx->forms = desc->shader_forms != CACAO_SHADER_FORMS_DEFAULT ? desc->shader_forms
+                 : props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? CACAO_SHADER_FORMS_CPU
+                                                                   : CACAO_SHADER_FORMS_GPU;
 
     ctx->push_descriptor = (PFN_vkCmdPushDescriptorSetKHR)vkGetDeviceProcAddr(ctx->device, "vkCmdPushDescriptorSetKHR");
     cacao_result r = CACAO_SUCCESS;
-    if (!ctx->push_descriptor)
+    if ((int)desc->shader_forms < CACAO_SHADER_FORMS_DEFAULT || (int)desc->shader_forms > CACAO_SHADER_FORMS_GPU)
+        r = cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "context_desc.shader_forms = %d is not a cacao_shader_forms",
+                        (int)desc->shader_forms);
+    if (r == CACAO_SUCCESS && !ctx->push_descriptor)
         r = cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
                         "context_desc.device: VK_KHR_push_descriptor is not enabled on this device");
     VkPhysicalDeviceShaderFloat16Int8Features f16 = {
@@ -382,6 +390,7 @@ static cacao_result create_pipeline(cacao_context *ctx, uint32_t index) {
  * missing one leaves nothing behind. */
 static cacao_result plan_settings(cacao_context *ctx, uint32_t width, uint32_t height, cacao_plan *plan) {
     cacao_settings settings = ctx->settings;
+    if (settings.shader_forms == CACAO_SHADER_FORMS_DEFAULT) settings.shader_forms = ctx->forms;
     cacao_settings resolved;
     cacao_result r = cacao_settings_resolve(&settings, &resolved, ctx->last_error, sizeof ctx->last_error);
     if (r != CACAO_SUCCESS) return r;

@@ -57,6 +57,7 @@ cacao_key_config cacaoi_key_config_of(const cacao_settings *s) {
         .normals_from_input = !s->generate_normals,
         .blur_passes = s->blur_pass_count == CACAO_BLUR_NONE ? 0 : (unsigned)s->blur_pass_count,
         .estimator = (unsigned)s->estimator - 1u,
+        .gpu_forms = s->shader_forms == CACAO_SHADER_FORMS_GPU,
     };
 }
 
@@ -76,11 +77,14 @@ static void dispatch_size(const cacao_plan *p, const cacao_key *key, uint32_t ou
         out[0] = div_up(p->importance_width, wx);
         out[1] = div_up(p->importance_height, wy);
         return;
-    case CACAOI_GRID_BLUR:
-        out[0] = div_up(p->slice_width, CACAO_BLUR_OUT_X(key->blur_passes));
-        out[1] = div_up(p->slice_height, CACAO_BLUR_OUT_Y(key->blur_passes));
+    case CACAOI_GRID_BLUR: {
+        uint32_t blur_out[2];
+        cacaoi_blur_out(key->pass, key->blur_passes, blur_out);
+        out[0] = div_up(p->slice_width, blur_out[0]);
+        out[1] = div_up(p->slice_height, blur_out[1]);
         out[2] = p->slice_count;
         return;
+    }
     case CACAOI_GRID_UPSAMPLE:
         out[0] = div_up(p->width, 2 * CACAO_UPSAMPLE_SPAN_X);
         out[1] = div_up(p->height, 2 * CACAO_UPSAMPLE_SPAN_Y);
@@ -161,8 +165,10 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
         plan->tiles_x = div_up(plan->slice_width, CACAO_TILE);
         plan->tiles_y = div_up(plan->slice_height, CACAO_TILE);
         if (blur > 0) {
-            plan->blur_groups_x = div_up(plan->slice_width, CACAO_BLUR_OUT_X(blur));
-            plan->blur_groups_y = div_up(plan->slice_height, CACAO_BLUR_OUT_Y(blur));
+            uint32_t blur_out[2];
+            cacaoi_blur_out(cacaoi_form_pass(CACAO_PASS_BLUR, config.gpu_forms), blur, blur_out);
+            plan->blur_groups_x = div_up(plan->slice_width, blur_out[0]);
+            plan->blur_groups_y = div_up(plan->slice_height, blur_out[1]);
         }
         const uint64_t tiles = (uint64_t)plan->tiles_x * plan->tiles_y;
         const uint64_t groups = (uint64_t)plan->blur_groups_x * plan->blur_groups_y;

@@ -47,6 +47,7 @@ static const enum_names quality_names = NAMES(cacaoi_quality_names, CACAO_QUALIT
 static const enum_names precision_names = NAMES(cacaoi_precision_names, CACAO_PRECISION_FP32);
 static const enum_names estimator_names = NAMES(cacaoi_estimator_names, CACAO_ESTIMATOR_CACAO);
 static const enum_names visibility_names = NAMES(cacaoi_visibility_names, CACAO_VISIBILITY_FALLOFF);
+static const enum_names shader_forms_names = NAMES(cacaoi_shader_forms_names, CACAO_SHADER_FORMS_CPU);
 
 static const char *name_of(const enum_names *e, int value) {
     if (value == 0) value = e->default_value;
@@ -73,6 +74,7 @@ ENUM_NAME_FUNCTIONS(quality, quality_names)
 ENUM_NAME_FUNCTIONS(precision, precision_names)
 ENUM_NAME_FUNCTIONS(estimator, estimator_names)
 ENUM_NAME_FUNCTIONS(visibility, visibility_names)
+ENUM_NAME_FUNCTIONS(shader_forms, shader_forms_names)
 
 /* How a float field defaults and which values it accepts. */
 typedef struct float_rule {
@@ -132,6 +134,11 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
     if (!(s.fade_out_to > fade_from)) {
         cacaoi_set_error(error, error_size, "settings.fade_out_to (%g) must be greater than fade_out_from (%g)",
                         (double)s.fade_out_to, (double)fade_from);
+        return CACAO_ERROR_INVALID_ARGUMENT;
+    }
+    if (s.shader_forms == CACAO_SHADER_FORMS_DEFAULT) s.shader_forms = (cacao_shader_forms)shader_forms_names.default_value;
+    if ((int)s.shader_forms < CACAO_SHADER_FORMS_CPU || (int)s.shader_forms > CACAO_SHADER_FORMS_GPU) {
+        cacaoi_set_error(error, error_size, "settings.shader_forms = %d is not a cacao_shader_forms", (int)in->shader_forms);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     if (s.estimator == CACAO_ESTIMATOR_DEFAULT) s.estimator = (cacao_estimator)estimator_names.default_value;

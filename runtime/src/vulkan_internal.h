@@ -21,6 +21,7 @@ struct cacao_context {
     VkPipelineCache pipeline_cache;
     uint32_t required_subgroup_size; /* 0: the driver's choice */
     VkPipelineCreateFlags pipeline_create_flags; /* the caller's, on every pipeline */
+    cacao_shader_forms forms;        /* CPU or GPU: for settings that leave shader_forms DEFAULT */
     PFN_vkCmdPushDescriptorSetKHR push_descriptor;
     bool fp16_available;
     bool separate_depth_layouts; /* DEPTH_READ_ONLY_OPTIMAL may be used (the caller enabled the feature) */

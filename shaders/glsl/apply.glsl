@@ -1,7 +1,8 @@
 /* apply.glsl - apply (native) and upsample (downsampled): the slices' AO into the output. */
 
 /* ============================== APPLY / UPSAMPLE shared ============================== */
-#if CACAO_PASS == CACAO_PASS_APPLY || CACAO_PASS == CACAO_PASS_UPSAMPLE
+#if CACAO_PASS == CACAO_PASS_APPLY || CACAO_PASS == CACAO_PASS_UPSAMPLE || CACAO_PASS == CACAO_PASS_APPLY_GPU || \
+    CACAO_PASS == CACAO_PASS_UPSAMPLE_GPU
 
 /* Bilinear read of one layer of the AO texture (LinearClamp). */
 rfloat ao_bilinear(vec2 uv, int layer) { return rfloat(textureLod(ssao, vec3(uv, float(layer)), 0.0).r); }
@@ -179,12 +180,44 @@ void main()
 #endif
 #endif /* APPLY */
 
-/* ============================== UPSAMPLE ============================== */
-#if CACAO_PASS == CACAO_PASS_UPSAMPLE
-/* spec: upsample.md (bilateral 5x5, Smart / NonSmart / Half) */
-layout(local_size_x = CACAO_WG_UPSAMPLE_X, local_size_y = CACAO_WG_UPSAMPLE_Y) in;
+/* ============================== APPLY, GPU form ============================== */
+#if CACAO_PASS == CACAO_PASS_APPLY_GPU
+/* spec: apply.md. One output pixel per invocation, its reads through the hardware sampler: the
+ * arithmetic the CPU form above reproduces by hand from gathers (which on lavapipe saves sampler
+ * calls, and on a GPU costs registers and instructions the sampler does for free). */
+layout(local_size_x = CACAO_WG_APPLY_X, local_size_y = CACAO_WG_APPLY_Y) in;
 
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (!in_rect(p, imageSize(output_image))) return;
+#if CACAO_VARIANT == CACAO_OUTPUT_SMART
+    rfloat ao = smart_apply(p);
+#elif CACAO_VARIANT == CACAO_OUTPUT_NON_SMART
+    vec2 uv = vec2(p) * CB.output_buffer_inverse_dimensions; /* no +0.5, as AMD */
+    rfloat ao = (ao_bilinear(uv, 0) + ao_bilinear(uv, 1) + ao_bilinear(uv, 2) + ao_bilinear(uv, 3)) / rfloat(4.0);
+#else
+    vec2 uv = vec2(p) * CB.output_buffer_inverse_dimensions;
+    rfloat ao = (ao_bilinear(uv, 0) + ao_bilinear(uv, 1)) / rfloat(2.0); /* layers 0,1 = slices 0,3 */
+#endif
+    imageStore(output_image, p, vec4(float(ao), 0.0, 0.0, 0.0));
+}
+#endif /* APPLY_GPU */
+
+/* ============================== UPSAMPLE ============================== */
+#if CACAO_PASS == CACAO_PASS_UPSAMPLE || CACAO_PASS == CACAO_PASS_UPSAMPLE_GPU
+/* spec: upsample.md (bilateral 5x5, Smart / NonSmart / Half). The GPU form: one half-res position
+ * per thread (a 5x5 window of the table in registers, not 6x6 for 2x2 positions), 16x16 threads:
+ * the same span per group, table and arithmetic. */
+#if CACAO_PASS == CACAO_PASS_UPSAMPLE_GPU
+layout(local_size_x = CACAO_WG_UPSAMPLE_GPU_X, local_size_y = CACAO_WG_UPSAMPLE_GPU_Y) in;
+#define UP_B CACAO_UPSAMPLE_GPU_BLOCK
+#define UP_THREADS (CACAO_WG_UPSAMPLE_GPU_X * CACAO_WG_UPSAMPLE_GPU_Y)
+#else
+layout(local_size_x = CACAO_WG_UPSAMPLE_X, local_size_y = CACAO_WG_UPSAMPLE_Y) in;
 #define UP_B CACAO_UPSAMPLE_BLOCK
+#define UP_THREADS (CACAO_WG_UPSAMPLE_X * CACAO_WG_UPSAMPLE_Y)
+#endif
 #define UP_TABLE_X (CACAO_UPSAMPLE_SPAN_X + 4) /* the group's half-res positions + 2 apron each side */
 #define UP_TABLE_Y (CACAO_UPSAMPLE_SPAN_Y + 4)
 #define UP_WIN (UP_B + 4)                       /* one thread's window of table entries */
@@ -224,7 +257,7 @@ void main()
     /* Step 1: (value, depth) of Q-positions g*SPAN - 2 .. g*SPAN + SPAN + 1, filled by all
      * threads. Entries outside [0, 2S) get weight 0 ([quirk] BILATERAL-LEFT-BORDER fixed). */
     const ivec2 span = ivec2(CACAO_UPSAMPLE_SPAN_X, CACAO_UPSAMPLE_SPAN_Y);
-    for (int i = int(gl_LocalInvocationIndex); i < UP_TABLE_X * UP_TABLE_Y; i += CACAO_WG_UPSAMPLE_X * CACAO_WG_UPSAMPLE_Y) {
+    for (int i = int(gl_LocalInvocationIndex); i < UP_TABLE_X * UP_TABLE_Y; i += UP_THREADS) {
         ivec2 q = g * span + ivec2(i % UP_TABLE_X, i / UP_TABLE_X) - 2;
         float value = 0.0;
         float depth = UP_NO_DEPTH;

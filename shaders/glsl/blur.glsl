@@ -1,7 +1,7 @@
 /* blur.glsl - the edge-aware blur, all its iterations in one dispatch. */
 
 /* ============================== BLUR ============================== */
-#if CACAO_PASS == CACAO_PASS_BLUR
+#if CACAO_PASS == CACAO_PASS_BLUR || CACAO_PASS == CACAO_PASS_BLUR_GPU
 /* spec: blur.md (padded-domain formulation, N Jacobi iterations in one dispatch), two ways:
  * - up to CACAO_BLUR_REGISTER_PASSES passes, each thread computes a block of BX x BY output
  *   texels from its footprint, the block and N more texels on every side, held in registers:
@@ -16,11 +16,26 @@
  *   neighbours need (one barrier per iteration, double-buffered). The inner
  *   (WG BX - 2N) x (WG BY - 2N) texels are exact: values at distance d from the padded border
  *   are wrong after d iterations at most, and the inner region is N away from it. */
-layout(local_size_x = CACAO_WG_BLUR_X, local_size_y = CACAO_WG_BLUR_Y) in;
-
+/* The GPU form (CACAO_PASS_BLUR_GPU) is the shared-memory way for every N, with 2x2-texel blocks
+ * of 16x16 threads (a 32x32 padded tile): a GPU keeps the few registers a small block needs
+ * (a large block spills), and its shared memory and barriers are cheap. Both forms compute every
+ * texel from the same neighbourhood with the same arithmetic: the same output. */
 #define BLUR_N CACAO_BLUR_PASSES
+#if CACAO_PASS == CACAO_PASS_BLUR_GPU
+layout(local_size_x = CACAO_WG_BLUR_GPU_X, local_size_y = CACAO_WG_BLUR_GPU_Y) in;
+#define BX CACAO_BLUR_GPU_BLOCK
+#define BY CACAO_BLUR_GPU_BLOCK
+#define BLUR_OUT ivec2(CACAO_BLUR_GPU_OUT(BLUR_N), CACAO_BLUR_GPU_OUT(BLUR_N))
+#define BLUR_PX (CACAO_WG_BLUR_GPU_X * BX) /* padded tile width */
+#define BLUR_PY (CACAO_WG_BLUR_GPU_Y * BY) /* padded tile height */
+#else
+layout(local_size_x = CACAO_WG_BLUR_X, local_size_y = CACAO_WG_BLUR_Y) in;
 #define BX CACAO_BLUR_BLOCK_X
 #define BY CACAO_BLUR_BLOCK_Y
+#define BLUR_OUT ivec2(CACAO_BLUR_OUT_X(BLUR_N), CACAO_BLUR_OUT_Y(BLUR_N))
+#define BLUR_PX (CACAO_WG_BLUR_X * BX)
+#define BLUR_PY (CACAO_WG_BLUR_Y * BY)
+#endif
 
 rfloat blur_store_value(float v)
 {
@@ -65,7 +80,7 @@ void load_blur_piece(ivec2 c, ivec2 s, int layer, out vec2 ae[2][2])
     }
 }
 
-#if BLUR_N <= CACAO_BLUR_REGISTER_PASSES
+#if CACAO_PASS == CACAO_PASS_BLUR && BLUR_N <= CACAO_BLUR_REGISTER_PASSES
 #define FX (BX + 2 * BLUR_N) /* the footprint */
 #define FY (BY + 2 * BLUR_N)
 #if FX % 2 != 0 || FY % 2 != 0
@@ -78,7 +93,7 @@ void main()
     if (!group_of(group)) return;
     ivec2 s = textureSize(ssao, 0).xy;
     int layer = int(gl_WorkGroupID.z);
-    ivec2 out0 = group * ivec2(CACAO_BLUR_OUT_X(BLUR_N), CACAO_BLUR_OUT_Y(BLUR_N)) + ivec2(gl_LocalInvocationID.xy) * ivec2(BX, BY);
+    ivec2 out0 = group * BLUR_OUT + ivec2(gl_LocalInvocationID.xy) * ivec2(BX, BY);
 
     rfloat v[FY][FX];
     float packed[FY][FX];
@@ -128,10 +143,7 @@ void main()
     }
 }
 #else
-#define BLUR_PX (CACAO_WG_BLUR_X * BX) /* padded tile width */
-#define BLUR_PY (CACAO_WG_BLUR_Y * BY) /* padded tile height */
-
-/* 2 x 2048 values: 16 KiB (fp32), 8 KiB (fp16). */
+/* 2 x 2048 values: 16 KiB (fp32), 8 KiB (fp16); the GPU form 2 x 1024. */
 shared rfloat blur_values[2][BLUR_PY][BLUR_PX];
 
 void main()
@@ -140,7 +152,7 @@ void main()
     if (!group_of(group)) return; /* the whole group: before any barrier */
     ivec2 s = textureSize(ssao, 0).xy;
     int layer = int(gl_WorkGroupID.z);
-    ivec2 tile_origin = group * ivec2(CACAO_BLUR_OUT_X(BLUR_N), CACAO_BLUR_OUT_Y(BLUR_N));
+    ivec2 tile_origin = group * BLUR_OUT;
     ivec2 b0 = ivec2(gl_LocalInvocationID.xy) * ivec2(BX, BY); /* block origin in the padded tile */
 
     /* the block: value and edges both from the mirrored texel ([quirk] BLUR-BORDER-EDGES) */
@@ -197,7 +209,7 @@ void main()
         [[unroll]] for (int x = 0; x < BX; ++x) {
             ivec2 o = b0 + ivec2(x, y) - BLUR_N;
             ivec2 p = tile_origin + o;
-            if (in_rect(o, ivec2(CACAO_BLUR_OUT_X(BLUR_N), CACAO_BLUR_OUT_Y(BLUR_N))) && in_rect(p, s))
+            if (in_rect(o, BLUR_OUT) && in_rect(p, s))
                 imageStore(ssao_image, ivec3(p, layer), vec4(float(v[y][x]), packed[y][x], 0.0, 0.0));
         }
     }

@@ -1,4 +1,4 @@
-# cacao-inspect against facts known independently of it: the key space has 60 keys (hand count in
+# cacao-inspect against facts known independently of it: the key space has 88 keys (hand count in
 # test_keys), a blur key has 16 variants, `show` prints the key's defines, its reflected uniform
 # block and a disassembly with a GLCompute entry point, `plan` for HIGHEST lists the adaptive
 # passes in spec order, `verify` passes, and unknown keys / commands fail with a message.
@@ -12,13 +12,13 @@ function(expect text what)
 endfunction()
 
 inspect(0 stats)
-expect("${out}" "permutations: 60 before dedup")
+expect("${out}" "permutations: 88 before dedup")
 inspect(0 verify)
 expect("${out}" "every key they dispatch is embedded")
 inspect(0 list --json)
 string(JSON n LENGTH "${out}")
-if(NOT n EQUAL 60)
-  message(FATAL_ERROR "list --json has ${n} entries, expected 60")
+if(NOT n EQUAL 88)
+  message(FATAL_ERROR "list --json has ${n} entries, expected 88")
 endif()
 string(JSON first GET "${out}" 0 key)
 expect("${first}" "prepare_depths.half.native")

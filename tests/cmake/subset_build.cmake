@@ -29,13 +29,16 @@ endforeach()
 # HIGH = depths with mips, Q2, Apply; either normals source (given: prepare_depths and
 # prepare_normals; from depth: prepare, both in one pass); blur 1..8; fp32 only; native only;
 # every key of the horizon-slice estimators (full resolution, fp32, no quality axis) and the
-# tile passes (no axis: every CACAO configuration runs them).
+# tile passes (no axis: every CACAO configuration runs them); and the GPU forms of the blur and
+# apply (a build embeds both forms: the device chooses).
 set(expected prepare_depths.full.native prepare_depths.mips.native prepare_normals.native
     generate.q1 generate.q2 blur.1.fp32 blur.2.fp32 blur.3.fp32
     blur.4.fp32 blur.5.fp32 blur.6.fp32 blur.7.fp32 blur.8.fp32 apply.smart.fp32
     horizon_prepare.depth horizon_prepare.input horizon_main.gtao horizon_main.bitmask horizon_main.gtao_direct
     horizon_main.bitmask_direct horizon_denoise.intermediate horizon_denoise.final classify compact fill
-    prepare.full.native prepare.mips.native)
+    prepare.full.native prepare.mips.native
+    blur_gpu.1.fp32 blur_gpu.2.fp32 blur_gpu.3.fp32 blur_gpu.4.fp32 blur_gpu.5.fp32 blur_gpu.6.fp32 blur_gpu.7.fp32
+    blur_gpu.8.fp32 apply_gpu.smart.fp32)
 if(NOT names STREQUAL expected)
   message(FATAL_ERROR "subset table holds [${names}]\nexpected [${expected}]")
 endif()
@@ -49,9 +52,9 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "the runtime did not refuse permutations outside the subset clearly")
 endif()
 execute_process(COMMAND ${WORK}/tools/inspect/cacao-inspect stats OUTPUT_VARIABLE stats RESULT_VARIABLE rc)
-string(FIND "${stats}" "permutations: 27 before dedup" at)
+string(FIND "${stats}" "permutations: 36 before dedup" at)
 if(NOT rc EQUAL 0 OR at LESS 0)
-  message(FATAL_ERROR "cacao-inspect stats in the subset build does not report the 27 permutations (16 CACAO + 8 slice-estimator + 3 tile passes):\n${stats}")
+  message(FATAL_ERROR "cacao-inspect stats in the subset build does not report the 36 permutations (16 CACAO + 8 horizon-estimator + 3 tile passes + 9 GPU forms):\n${stats}")
 endif()
 execute_process(COMMAND ${WORK}/tools/inspect/cacao-inspect verify OUTPUT_VARIABLE verify RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)

@@ -49,6 +49,7 @@ static const char *quality_name(int value) { return cacao_quality_name((cacao_qu
 static const char *precision_name(int value) { return cacao_precision_name((cacao_precision)value); }
 static const char *estimator_name(int value) { return cacao_estimator_name((cacao_estimator)value); }
 static const char *visibility_name(int value) { return cacao_visibility_name((cacao_visibility)value); }
+static const char *shader_forms_name(int value) { return cacao_shader_forms_name((cacao_shader_forms)value); }
 
 #define SECTION(title)                                                                                                 \
     { .name = title, .kind = FLAG_SECTION }
@@ -143,6 +144,14 @@ static const flag_def flags[] = {
     SET("--all-tiles", NULL, SET_BOOL, compute_all_tiles,
         "compute every tile, skipping no background or faded tile (docs/tiles.md): the same output, "
         "slower; for measurement"),
+    {.name = "--shader-forms",
+     .value = "F",
+     .kind = SET_ENUM,
+     .offset = offsetof(cacao_settings, shader_forms),
+     .json = "shader_forms",
+     .help = "cpu or gpu: the shapes of the blur, apply and upsample shaders (the same output); the "
+             "default picks by the device, cpu on lavapipe",
+     .name_of = shader_forms_name},
     SECTION("Estimator (docs/estimators.md)"),
     {.name = "--estimator",
      .value = "E",

@@ -445,6 +445,7 @@ cacao_result vkdev_context_create_on_cache(vkdev *dev, VkPipelineCache cache, ca
                                      .device = dev->device,
                                      .shader_float16_enabled = dev->fp16,
                                      .required_subgroup_size = dev->required_subgroup_size,
+                                     .shader_forms = dev->shader_forms,
                                      .pipeline_cache = cache};
     return cacao_context_create(&desc, ctx);
 }

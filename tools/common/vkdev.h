@@ -29,6 +29,7 @@ typedef struct vkdev {
     char device_name[256];
     uint32_t subgroup_size_min, subgroup_size_max; /* compute, VK_EXT_subgroup_size_control enabled; 0: not */
     uint32_t required_subgroup_size; /* passed to cacao_context_desc by vkdev_context_create; 0: default */
+    cacao_shader_forms shader_forms; /* passed to cacao_context_desc likewise; 0: the device's choice */
 } vkdev;
 
 typedef struct vkdev_options {

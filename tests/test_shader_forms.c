@@ -1,0 +1,136 @@
+/* test_shader_forms - the GPU forms of the blur, apply and upsample (cacao_shader_forms) compute
+ * what the CPU forms compute, on lavapipe with validation:
+ *   - fp32: bit-identical output at every quality, native and downsampled, blur none, 1, 3 (the
+ *     CPU form's last register blur), 4 (its first shared-memory one) and 8, on the embedded scene
+ *     at 131x77 (normals from depth; given normals at HIGH), and at 7x5 and 1x1 with blur none, 2
+ *     and 8 (the blur's tiles and the apply's quads meet the image edge differently in the two
+ *     forms);
+ *   - fp16: within a few half ulps (the forms round in a different order where the CPU apply
+ *     filters 8-bit texels by hand): mean |GPU - CPU| at most 0.1/255, max at most 2/255;
+ *   - the choice: a context on lavapipe (a CPU device) plans the CPU forms by default; with
+ *     cacao_context_desc.shader_forms = GPU it plans the GPU passes (blur_gpu, apply_gpu /
+ *     upsample_gpu) and no CPU form; the settings' own shader_forms wins over the desc's. */
+#include <string.h>
+
+#include "gpu_scene.h"
+
+static bool plan_has(const cacao_plan *p, const char *prefix) {
+    for (uint32_t i = 0; i < p->step_count; ++i)
+        if (strncmp(p->steps[i].key_name, prefix, strlen(prefix)) == 0) return true;
+    return false;
+}
+
+/* AO of one frame with these settings on a context whose desc asks for `desc_forms`. */
+static bool run_forms(vkdev *dev, cacao_shader_forms desc_forms, const cacao_settings *s, const vkdev_frame *f,
+                      float *ao, cacao_plan *plan) {
+    dev->shader_forms = desc_forms;
+    vkdev_frame fr = *f;
+    fr.plan_out = plan;
+    char err[512] = "";
+    const cacao_result r = vkdev_run(dev, s, &fr, 1, ao, NULL, err, sizeof err);
+    dev->shader_forms = CACAO_SHADER_FORMS_DEFAULT;
+    if (r != CACAO_SUCCESS) fprintf(stderr, "run failed: %s\n", err);
+    CHECK(r == CACAO_SUCCESS);
+    return r == CACAO_SUCCESS;
+}
+
+static void compare_forms(vkdev *dev, uint32_t w, uint32_t h, unsigned *runs, double *worst_fp16_mean,
+                          double *worst_fp16_max) {
+    scene_buffers sb;
+    scene_buffers_default(w, h, &sb);
+    const size_t n = (size_t)w * h;
+    float *cpu = malloc(sizeof(float) * n), *gpu = malloc(sizeof(float) * n);
+    const bool tiny = w < 16;
+    static const int all_blurs[] = {CACAO_BLUR_NONE, 1, 3, 4, 8}, tiny_blurs[] = {CACAO_BLUR_NONE, 2, 8};
+    const int *blurs = tiny ? tiny_blurs : all_blurs;
+    const size_t blur_count = tiny ? 3 : 5;
+    for (int normals = 0; normals < (tiny ? 1 : 2); ++normals) {
+        const vkdev_frame f = scene_frame(&sb, false, normals != 0);
+        for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
+            for (int ds = 0; ds < 2; ++ds)
+                for (int fp = CACAO_PRECISION_FP32; fp <= CACAO_PRECISION_FP16; ++fp)
+                    for (size_t b = 0; b < blur_count; ++b) {
+                        if (fp == CACAO_PRECISION_FP16 && (!dev->fp16 || tiny)) continue;
+                        if (normals && q != CACAO_QUALITY_HIGH) continue;
+                        const cacao_settings s = {.quality = (cacao_quality)q, .downsample = ds != 0,
+                                                  .precision = (cacao_precision)fp, .generate_normals = !normals,
+                                                  .blur_pass_count = blurs[b]};
+                        cacao_plan pc, pg;
+                        if (!run_forms(dev, CACAO_SHADER_FORMS_CPU, &s, &f, cpu, &pc) ||
+                            !run_forms(dev, CACAO_SHADER_FORMS_GPU, &s, &f, gpu, &pg))
+                            continue;
+                        ++*runs;
+                        CHECK(!plan_has(&pc, "blur_gpu") && !plan_has(&pc, "apply_gpu") && !plan_has(&pc, "upsample_gpu"));
+                        CHECK(plan_has(&pg, ds ? "upsample_gpu" : "apply_gpu") && !plan_has(&pg, "apply.") &&
+                              !plan_has(&pg, "upsample.") && !plan_has(&pg, "blur."));
+                        if (blurs[b] > 0) CHECK(plan_has(&pg, "blur_gpu"));
+                        double sum = 0.0, max = 0.0;
+                        for (size_t i = 0; i < n; ++i) {
+                            const double d = fabs((double)gpu[i] - cpu[i]);
+                            sum += d;
+                            max = fmax(max, d);
+                        }
+                        if (fp == CACAO_PRECISION_FP32) {
+                            if (max != 0.0)
+                                fprintf(stderr, "%ux%u q%d ds%d blur %d normals %d: GPU form differs, max %g\n", w, h, q,
+                                        ds, blurs[b], normals, max);
+                            CHECK(memcmp(cpu, gpu, sizeof(float) * n) == 0);
+                        } else {
+                            *worst_fp16_mean = fmax(*worst_fp16_mean, sum / (double)n);
+                            *worst_fp16_max = fmax(*worst_fp16_max, max);
+                            CHECK(sum / (double)n <= 0.1 / 255.0 && max <= 2.0 / 255.0);
+                        }
+                    }
+    }
+    free(cpu);
+    free(gpu);
+    scene_buffers_free(&sb);
+}
+
+static void test_choice(vkdev *dev) {
+    scene_buffers sb;
+    scene_buffers_default(64, 48, &sb);
+    const vkdev_frame f = scene_frame(&sb, false, false);
+    float *ao = malloc(sizeof(float) * 64 * 48);
+    const cacao_settings plain = {.quality = CACAO_QUALITY_HIGH, .generate_normals = true};
+    cacao_plan p;
+    /* a CPU device: the CPU forms by default */
+    if (run_forms(dev, CACAO_SHADER_FORMS_DEFAULT, &plain, &f, ao, &p))
+        CHECK(plan_has(&p, "blur.") && plan_has(&p, "apply.") && !plan_has(&p, "blur_gpu"));
+    /* the desc's override, and the settings' over the desc's */
+    if (run_forms(dev, CACAO_SHADER_FORMS_GPU, &plain, &f, ao, &p))
+        CHECK(plan_has(&p, "blur_gpu") && plan_has(&p, "apply_gpu"));
+    cacao_settings cpu = plain;
+    cpu.shader_forms = CACAO_SHADER_FORMS_CPU;
+    if (run_forms(dev, CACAO_SHADER_FORMS_GPU, &cpu, &f, ao, &p)) CHECK(plan_has(&p, "blur.") && !plan_has(&p, "blur_gpu"));
+    /* a value outside the enum: refused, naming the field */
+    cacao_context *ctx = NULL;
+    const cacao_context_desc bad = {.physical_device = dev->physical_device, .device = dev->device,
+                                    .shader_forms = (cacao_shader_forms)7};
+    CHECK(cacao_context_create(&bad, &ctx) == CACAO_ERROR_INVALID_ARGUMENT && ctx == NULL);
+    cacao_settings wrong = plain;
+    wrong.shader_forms = (cacao_shader_forms)3;
+    char err[256] = "";
+    cacao_settings out;
+    CHECK(cacao_settings_resolve(&wrong, &out, err, sizeof err) == CACAO_ERROR_INVALID_ARGUMENT &&
+          strstr(err, "shader_forms") != NULL);
+    free(ao);
+    scene_buffers_free(&sb);
+}
+
+int main(void) {
+    vkdev dev;
+    open_device(&dev);
+    test_choice(&dev);
+    unsigned runs = 0;
+    double fp16_mean = 0.0, fp16_max = 0.0;
+    const uint32_t sizes[][2] = {{131, 77}, {7, 5}, {1, 1}};
+    for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; ++i)
+        compare_forms(&dev, sizes[i][0], sizes[i][1], &runs, &fp16_mean, &fp16_max);
+    printf("%u configurations: GPU forms bit-identical to the CPU forms in fp32; fp16 worst mean |diff| %.6f "
+           "(%.3f/255), worst max %.6f (%.2f/255)\n",
+           runs, fp16_mean, fp16_mean * 255.0, fp16_max, fp16_max * 255.0);
+    vkdev_destroy(&dev);
+    CHECK(dev.validation_messages == 0);
+    return test_report("shader_forms");
+}
