@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-600}
 shift || true
 harnesses=("$@")
-[ ${#harnesses[@]} -gt 0 ] || harnesses=(pfm png exr camera_json settings_json cli_args)
+[ ${#harnesses[@]} -gt 0 ] || harnesses=(pfm png exr camera_json settings_json cli_args bench_json inspect_args inspect_costs)
 build=build-sanitize/tests/fuzz
 if [ ! -x "$build/fuzz_pfm" ]; then
     cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCACAO_SANITIZE=ON

@@ -42,6 +42,14 @@ function(expect_between what value lo hi)
   message("${what}: ${value} (expected ${lo} .. ${hi})")
 endfunction()
 
+# Fails the test when any file matches the globs (searched recursively); <what> names the case.
+function(expect_no_files what)
+  file(GLOB_RECURSE found ${ARGN})
+  if(found)
+    message(FATAL_ERROR "${what}: ${found}")
+  endif()
+endfunction()
+
 # The mean absolute difference of two images (all pixels), via cli_tool.
 function(mean_abs_diff var a b)
   tool(line diff ${a} ${b})
@@ -49,23 +57,33 @@ function(mean_abs_diff var a b)
   set(${var} "${CMAKE_MATCH_1}" PARENT_SCOPE)
 endfunction()
 
-# Runs cacao (at most 60 s: a hang is a failure) and fails the test unless it exits non-zero with
-# exactly one line on stderr that contains <needle> and carries no escape byte.
-function(expect_cacao_refused needle)
-  execute_process(COMMAND ${CACAO} ${ARGN} WORKING_DIRECTORY ${WORK} RESULT_VARIABLE rc OUTPUT_VARIABLE out
+# Runs <program> (at most 60 s: a hang is a failure) and fails the test unless it exits non-zero
+# with exactly one line on stderr that contains <needle> and carries no escape byte, and nothing
+# on stdout (no partial output).
+function(expect_program_refused program needle)
+  execute_process(COMMAND ${program} ${ARGN} WORKING_DIRECTORY ${WORK} RESULT_VARIABLE rc OUTPUT_VARIABLE out
                   ERROR_VARIABLE err TIMEOUT 60)
+  get_filename_component(name "${program}" NAME)
   string(REGEX REPLACE "\n$" "" message "${err}")
   if(NOT rc MATCHES "^[1-9][0-9]*$")
-    message(FATAL_ERROR "cacao ${ARGN}: expected a failure exit, got '${rc}': ${err}")
+    message(FATAL_ERROR "${name} ${ARGN}: expected a failure exit, got '${rc}': ${err}")
   endif()
   string(FIND "${message}" "${needle}" at)
   if(at LESS 0)
-    message(FATAL_ERROR "cacao ${ARGN}: message does not name '${needle}': ${err}")
+    message(FATAL_ERROR "${name} ${ARGN}: message does not name '${needle}': ${err}")
   endif()
   string(ASCII 27 esc)
   string(FIND "${message}" "${esc}" escape_at)
   if(message MATCHES "\n" OR NOT escape_at EQUAL -1)
-    message(FATAL_ERROR "cacao ${ARGN}: message spans lines or carries an escape: ${err}")
+    message(FATAL_ERROR "${name} ${ARGN}: message spans lines or carries an escape: ${err}")
+  endif()
+  if(NOT out STREQUAL "")
+    message(FATAL_ERROR "${name} ${ARGN}: refused, but printed on stdout: ${out}")
   endif()
   message("refused as expected: ${message}")
+endfunction()
+
+# expect_program_refused for cacao.
+function(expect_cacao_refused needle)
+  expect_program_refused(${CACAO} "${needle}" ${ARGN})
 endfunction()

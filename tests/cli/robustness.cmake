@@ -5,7 +5,7 @@
 #   - one NaN pixel in a --compare truth is skipped and counted: comparing a run with its own output
 #     (one foreground pixel poked to NaN) gives rmse 0 over one pixel fewer, not "rmse nan";
 #   - `--quality -o x.png` blames --quality (the flag missing its value), not x.png;
-#   - control bytes in arguments and JSON keys come out escaped, on one line;
+#   - control bytes in arguments, their values and JSON keys and values come out escaped, on one line;
 #   - a directory or a FIFO given as an input is named as such at once (never a hang: the process
 #     runs under a timeout), and "cannot open" carries the system's reason;
 #   - settings JSON: a key given twice and trailing text are refused naming the key or position;
@@ -62,6 +62,11 @@ endif()
 expect_cacao_refused("--quality: needs a value" --scene ${ROOM} --quality -o x.png)
 string(ASCII 27 esc)
 expect_cacao_refused("--\\x1b[2Jbad\\x0a: unknown flag" "--${esc}[2Jbad\n")
+# Values too (issue 35, found by fuzz_cli_args): an unknown --quality, in a flag or a settings file.
+expect_cacao_refused("--quality \\x1b[2J: unknown value '\\x1b[2J'" --scene ${ROOM} --quality "${esc}[2J")
+file(WRITE ${WORK}/evil_value.json "{\"quality\": \"\\u001b[31m\"}")
+expect_cacao_refused("\"quality\": unknown value '\\x1b[31m'" --scene ${ROOM} --settings ${WORK}/evil_value.json
+                     --print-settings)
 file(MAKE_DIRECTORY ${WORK}/dir.pfm)
 expect_cacao_refused("dir.pfm: is a directory" --depth ${WORK}/dir.pfm ${CAM})
 expect_cacao_refused("gone.pfm: cannot open: No such file or directory" --depth ${WORK}/gone.pfm ${CAM})

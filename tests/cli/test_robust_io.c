@@ -32,13 +32,7 @@
 
 static char dir[4096];
 
-static const char *in_dir(const char *name) {
-    static char path[8][8192];
-    static int next;
-    char *p = path[next++ % 8];
-    snprintf(p, sizeof path[0], "%s/%s", dir, name);
-    return p;
-}
+static const char *in_dir(const char *name) { return test_path(dir, name); }
 
 static bool contains(const char *text, const char *needle) { return strstr(text, needle) != NULL; }
 
@@ -294,14 +288,7 @@ static void json_objects(void) {
 }
 
 int main(int argc, char **argv) {
-    if (argc != 2) {
-        fprintf(stderr, "usage: test_robust_io WORK_DIR\n");
-        return 2;
-    }
-    snprintf(dir, sizeof dir, "%s", argv[1]);
-    char command[8300];
-    snprintf(command, sizeof command, "rm -rf '%s' && mkdir -p '%s'", dir, dir);
-    if (system(command) != 0) return 2;
+    test_scratch_dir(argc, argv, dir, sizeof dir);
     exr_rgba_half();
     exr_random_round_trips();
     png_huge_header();

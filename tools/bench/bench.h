@@ -1,5 +1,6 @@
-/* bench.h - cacao-bench's model: configurations, scenes, results, and the writers of its table,
- * JSON, CSV and plot (report.c). The runs themselves are in main.c. */
+/* bench.h - cacao-bench's model: configurations, scenes, results; the readers of the JSON it is
+ * given (inputs_json.c), the writers of its table, JSON and CSV (report.c) and its plot (plot.c).
+ * The flags, the runs and the staging of the files are in main.c. */
 #ifndef CACAO_BENCH_H
 #define CACAO_BENCH_H
 
@@ -13,6 +14,8 @@
 #include "vkdev.h"
 
 #define BENCH_MAX_SCENES 16
+#define BENCH_MAX_CONFIGS (5 * 2 * 2 * 2 * 9 + 2 * 5 * 2 * 9) /* the full sweep */
+#define BENCH_MAX_POINTS 10000                                /* --reference points */
 #define BENCH_ERR 1024
 
 /* The truths a scene folder may hold, in the order results keep their errors. */
@@ -50,7 +53,7 @@ typedef struct bench_result {
 
 /* A named point from --reference: a configuration's time and errors on one scene. */
 typedef struct bench_point {
-    char scene[256], label[96];
+    char scene[256], label[256];
     double total_ms;
     double rmse[BENCH_TRUTHS]; /* negative: absent */
 } bench_point;
@@ -74,11 +77,34 @@ typedef struct bench_run {
     uint32_t cache_width, cache_height;
 } bench_run;
 
-/* Writers: every one writes atomically (temporary + rename) and names the file in err. */
+/* Readers of the JSON given to --reference and --plot-from (inputs_json.c). Each refuses, with one
+ * line in err (BENCH_ERR bytes) naming the file and the field, what it cannot show faithfully:
+ * names that are not printable or too long to keep, figures that are not finite or negative, a name
+ * or a (scene, config) pair given twice. --reference: the reference's name and its points (caller
+ * frees *points). --plot-from: the scenes, configurations and results of an earlier run, into run
+ * (caller frees *results). */
+bool bench_load_reference(const char *path, char *name, size_t name_size, bench_point **points, uint32_t *count,
+                          char *err);
+bool bench_load_plot_from(const char *path, bench_scene *scenes, bench_config *configs, bench_result **results,
+                          bench_run *run, char *err);
+
+/* The table on stdout, and the JSON and CSV as text (NULL: out of memory; caller frees). */
 void bench_print_table(FILE *out, const bench_run *run);
-bool bench_write_json(const char *path, const bench_run *run, char *err);
-bool bench_write_csv(const char *path, const bench_run *run, char *err);
-bool bench_write_plot(const char *path, const bench_run *run, char *err);
+char *bench_json_text(const bench_run *run);
+char *bench_csv_text(const bench_run *run);
+
+/* The plot (plot.c): its data file holds only numbers, and its gnuplot script holds every name
+ * (scene, configuration, reference) as a string literal with each byte outside a small safe set
+ * written as an octal escape, so no input text can become a gnuplot command. bench_plot_script is
+ * the script alone (text_buffer.h; pure, for the fuzz harness); bench_plot_check runs gnuplot with
+ * the terminal the plot needs, before any work; bench_write_plot runs it on the results, writing
+ * the image to image_path (a staged file: `shown` is the path the messages name). A failure of
+ * gnuplot is one line in err, its last error message. */
+struct text_buffer;
+bool bench_plot_script(const bench_run *run, const char *data_path, const char *image_path, bool svg,
+                       struct text_buffer *script);
+bool bench_plot_check(const char *shown, bool svg, char *err);
+bool bench_write_plot(const char *image_path, const char *shown, bool svg, const bench_run *run, char *err);
 
 /* The error a plot shows for a scene: its ao_gt_falloff RMSE, else its ao_gt RMSE (-1: neither). */
 int bench_plot_truth(const bench_scene *scene);

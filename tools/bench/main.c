@@ -2,11 +2,15 @@
  * resolution, blur, precision, normals) on scenes through the public API (vkdev + cacao.h) and
  * reports per-pass GPU time (median, min, max of --repeat frames after --warmup), memory, pipeline
  * count and creation time, and the error against the scenes' ground truths; as a table on stdout,
- * JSON, CSV and an error-against-time plot with its Pareto front (report.c).
+ * JSON and CSV (report.c), and an error-against-time plot with its Pareto front (plot.c).
  *
- * Every flag is checked and every input loaded before the first frame runs, and the files are
- * written only after the last one, so a bad flag or input leaves no file behind. */
-#include <cjson/cJSON.h>
+ * Before the first frame runs, every flag is checked, every input loaded, and every output checked
+ * against the inputs and the other outputs and created (empty, beside its destination: see
+ * output_files.h), with gnuplot tried when there is a plot. The outputs are filled as the run goes
+ * and after it, and renamed into place only when all are complete: a bad flag, input or output
+ * path, or a failure at any point, costs no run time it need not and leaves the old files as they
+ * were and no new one. */
+#include <errno.h>
 #include <fnmatch.h>
 #include <math.h>
 #include <stdarg.h>
@@ -19,12 +23,13 @@
 
 #include "bench.h"
 #include "options.h"
+#include "output_files.h"
 #include "text_file.h"
 #include "vkdev.h"
 
-const char *const bench_truth_names[BENCH_TRUTHS] = {"ao_gt_falloff", "ao_gt"};
 
 /* Prints one line "cacao-bench: ..." to stderr; returns false. */
+static bool fail(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 static bool fail(const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
@@ -72,16 +77,21 @@ static const char *const help_text =
     "                     \"config\", \"total_ms\", \"rmse_ao_gt_falloff\", \"rmse_ao_gt\"}]}\n"
     "  --save-ao DIR      write each AO image as DIR/<scene>.<config>.pfm\n"
     "  --plot-from FILE   run nothing: --plot the results of a cacao-bench JSON (e.g. one merged from\n"
-    "                     interleaved runs by tools/accuracy-report.py)\n"
+    "                     interleaved runs by tools/accuracy-report.py); takes only --plot and --reference\n"
     "  --device N|NAME    Vulkan device (default lavapipe); --validate: validation layer on\n"
     "Settings flags (--radius, --strength, --power, --fade-out, ... see cacao --help) apply to every\n"
-    "configuration; the configuration sets quality, resolution, blur and precision.\n";
+    "configuration. The configuration sets estimator, quality, resolution, blur and precision: their\n"
+    "flags are refused, and a --settings file's keys for them are replaced. Flags of the gtao and\n"
+    "bitmask estimators (--slices, --steps, --visibility, --frame; --thickness: bitmask) are refused\n"
+    "when a selected configuration runs another estimator. No output may name an input or another\n"
+    "output; outputs are written all or nothing, after the run.\n";
 
 static bool parse_count(const char *flag, const char *value, uint32_t low, uint32_t *out) {
     char *end;
     const long v = value ? strtol(value, &end, 10) : -1;
     if (!value || !value[0] || *end || v < (long)low || v > 100000) {
-        fail("%s %s: must be a whole number from %u to 100000", flag, value ? value : "(missing)", low);
+        fail("%s %s: must be a whole number from %u to 100000", flag, cacao_shown(value ? value : "(missing)").text,
+             low);
         return false;
     }
     *out = (uint32_t)v;
@@ -103,6 +113,98 @@ static bool refused_cacao_flag(const char *arg) {
     return false;
 }
 
+/* What cacao-bench does: runs (the default), re-plots (--plot-from) or lists (--list-configs); a
+ * flag outside the mode it is given in would be ignored, so it is refused. */
+enum { MODE_RUN = 1, MODE_PLOT_FROM = 2, MODE_LIST = 4, MODE_ANY = 7 };
+
+typedef struct bench_flag {
+    const char *name;
+    bool takes_value;
+    unsigned modes;
+} bench_flag;
+
+static const bench_flag bench_flags[] = {
+    {"--scene", true, MODE_RUN},
+    {"--configs", true, MODE_RUN | MODE_LIST},
+    {"--sweep", true, MODE_RUN | MODE_LIST},
+    {"--list-configs", false, MODE_LIST},
+    {"--warmup", true, MODE_RUN},
+    {"--repeat", true, MODE_RUN},
+    {"--pipeline-cache", true, MODE_RUN},
+    {"--json", true, MODE_RUN},
+    {"--csv", true, MODE_RUN},
+    {"--plot", true, MODE_RUN | MODE_PLOT_FROM},
+    {"--reference", true, MODE_RUN | MODE_PLOT_FROM},
+    {"--save-ao", true, MODE_RUN},
+    {"--plot-from", true, MODE_PLOT_FROM},
+    {"--help", false, MODE_ANY},
+    {"-h", false, MODE_ANY},
+};
+
+static const bench_flag *find_bench_flag(const char *arg) {
+    for (size_t i = 0; i < sizeof bench_flags / sizeof bench_flags[0]; ++i)
+        if (strcmp(arg, bench_flags[i].name) == 0) return &bench_flags[i];
+    return NULL;
+}
+
+/* Settings every configuration sets for itself (a flag for them would be replaced). */
+static bool refuse_config_set_flags(const cli_options *cli) {
+    static const char *const set_by_config[] = {"--estimator", "--quality", "--downsample", "--blur", "--precision"};
+    for (size_t i = 0; i < sizeof set_by_config / sizeof set_by_config[0]; ++i)
+        if (cli_given(cli, set_by_config[i]))
+            return fail("%s: each configuration sets it; choose configurations with --configs (see --list-configs "
+                        "--sweep full)",
+                        set_by_config[i]);
+    return true;
+}
+
+/* Applies one flag of cacao-bench's own (its value in v, checked present). */
+static bool apply_bench_flag(const char *a, const char *v, bench_options *o) {
+    const char **path = strcmp(a, "--json") == 0        ? &o->json_path
+                        : strcmp(a, "--csv") == 0       ? &o->csv_path
+                        : strcmp(a, "--plot") == 0      ? &o->plot_path
+                        : strcmp(a, "--reference") == 0 ? &o->reference_path
+                        : strcmp(a, "--save-ao") == 0   ? &o->save_dir
+                        : strcmp(a, "--configs") == 0   ? &o->configs
+                        : strcmp(a, "--plot-from") == 0 ? &o->plot_from
+                                                        : NULL;
+    if (path) {
+        *path = v;
+        return true;
+    }
+    if (strcmp(a, "--scene") == 0) {
+        if (o->scene_count == BENCH_MAX_SCENES) return fail("--scene: at most %d scenes", BENCH_MAX_SCENES);
+        o->scenes[o->scene_count++] = v;
+        return true;
+    }
+    if (strcmp(a, "--sweep") == 0) {
+        o->full_sweep = strcmp(v, "full") == 0;
+        return o->full_sweep || strcmp(v, "default") == 0
+                   ? true
+                   : fail("--sweep %s: use default or full", cacao_shown(v).text);
+    }
+    if (strcmp(a, "--warmup") == 0) return parse_count(a, v, 0, &o->warmup);
+    if (strcmp(a, "--repeat") == 0) return parse_count(a, v, 1, &o->repeat);
+    if (strcmp(a, "--pipeline-cache") == 0) return parse_count(a, v, 1, &o->cache_trials);
+    if (strcmp(a, "--list-configs") == 0)
+        o->list_configs = true;
+    else
+        o->help = true;
+    return true;
+}
+
+/* Refuses a flag given outside the mode (outside[m]: the first flag not taken by mode 1 << m). */
+static bool check_mode(const bench_options *o, const char *const outside[3]) {
+    if (o->help) return true;
+    if (o->plot_from && outside[1])
+        return fail("%s: not with --plot-from, which runs nothing and takes only --plot and --reference",
+                    cacao_shown(outside[1]).text);
+    if (!o->plot_from && o->list_configs && outside[2])
+        return fail("%s: not with --list-configs, which runs nothing and takes only --configs and --sweep",
+                    cacao_shown(outside[2]).text);
+    return true;
+}
+
 static bool parse_flags(int argc, char **argv, bench_options *o) {
     memset(o, 0, sizeof *o);
     o->warmup = 2;
@@ -111,63 +213,34 @@ static bool parse_flags(int argc, char **argv, bench_options *o) {
     if (!rest) return fail("out of memory");
     int n = 0;
     rest[n++] = "cacao-bench";
+    const char *outside[3] = {NULL, NULL, NULL}; /* the first flag given outside each mode */
     bool ok = true;
     for (int i = 1; ok && i < argc; ++i) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        const char **path = strcmp(a, "--json") == 0        ? &o->json_path
-                            : strcmp(a, "--csv") == 0       ? &o->csv_path
-                            : strcmp(a, "--plot") == 0      ? &o->plot_path
-                            : strcmp(a, "--reference") == 0 ? &o->reference_path
-                            : strcmp(a, "--save-ao") == 0   ? &o->save_dir
-                            : strcmp(a, "--configs") == 0   ? &o->configs
-                            : strcmp(a, "--plot-from") == 0 ? &o->plot_from
-                                                            : NULL;
-        if (path || strcmp(a, "--scene") == 0 || strcmp(a, "--sweep") == 0 || strcmp(a, "--warmup") == 0 ||
-            strcmp(a, "--repeat") == 0 || strcmp(a, "--pipeline-cache") == 0) {
-            if (!v || !v[0]) {
-                ok = fail("%s: needs a value", a);
-                break;
-            }
-            ++i;
-        }
-        if (path)
-            *path = v;
-        else if (strcmp(a, "--scene") == 0) {
-            if (o->scene_count == BENCH_MAX_SCENES)
-                ok = fail("--scene: at most %d scenes", BENCH_MAX_SCENES);
-            else
-                o->scenes[o->scene_count++] = v;
-        } else if (strcmp(a, "--sweep") == 0) {
-            if (strcmp(v, "full") == 0)
-                o->full_sweep = true;
-            else if (strcmp(v, "default") != 0)
-                ok = fail("--sweep %s: use default or full", v);
-        } else if (strcmp(a, "--warmup") == 0)
-            ok = parse_count(a, v, 0, &o->warmup);
-        else if (strcmp(a, "--repeat") == 0)
-            ok = parse_count(a, v, 1, &o->repeat);
-        else if (strcmp(a, "--pipeline-cache") == 0)
-            ok = parse_count(a, v, 1, &o->cache_trials);
-        else if (strcmp(a, "--list-configs") == 0)
-            o->list_configs = true;
-        else if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0)
-            o->help = true;
+        const bench_flag *flag = find_bench_flag(a);
+        for (int m = 0; m < 3; ++m)
+            if (!outside[m] && !((flag ? flag->modes : MODE_RUN) >> m & 1)) outside[m] = a;
+        if (flag && flag->takes_value && (!v || !v[0]))
+            ok = fail("%s: needs a value", a);
+        else if (flag)
+            ok = apply_bench_flag(a, flag->takes_value ? argv[++i] : NULL, o);
         else if (refused_cacao_flag(a))
-            ok = fail("%s: a flag of cacao, not of cacao-bench (see --help)", a);
+            ok = fail("%s: a flag of cacao, not of cacao-bench (see --help)", a); /* a known name: printable */
         else
             rest[n++] = argv[i];
     }
     char err[BENCH_ERR];
     if (ok && !cli_parse(n, rest, &o->cli, err, sizeof err)) ok = fail("%s", err);
     free(rest);
-    if (!ok) return false;
+    if (!ok || !check_mode(o, outside) || !refuse_config_set_flags(&o->cli)) return false;
     if (o->plot_path && !has_extension(o->plot_path, ".png") && !has_extension(o->plot_path, ".svg"))
-        return fail("--plot %s: use a .png or .svg file", o->plot_path);
-    if (o->plot_from && (!o->plot_path || o->json_path || o->csv_path || o->save_dir || o->scene_count || o->configs))
-        return fail("--plot-from %s: takes only --plot (and --reference); it runs nothing", o->plot_from);
+        return fail("--plot %s: use a .png or .svg file", cacao_shown(o->plot_path).text);
+    if (o->plot_from && !o->plot_path && !o->help)
+        return fail("--plot-from %s: needs --plot FILE (it runs nothing and only plots)",
+                    cacao_shown(o->plot_from).text);
     struct stat st;
     if (o->save_dir && (stat(o->save_dir, &st) != 0 || !S_ISDIR(st.st_mode)))
-        return fail("--save-ao %s: not a folder", o->save_dir);
+        return fail("--save-ao %s: not a folder", cacao_shown(o->save_dir).text);
     return true;
 }
 
@@ -222,30 +295,46 @@ static bool is_default_config(const bench_config *c) {
     return c->blur == (c->estimator == CACAO_ESTIMATOR_CACAO ? 2 : 1) && !c->fp16 && !c->reconstruct_normals;
 }
 
-#define FULL_SWEEP_SIZE (5 * 2 * 2 * 2 * 9 + 2 * 5 * 2 * 9)
+/* Marks the configurations the comma list names (names or globs), all of it however long. */
+static bool choose_listed(const char *configs, const bench_config *all, uint32_t total, bool *chosen) {
+    char *list = strdup(configs);
+    if (!list) return fail("--configs: out of memory");
+    char *save = NULL;
+    bool ok = true;
+    for (char *p = strtok_r(list, ",", &save); ok && p; p = strtok_r(NULL, ",", &save)) {
+        bool any = false;
+        for (uint32_t i = 0; i < total; ++i)
+            if (fnmatch(p, all[i].name, 0) == 0) any = chosen[i] = true;
+        if (!any) {
+            char shown[256];
+            cacao_escape_text(p, shown, sizeof shown);
+            ok = fail("--configs: '%s' matches no configuration (see --list-configs --sweep full)", shown);
+        }
+    }
+    free(list);
+    return ok;
+}
 
-/* The configurations the options select, in sweep order (each once). */
+/* The configurations the options select, in sweep order (each once); the flags of one estimator
+ * are refused when a selected configuration runs another. */
 static bool select_configs(const bench_options *o, bench_config *out, uint32_t *count) {
-    bench_config all[FULL_SWEEP_SIZE];
+    bench_config all[BENCH_MAX_CONFIGS];
     const uint32_t total = full_sweep(all);
-    bool chosen[FULL_SWEEP_SIZE] = {0};
+    bool chosen[BENCH_MAX_CONFIGS] = {0};
     if (!o->configs) {
         for (uint32_t i = 0; i < total; ++i) chosen[i] = o->full_sweep || is_default_config(&all[i]);
-    } else {
-        char list[4096];
-        snprintf(list, sizeof list, "%s", o->configs);
-        char *save = NULL;
-        for (char *p = strtok_r(list, ",", &save); p; p = strtok_r(NULL, ",", &save)) {
-            bool any = false;
-            for (uint32_t i = 0; i < total; ++i)
-                if (fnmatch(p, all[i].name, 0) == 0) any = chosen[i] = true;
-            if (!any) return fail("--configs: '%s' matches no configuration (see --list-configs --sweep full)", p);
-        }
+    } else if (!choose_listed(o->configs, all, total, chosen)) {
+        return false;
     }
     *count = 0;
     for (uint32_t i = 0; i < total; ++i)
         if (chosen[i]) out[(*count)++] = all[i];
     if (*count == 0) return fail("--configs: empty list");
+    char err[BENCH_ERR], what[96];
+    for (uint32_t c = 0; c < *count; ++c) {
+        snprintf(what, sizeof what, "configuration %s", out[c].name);
+        if (!cli_check_estimator_flags(&o->cli, out[c].estimator, what, err, sizeof err)) return fail("%s", err);
+    }
     return true;
 }
 
@@ -261,169 +350,56 @@ static void free_scene(bench_scene *s) {
     for (int t = 0; t < BENCH_TRUTHS; ++t) cacao_img_free(&s->truth[t]);
 }
 
-static bool load_scene(const bench_options *o, const char *dir, bench_scene *s) {
+/* A scene's name: its folder's own name ("default" for the embedded scene). It names the scene
+ * in the table, JSON, CSV, plot and --save-ao files, so it must be printable and differ from the
+ * names of the scenes before it. */
+static bool name_scene(const char *dir, const bench_scene *earlier, uint32_t earlier_count, char *name, size_t size) {
+    if (!dir) {
+        snprintf(name, size, "default");
+        return true;
+    }
+    size_t end = strlen(dir);
+    while (end > 1 && dir[end - 1] == '/') --end;
+    size_t start = end;
+    while (start > 0 && dir[start - 1] != '/') --start;
+    const cacao_shown_text shown = cacao_shown(dir);
+    if (end - start >= size)
+        return fail("--scene %s: the folder's name is longer than %zu bytes", shown.text, size - 1);
+    memcpy(name, dir + start, end - start);
+    name[end - start] = '\0';
+    if (!cacao_text_is_printable(name))
+        return fail("--scene %s: the folder's name is empty or holds control characters, which the table, CSV and "
+                    "plot cannot show",
+                    shown.text);
+    for (uint32_t k = 0; k < earlier_count; ++k)
+        if (strcmp(earlier[k].name, name) == 0)
+            return fail("--scene %s: named '%s' like --scene %s (a scene is named by its folder; rename one)",
+                        shown.text, name, cacao_shown(earlier[k].path).text);
+    return true;
+}
+
+/* Loads scenes[index] (the scenes before it loaded). */
+static bool load_scene(const bench_options *o, bench_scene *scenes, uint32_t index) {
+    bench_scene *s = &scenes[index];
     memset(s, 0, sizeof *s);
+    const char *dir = o->scene_count ? o->scenes[index] : NULL;
     s->path = dir;
+    if (!name_scene(dir, scenes, index, s->name, sizeof s->name)) return false;
     cli_options io = o->cli;
     io.scene_dir = dir;
     char err[BENCH_ERR];
     if (!cli_inputs_load(&io, &s->inputs, err, sizeof err)) return fail("%s", err);
-    if (!dir) {
-        snprintf(s->name, sizeof s->name, "default");
-        return true;
-    }
-    char trimmed[4096];
-    snprintf(trimmed, sizeof trimmed, "%s", dir);
-    for (size_t len = strlen(trimmed); len > 1 && trimmed[len - 1] == '/'; --len) trimmed[len - 1] = 0;
-    const char *base = strrchr(trimmed, '/');
-    const char *name = base ? base + 1 : trimmed;
-    const size_t length = strnlen(name, sizeof s->name - 1); /* the folder's name, cut to fit */
-    memcpy(s->name, name, length);
-    s->name[length] = 0;
-    for (int t = 0; t < BENCH_TRUTHS; ++t) {
+    for (int t = 0; dir && t < BENCH_TRUTHS; ++t) {
         char path[4200];
         snprintf(path, sizeof path, "%s/%s.pfm", dir, bench_truth_names[t]);
         if (!file_exists(path)) continue;
         if (!cli_read_scalar_image(path, "ground truth", false, &s->truth[t], err, sizeof err)) return fail("%s", err);
         if (s->truth[t].width != s->inputs.depth.width || s->truth[t].height != s->inputs.depth.height)
-            return fail("%s: ground truth is %ux%u but the depth is %ux%u", path, s->truth[t].width, s->truth[t].height,
-                        s->inputs.depth.width, s->inputs.depth.height);
+            return fail("%s: ground truth is %ux%u but the depth is %ux%u", cacao_shown(path).text, s->truth[t].width,
+                        s->truth[t].height, s->inputs.depth.width, s->inputs.depth.height);
         s->has_truth[t] = true;
     }
     return true;
-}
-
-/* ---- Reference points ------------------------------------------------------------------------ */
-
-/* The JSON in path, or NULL after one line naming the flag and the file. */
-static cJSON *read_json(const char *flag, const char *path) {
-    char err[BENCH_ERR];
-    char *text = cacao_read_whole_file(path, 256u << 20, err, sizeof err);
-    if (!text) return fail("%s %s", flag, err), NULL;
-    cJSON *root = cJSON_Parse(text);
-    free(text);
-    if (!root) fail("%s %s: not valid JSON", flag, path);
-    return root;
-}
-
-static bool load_reference(const char *path, char *name, size_t name_size, bench_point **points, uint32_t *count) {
-    cJSON *root = read_json("--reference", path);
-    if (!root) return false;
-    const cJSON *jname = cJSON_GetObjectItemCaseSensitive(root, "name");
-    const cJSON *list = cJSON_GetObjectItemCaseSensitive(root, "points");
-    if (!cJSON_IsString(jname) || !cJSON_IsArray(list)) {
-        cJSON_Delete(root);
-        return fail("--reference %s: not JSON with a string \"name\" and an array \"points\"", path);
-    }
-    snprintf(name, name_size, "%s", jname->valuestring);
-    const int n = cJSON_GetArraySize(list);
-    *points = calloc(n ? (size_t)n : 1, sizeof **points);
-    *count = 0;
-    for (int i = 0; *points && i < n; ++i) {
-        const cJSON *p = cJSON_GetArrayItem(list, i);
-        const cJSON *scene = cJSON_GetObjectItemCaseSensitive(p, "scene");
-        const cJSON *config = cJSON_GetObjectItemCaseSensitive(p, "config");
-        const cJSON *ms = cJSON_GetObjectItemCaseSensitive(p, "total_ms");
-        if (!cJSON_IsString(scene) || !cJSON_IsString(config) || !cJSON_IsNumber(ms) || !isfinite(ms->valuedouble)) {
-            cJSON_Delete(root);
-            return fail("--reference %s: points[%d] needs \"scene\", \"config\" (strings) and \"total_ms\" (a "
-                        "number)",
-                        path, i);
-        }
-        bench_point *q = &(*points)[(*count)++];
-        snprintf(q->scene, sizeof q->scene, "%s", scene->valuestring);
-        snprintf(q->label, sizeof q->label, "%s", config->valuestring);
-        q->total_ms = ms->valuedouble;
-        for (int t = 0; t < BENCH_TRUTHS; ++t) {
-            char key[64];
-            snprintf(key, sizeof key, "rmse_%s", bench_truth_names[t]);
-            const cJSON *e = cJSON_GetObjectItemCaseSensitive(p, key);
-            q->rmse[t] = cJSON_IsNumber(e) ? e->valuedouble : -1.0;
-        }
-    }
-    cJSON_Delete(root);
-    return *points ? true : fail("out of memory");
-}
-
-/* ---- --plot-from: a plot of an earlier (or merged) cacao-bench JSON ---------------------------- */
-
-static int index_of_name(const char *name, const char *names, size_t stride, uint32_t count) {
-    for (uint32_t i = 0; name && i < count; ++i)
-        if (strcmp(names + i * stride, name) == 0) return (int)i;
-    return -1;
-}
-
-/* Reads what the plot needs from a cacao-bench JSON: scenes (name, truths), configurations (name)
- * and results (scene, config, total_ms, errors.<truth>.rmse). */
-static bool load_plot_from(const char *path, bench_scene *scenes, bench_config *configs, bench_result **results,
-                           bench_run *run) {
-    cJSON *root = read_json("--plot-from", path);
-    if (!root) return false;
-    const cJSON *jscenes = cJSON_GetObjectItemCaseSensitive(root, "scenes");
-    const cJSON *jconfigs = cJSON_GetObjectItemCaseSensitive(root, "configurations");
-    const cJSON *jresults = cJSON_GetObjectItemCaseSensitive(root, "results");
-    const int ns = cJSON_GetArraySize(jscenes), nc = cJSON_GetArraySize(jconfigs), nr = cJSON_GetArraySize(jresults);
-    bool ok = cJSON_IsArray(jscenes) && cJSON_IsArray(jconfigs) && cJSON_IsArray(jresults) && ns > 0 &&
-              ns <= BENCH_MAX_SCENES && nc > 0 && nc <= FULL_SWEEP_SIZE && nr > 0;
-    if (!ok)
-        fail("--plot-from %s: needs arrays \"scenes\" (1..%d), \"configurations\" and \"results\"", path,
-             BENCH_MAX_SCENES);
-    for (int i = 0; ok && i < ns; ++i) {
-        const cJSON *js = cJSON_GetArrayItem(jscenes, i), *t;
-        const char *name = cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(js, "name"));
-        if (!(ok = name != NULL))
-            fail("--plot-from %s: scenes[%d] has no name", path, i);
-        else
-            snprintf(scenes[i].name, sizeof scenes[i].name, "%s", name);
-        cJSON_ArrayForEach(t, cJSON_GetObjectItemCaseSensitive(js, "truths")) {
-            for (int g = 0; g < BENCH_TRUTHS; ++g)
-                if (cJSON_IsString(t) && strcmp(t->valuestring, bench_truth_names[g]) == 0)
-                    scenes[i].has_truth[g] = true;
-        }
-    }
-    for (int i = 0; ok && i < nc; ++i) {
-        const char *name =
-            cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(cJSON_GetArrayItem(jconfigs, i), "name"));
-        if (!(ok = name != NULL))
-            fail("--plot-from %s: configurations[%d] has no name", path, i);
-        else
-            snprintf(configs[i].name, sizeof configs[i].name, "%s", name);
-    }
-    *results = ok ? calloc((size_t)nr, sizeof **results) : NULL;
-    if (ok && !*results) ok = fail("out of memory");
-    for (int i = 0; ok && i < nr; ++i) {
-        const cJSON *jr = cJSON_GetArrayItem(jresults, i);
-        bench_result *r = &(*results)[i];
-        const int scene = index_of_name(cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(jr, "scene")),
-                                        scenes[0].name, sizeof scenes[0], (uint32_t)ns);
-        const int config = index_of_name(cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(jr, "config")),
-                                         configs[0].name, sizeof configs[0], (uint32_t)nc);
-        const cJSON *ms = cJSON_GetObjectItemCaseSensitive(jr, "total_ms");
-        if (!(ok = scene >= 0 && config >= 0 && cJSON_IsNumber(ms))) {
-            fail("--plot-from %s: results[%d] needs a listed scene and config and a total_ms", path, i);
-            break;
-        }
-        r->scene = (uint32_t)scene;
-        r->config = (uint32_t)config;
-        r->timings.total.median_ms = ms->valuedouble;
-        for (int t = 0; t < BENCH_TRUTHS; ++t) {
-            const cJSON *e =
-                cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(jr, "errors"), bench_truth_names[t]);
-            const cJSON *rmse = cJSON_GetObjectItemCaseSensitive(e, "rmse");
-            if (cJSON_IsNumber(rmse)) {
-                r->has_error[t] = true;
-                r->error[t].rmse = rmse->valuedouble;
-            }
-        }
-    }
-    cJSON_Delete(root);
-    run->scenes = scenes;
-    run->scene_count = ok ? (uint32_t)ns : 0;
-    run->configs = configs;
-    run->config_count = ok ? (uint32_t)nc : 0;
-    run->results = *results;
-    run->result_count = ok ? (uint32_t)nr : 0;
-    return ok;
 }
 
 /* ---- Runs ------------------------------------------------------------------------------------ */
@@ -469,14 +445,9 @@ static cacao_settings config_settings(const bench_options *o, const bench_config
     return set;
 }
 
-static bool save_ao(const bench_options *o, const bench_scene *s, const bench_config *c, const cacao_img *ao) {
-    char path[4200], err[BENCH_ERR];
-    snprintf(path, sizeof path, "%s/%s.%s.pfm", o->save_dir, s->name, c->name);
-    return cacao_pfm_write(path, ao, err, sizeof err) ? true : fail("--save-ao: %s", err);
-}
-
+/* Runs one configuration on one scene into r; its AO goes to ao_path (a staged file) unless NULL. */
 static bool run_one(vkdev *dev, const bench_options *o, const bench_scene *s, const bench_config *c, float *ao,
-                    bench_result *r) {
+                    const char *ao_path, bench_result *r) {
     char err[BENCH_ERR];
     const cacao_settings set = config_settings(o, c, s);
     if (cacao_settings_resolve(&set, &r->resolved, err, sizeof err) != CACAO_SUCCESS)
@@ -495,7 +466,8 @@ static bool run_one(vkdev *dev, const bench_options *o, const bench_scene *s, co
             return fail("out of memory comparing %s", s->name);
         r->has_error[t] = true;
     }
-    return !o->save_dir || save_ao(o, s, c, &image);
+    if (ao_path && !cacao_pfm_write(ao_path, &image, err, sizeof err)) return fail("--save-ao: %s", err);
+    return true;
 }
 
 static void progress(uint32_t done, uint32_t total, double started, const char *what) {
@@ -506,9 +478,11 @@ static void progress(uint32_t done, uint32_t total, double started, const char *
     fflush(stderr);
 }
 
+/* Runs every configuration on every scene into results (configuration-major), the AO of each to
+ * ao_paths[same index] where ao_paths is not NULL. */
 static bool run_all(const bench_options *o, const bench_config *configs, uint32_t config_count,
-                    const bench_scene *scenes, uint32_t scene_count, bench_result *results, vkdev_cache_timing *cache,
-                    bench_run *run) {
+                    const bench_scene *scenes, uint32_t scene_count, const char *const *ao_paths, bench_result *results,
+                    vkdev_cache_timing *cache, bench_run *run) {
     char err[BENCH_ERR];
     vkdev dev;
     if (!vkdev_create(&(vkdev_options){.validation = o->cli.validate, .device = o->cli.device}, &dev, err, sizeof err))
@@ -529,10 +503,10 @@ static bool run_all(const bench_options *o, const bench_config *configs, uint32_
     load_average(run->load_before);
     for (uint32_t c = 0; ok && c < config_count; ++c)
         for (uint32_t s = 0; ok && s < scene_count; ++s) {
-            bench_result *r = &results[c * scene_count + s];
-            *r = (bench_result){.scene = s, .config = c};
-            if (show) progress(c * scene_count + s, total, started, configs[c].name);
-            ok = run_one(&dev, o, &scenes[s], &configs[c], ao, r);
+            const uint32_t k = c * scene_count + s;
+            results[k] = (bench_result){.scene = s, .config = c};
+            if (show) progress(k, total, started, configs[c].name);
+            ok = run_one(&dev, o, &scenes[s], &configs[c], ao, ao_paths ? ao_paths[k] : NULL, &results[k]);
         }
     if (ok && cache) {
         run->cache_width = scenes[0].inputs.depth.width;
@@ -541,8 +515,8 @@ static bool run_all(const bench_options *o, const bench_config *configs, uint32_
     for (uint32_t c = 0; ok && cache && c < config_count; ++c) {
         const bench_config *config = &configs[c];
         const cacao_settings set = config_settings(o, config, &scenes[0]);
-        if (vkdev_time_pipeline_cache(&dev, &set, run->cache_width, run->cache_height, o->cache_trials, &cache[c],
-                                      err, sizeof err) != CACAO_SUCCESS)
+        if (vkdev_time_pipeline_cache(&dev, &set, run->cache_width, run->cache_height, o->cache_trials, &cache[c], err,
+                                      sizeof err) != CACAO_SUCCESS)
             ok = fail("%s: pipeline cache timing: %s", config->name, err);
     }
     load_average(run->load_after);
@@ -555,19 +529,114 @@ static bool run_all(const bench_options *o, const bench_config *configs, uint32_
     return ok;
 }
 
-/* ---- Writing --------------------------------------------------------------------------------- */
+/* ---- Outputs --------------------------------------------------------------------------------- */
 
-static bool write_files(const bench_options *o, const bench_run *run) {
+/* Every file the run reads, for the outputs to be checked against: each scene folder and the
+ * files in it, the truths, --reference, --settings and --plot-from. */
+typedef struct input_list {
+    cacao_named_path paths[4 + BENCH_MAX_SCENES * (1 + CLI_SCENE_FILE_COUNT + BENCH_TRUTHS)];
+    char scene_files[BENCH_MAX_SCENES][CLI_SCENE_FILE_COUNT + BENCH_TRUTHS][4200];
+    size_t count;
+} input_list;
+
+static void list_inputs(const bench_options *o, input_list *in) {
+    in->count = 0;
+    in->paths[in->count++] = (cacao_named_path){"--reference", o->reference_path};
+    in->paths[in->count++] = (cacao_named_path){"--settings", o->cli.settings_path};
+    in->paths[in->count++] = (cacao_named_path){"--plot-from", o->plot_from};
+    for (uint32_t s = 0; s < o->scene_count; ++s) {
+        in->paths[in->count++] = (cacao_named_path){"--scene", o->scenes[s]};
+        for (int f = 0; f < CLI_SCENE_FILE_COUNT + BENCH_TRUTHS; ++f) {
+            char *path = in->scene_files[s][f];
+            if (f < CLI_SCENE_FILE_COUNT)
+                snprintf(path, sizeof in->scene_files[s][f], "%s/%s", o->scenes[s], cli_scene_file_names[f]);
+            else
+                snprintf(path, sizeof in->scene_files[s][f], "%s/%s.pfm", o->scenes[s],
+                         bench_truth_names[f - CLI_SCENE_FILE_COUNT]);
+            in->paths[in->count++] = (cacao_named_path){"--scene", path};
+        }
+    }
+}
+
+/* The outputs of one run: their paths and their staged files. */
+typedef struct bench_outputs {
+    cacao_stage stage;
+    const char *json, *csv, *plot; /* staged files; NULL where not asked */
+    char **ao_paths;               /* --save-ao: DIR/<scene>.<config>.pfm per result, then staged */
+    const char **ao_staged;
+    size_t ao_count;
+} bench_outputs;
+
+static void free_outputs(bench_outputs *out) {
+    for (size_t i = 0; out->ao_paths && i < out->ao_count; ++i) free(out->ao_paths[i]);
+    free(out->ao_paths);
+    free(out->ao_staged);
+    cacao_stage_abandon(&out->stage); /* nothing left to delete after a commit */
+}
+
+/* The --save-ao path of every result, in the order of the results. */
+static bool name_saved_ao(const bench_options *o, const bench_config *configs, uint32_t config_count,
+                          const bench_scene *scenes, uint32_t scene_count, bench_outputs *out) {
+    out->ao_count = o->save_dir ? (size_t)config_count * scene_count : 0;
+    out->ao_paths = calloc(out->ao_count + 1, sizeof *out->ao_paths);
+    out->ao_staged = calloc(out->ao_count + 1, sizeof *out->ao_staged);
+    if (!out->ao_paths || !out->ao_staged) return fail("out of memory");
+    for (size_t k = 0; k < out->ao_count; ++k) {
+        const bench_scene *s = &scenes[k % scene_count];
+        const bench_config *c = &configs[k / scene_count];
+        const size_t size = strlen(o->save_dir) + strlen(s->name) + strlen(c->name) + 8;
+        if (!(out->ao_paths[k] = malloc(size))) return fail("out of memory");
+        snprintf(out->ao_paths[k], size, "%s/%s.%s.pfm", o->save_dir, s->name, c->name);
+    }
+    return true;
+}
+
+/* Checks every output against the inputs and each other, then creates each one's staged file. */
+static bool stage_outputs(const bench_options *o, bench_outputs *out) {
+    static input_list inputs;
+    list_inputs(o, &inputs);
+    cacao_named_path *outputs = calloc(3 + out->ao_count, sizeof *outputs);
+    if (!outputs) return fail("out of memory");
+    outputs[0] = (cacao_named_path){"--json", o->json_path};
+    outputs[1] = (cacao_named_path){"--csv", o->csv_path};
+    outputs[2] = (cacao_named_path){"--plot", o->plot_path};
+    for (size_t k = 0; k < out->ao_count; ++k) outputs[3 + k] = (cacao_named_path){"--save-ao", out->ao_paths[k]};
     char err[BENCH_ERR];
-    const char *written[3];
-    int count = 0;
+    bool ok = cacao_check_outputs(outputs, 3 + out->ao_count, inputs.paths, inputs.count, err, sizeof err);
+    const char **staged[3] = {&out->json, &out->csv, &out->plot};
+    for (size_t k = 0; ok && k < 3 + out->ao_count; ++k) {
+        if (!outputs[k].path) continue;
+        const char *temp = cacao_stage_add(&out->stage, outputs[k].flag, outputs[k].path, err, sizeof err);
+        ok = temp != NULL;
+        *(k < 3 ? staged[k] : &out->ao_staged[k - 3]) = temp;
+    }
+    free(outputs);
+    if (ok && o->plot_path) ok = bench_plot_check(o->plot_path, has_extension(o->plot_path, ".svg"), err);
+    return ok ? true : fail("%s", err);
+}
+
+/* Fills a staged file with text (NULL: out of memory); `flag` and `shown` name it in messages. */
+static bool write_staged(const char *staged, char *text, const char *flag, const char *shown) {
+    if (!text) return fail("%s %s: out of memory", flag, shown);
+    FILE *f = fopen(staged, "wb");
+    const size_t length = strlen(text);
+    bool ok = f && fwrite(text, 1, length, f) == length;
+    ok = f && fclose(f) == 0 && ok;
+    free(text);
+    return ok ? true : fail("%s %s: cannot write: %s", flag, shown, strerror(errno));
+}
+
+/* Fills the JSON, CSV and plot; then renames every staged file into place. */
+static bool write_outputs(const bench_options *o, const bench_run *run, bench_outputs *out) {
+    char err[BENCH_ERR];
     bool ok = true;
-    if (ok && o->json_path) ok = bench_write_json(o->json_path, run, err) && (written[count++] = o->json_path);
-    if (ok && o->csv_path) ok = bench_write_csv(o->csv_path, run, err) && (written[count++] = o->csv_path);
-    if (ok && o->plot_path) ok = bench_write_plot(o->plot_path, run, err) && (written[count++] = o->plot_path);
-    if (ok) return true;
-    for (int i = 0; i < count; ++i) remove(written[i]); /* all or nothing */
-    return fail("%s", err);
+    if (ok && out->json) ok = write_staged(out->json, bench_json_text(run), "--json", o->json_path);
+    if (ok && out->csv) ok = write_staged(out->csv, bench_csv_text(run), "--csv", o->csv_path);
+    if (ok && out->plot)
+        ok =
+            bench_write_plot(out->plot, o->plot_path, has_extension(o->plot_path, ".svg"), run, err) || fail("%s", err);
+    if (ok) ok = cacao_stage_commit(&out->stage, err, sizeof err) || fail("%s", err);
+    return ok;
 }
 
 static bool plot_possible(const bench_options *o, const bench_scene *scenes, uint32_t scene_count) {
@@ -577,6 +646,53 @@ static bool plot_possible(const bench_options *o, const bench_scene *scenes, uin
     return fail("--plot: no scene has ao_gt_falloff.pfm or ao_gt.pfm, so there is no error to plot");
 }
 
+/* ---- Modes ------------------------------------------------------------------------------------ */
+
+/* --plot-from: the plot of an earlier run's JSON, with the reference points in run. */
+static bool plot_from(const bench_options *o, bench_run *run) {
+    static bench_scene scenes[BENCH_MAX_SCENES];
+    static bench_config configs[BENCH_MAX_CONFIGS];
+    bench_result *results = NULL;
+    bench_outputs out = {0};
+    char err[BENCH_ERR];
+    bool ok = bench_load_plot_from(o->plot_from, scenes, configs, &results, run, err) || fail("%s", err);
+    ok = ok && plot_possible(o, scenes, run->scene_count) && stage_outputs(o, &out) && write_outputs(o, run, &out);
+    free_outputs(&out);
+    free(results);
+    return ok;
+}
+
+/* A run: the configurations on the scenes, the files, then the table. */
+static bool run_and_report(const bench_options *o, const bench_config *configs, uint32_t config_count, bench_run *run) {
+    static bench_scene scenes[BENCH_MAX_SCENES];
+    const uint32_t scene_count = o->scene_count ? o->scene_count : 1;
+    uint32_t loaded = 0;
+    bool ok = true;
+    for (; ok && loaded < scene_count; ++loaded) ok = load_scene(o, scenes, loaded);
+    ok = ok && plot_possible(o, scenes, scene_count);
+    bench_outputs out = {0};
+    ok = ok && name_saved_ao(o, configs, config_count, scenes, scene_count, &out) && stage_outputs(o, &out);
+    bench_result *results = ok ? calloc((size_t)config_count * scene_count, sizeof *results) : NULL;
+    vkdev_cache_timing *cache = ok && o->cache_trials ? calloc(config_count, sizeof *cache) : NULL;
+    if (ok && (!results || (o->cache_trials && !cache))) ok = fail("out of memory");
+    if (ok) {
+        run->scenes = scenes;
+        run->scene_count = scene_count;
+        run->results = results;
+        run->result_count = config_count * scene_count;
+        run->cache = cache;
+        ok = run_all(o, configs, config_count, scenes, scene_count, o->save_dir ? out.ao_staged : NULL, results, cache,
+                     run) &&
+             write_outputs(o, run, &out);
+        if (ok) bench_print_table(stdout, run);
+    }
+    free_outputs(&out);
+    for (uint32_t s = 0; s < loaded; ++s) free_scene(&scenes[s]);
+    free(results);
+    free(cache);
+    return ok;
+}
+
 int main(int argc, char **argv) {
     bench_options o;
     if (!parse_flags(argc, argv, &o)) return 1;
@@ -584,56 +700,23 @@ int main(int argc, char **argv) {
         fputs(help_text, stdout);
         return 0;
     }
-    static bench_config configs[FULL_SWEEP_SIZE];
+    static bench_config configs[BENCH_MAX_CONFIGS];
     uint32_t config_count = 0;
-    if (!select_configs(&o, configs, &config_count)) return 1;
+    if (!o.plot_from && !select_configs(&o, configs, &config_count)) return 1;
     if (o.list_configs) {
         for (uint32_t c = 0; c < config_count; ++c) printf("%s\n", configs[c].name);
         return 0;
     }
     bench_run run = {.configs = configs, .config_count = config_count, .warmup = o.warmup, .repeat = o.repeat};
-    char reference_name[256] = "";
+    char reference_name[256] = "", err[BENCH_ERR];
     bench_point *points = NULL;
-    if (o.reference_path &&
-        !load_reference(o.reference_path, reference_name, sizeof reference_name, &points, &run.point_count)) {
-        free(points);
-        return 1;
-    }
+    bool ok =
+        !o.reference_path ||
+        bench_load_reference(o.reference_path, reference_name, sizeof reference_name, &points, &run.point_count, err) ||
+        fail("%s", err);
     run.reference_name = reference_name;
     run.points = points;
-    if (o.plot_from) {
-        static bench_scene plot_scenes[BENCH_MAX_SCENES];
-        bench_result *plot_results = NULL;
-        char err[BENCH_ERR];
-        bool ok = load_plot_from(o.plot_from, plot_scenes, configs, &plot_results, &run) &&
-                  plot_possible(&o, plot_scenes, run.scene_count);
-        if (ok && !bench_write_plot(o.plot_path, &run, err)) ok = fail("%s", err);
-        free(plot_results);
-        free(points);
-        return ok ? 0 : 1;
-    }
-    static bench_scene scenes[BENCH_MAX_SCENES];
-    const uint32_t scene_count = o.scene_count ? o.scene_count : 1;
-    uint32_t loaded = 0;
-    bool ok = true;
-    for (; ok && loaded < scene_count; ++loaded)
-        ok = load_scene(&o, o.scene_count ? o.scenes[loaded] : NULL, &scenes[loaded]);
-    ok = ok && plot_possible(&o, scenes, scene_count);
-    bench_result *results = ok ? calloc((size_t)config_count * scene_count, sizeof *results) : NULL;
-    vkdev_cache_timing *cache = ok && o.cache_trials ? calloc(config_count, sizeof *cache) : NULL;
-    if (ok && (!results || (o.cache_trials && !cache))) ok = fail("out of memory");
-    if (ok) {
-        run.scenes = scenes;
-        run.scene_count = scene_count;
-        run.results = results;
-        run.result_count = config_count * scene_count;
-        run.cache = cache;
-        ok = run_all(&o, configs, config_count, scenes, scene_count, results, cache, &run) && write_files(&o, &run);
-        if (ok) bench_print_table(stdout, &run);
-    }
-    for (uint32_t s = 0; s < loaded; ++s) free_scene(&scenes[s]);
-    free(results);
-    free(cache);
+    if (ok) ok = o.plot_from ? plot_from(&o, &run) : run_and_report(&o, configs, config_count, &run);
     free(points);
     return ok ? 0 : 1;
 }

@@ -1,30 +1,11 @@
-/* report.c - cacao-bench's table, JSON, CSV and plot (see bench.h). */
+/* report.c - cacao-bench's table, JSON and CSV (see bench.h). */
 #include <cjson/cJSON.h>
-#include <errno.h>
-#include <math.h>
-#include <spawn.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "bench.h"
 #include "options.h"
-#include "text_file.h"
-
-extern char **environ;
-extern const char cacao_bench_pareto_gp[]; /* tools/bench/pareto.gp, embedded at build time */
-
-/* cacao_set_err into a BENCH_ERR buffer, as a failed result. */
-#define fail_with(err, ...) cacao_set_err(err, BENCH_ERR, __VA_ARGS__)
-
-int bench_plot_truth(const bench_scene *scene) {
-    for (int t = 0; t < BENCH_TRUTHS; ++t)
-        if (scene->has_truth[t]) return t;
-    return -1;
-}
+#include "text_buffer.h"
 
 /* ---- Table ------------------------------------------------------------------------------------ */
 
@@ -105,23 +86,6 @@ static void add_cache_json(cJSON *root, const bench_run *run) {
         cJSON_AddBoolToObject(e, "header_valid", t->header_valid);
         cJSON_AddItemToArray(list, e);
     }
-}
-
-/* ---- Text files ------------------------------------------------------------------------------- */
-
-static bool write_text(const char *path, const char *text, char *err) {
-    char *temp = cacao_temp_path_for(path);
-    if (!temp) return fail_with(err, "%s: out of memory", path);
-    FILE *f = fopen(temp, "wb");
-    if (!f) {
-        fail_with(err, "%s: cannot create: %s", path, strerror(errno));
-        free(temp);
-        return false;
-    }
-    const size_t length = strlen(text);
-    bool ok = fwrite(text, 1, length, f) == length;
-    ok = fclose(f) == 0 && ok;
-    return cacao_commit_temp(temp, path, ok, err, BENCH_ERR);
 }
 
 /* ---- JSON ------------------------------------------------------------------------------------- */
@@ -222,52 +186,22 @@ static cJSON *run_json(const bench_run *run) {
     return root;
 }
 
-bool bench_write_json(const char *path, const bench_run *run, char *err) {
+char *bench_json_text(const bench_run *run) {
     cJSON *root = run_json(run);
     char *text = root ? cJSON_Print(root) : NULL;
     cJSON_Delete(root);
-    if (!text) return fail_with(err, "%s: out of memory", path);
+    if (!text) return NULL;
     const size_t n = strlen(text);
     char *line = realloc(text, n + 2);
     if (!line) {
         cJSON_free(text);
-        return fail_with(err, "%s: out of memory", path);
+        return NULL;
     }
     memcpy(line + n, "\n", 2);
-    const bool ok = write_text(path, line, err);
-    free(line);
-    return ok;
+    return line;
 }
 
 /* ---- CSV -------------------------------------------------------------------------------------- */
-
-typedef struct text_buffer {
-    char *data;
-    size_t length, capacity;
-    bool failed;
-} text_buffer;
-
-static void append(text_buffer *b, const char *fmt, ...) {
-    if (b->failed) return;
-    va_list ap;
-    va_start(ap, fmt);
-    const int n = vsnprintf(NULL, 0, fmt, ap);
-    va_end(ap);
-    if (n < 0 || b->length + (size_t)n + 1 > b->capacity) {
-        const size_t want = (b->length + (size_t)(n < 0 ? 0 : n) + 1) * 2 + 4096;
-        char *grown = n < 0 ? NULL : realloc(b->data, want);
-        if (!grown) {
-            b->failed = true;
-            return;
-        }
-        b->data = grown;
-        b->capacity = want;
-    }
-    va_start(ap, fmt);
-    vsnprintf(b->data + b->length, b->capacity - b->length, fmt, ap);
-    va_end(ap);
-    b->length += (size_t)n;
-}
 
 /* A CSV field: quoted (quotes doubled) when it holds a comma, quote or line break. */
 static void append_field(text_buffer *b, const char *text) {
@@ -276,7 +210,7 @@ static void append_field(text_buffer *b, const char *text) {
         return;
     }
     append(b, "\"");
-    for (const char *p = text; *p; ++p) append(b, *p == '"' ? "\"\"" : "%c", *p);
+    for (const char *p = text; *p; ++p) append(b, "%s", *p == '"' ? "\"\"" : (char[]){*p, 0});
     append(b, "\",");
 }
 
@@ -327,137 +261,11 @@ static void append_row(text_buffer *b, const bench_run *run, const bench_result 
     if (!b->failed) b->data[b->length - 1] = '\n'; /* the last comma becomes the line end */
 }
 
-bool bench_write_csv(const char *path, const bench_run *run, char *err) {
+char *bench_csv_text(const bench_run *run) {
     text_buffer b = {0};
     append(&b, "%s", csv_header);
     for (uint32_t i = 0; i < run->result_count; ++i) append_row(&b, run, &run->results[i]);
-    const bool ok = !b.failed ? write_text(path, b.data, err) : fail_with(err, "%s: out of memory", path);
+    if (!b.failed) return b.data;
     free(b.data);
-    return ok;
-}
-
-/* ---- Plot ------------------------------------------------------------------------------------- */
-
-typedef struct plot_point {
-    double ms, error;
-    const char *label;
-} plot_point;
-
-static int by_time(const void *a, const void *b) {
-    const plot_point *x = a, *y = b;
-    if (x->ms != y->ms) return x->ms < y->ms ? -1 : 1;
-    return (x->error > y->error) - (x->error < y->error);
-}
-
-/* One scene's three blocks of the data file: configurations, Pareto front, reference points. */
-static void append_scene_blocks(text_buffer *b, const bench_run *run, uint32_t scene, int truth, plot_point *points) {
-    uint32_t n = 0;
-    for (uint32_t i = 0; i < run->result_count; ++i) {
-        const bench_result *r = &run->results[i];
-        if (r->scene != scene || !r->has_error[truth]) continue;
-        points[n++] = (plot_point){r->timings.total.median_ms, r->error[truth].rmse, run->configs[r->config].name};
-        append(b, "%.6f %.6f \"%s\"\n", points[n - 1].ms, points[n - 1].error, points[n - 1].label);
-    }
-    append(b, "\n\n");
-    qsort(points, n, sizeof *points, by_time);
-    double best = INFINITY;
-    for (uint32_t i = 0; i < n; ++i) /* non-dominated: lower error than every faster configuration */
-        if (points[i].error < best) {
-            best = points[i].error;
-            append(b, "%.6f %.6f \"%s\"\n", points[i].ms, points[i].error, points[i].label);
-        }
-    append(b, "\n\n");
-    bool any = false;
-    for (uint32_t i = 0; i < run->point_count; ++i) {
-        const bench_point *p = &run->points[i];
-        if (strcmp(p->scene, run->scenes[scene].name) != 0 || p->rmse[truth] < 0) continue;
-        append(b, "%.6f %.6f \"%s\"\n", p->total_ms, p->rmse[truth], p->label);
-        any = true;
-    }
-    if (!any) append(b, "NaN NaN \"\"\n");
-    append(b, "\n\n");
-}
-
-/* A gnuplot string literal (double quotes, backslash escapes). */
-static void append_gp_string(text_buffer *b, const char *text) {
-    append(b, "\"");
-    for (const char *p = text; *p; ++p) append(b, (*p == '"' || *p == '\\') ? "\\%c" : "%c", *p);
-    append(b, "\"");
-}
-
-/* Runs gnuplot on the script, in this environment less LD_PRELOAD (a sanitizer build preloads its
- * runtime into cacao-bench; gnuplot is not ours to check). */
-static bool run_gnuplot(const char *script_path, char *err) {
-    size_t count = 0;
-    while (environ[count]) ++count;
-    char **env = calloc(count + 1, sizeof *env);
-    if (!env) return fail_with(err, "--plot: out of memory");
-    for (size_t i = 0, j = 0; i < count; ++i)
-        if (strncmp(environ[i], "LD_PRELOAD=", 11) != 0) env[j++] = environ[i];
-    pid_t pid;
-    char *args[] = {"gnuplot", (char *)script_path, NULL};
-    const int spawned = posix_spawnp(&pid, "gnuplot", NULL, NULL, args, env);
-    free(env);
-    if (spawned != 0)
-        return fail_with(err, "--plot: cannot run gnuplot (%s); install the gnuplot-nox package", strerror(spawned));
-    int status = 0;
-    if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-        return fail_with(err, "--plot: gnuplot failed (its messages are above)");
-    return true;
-}
-
-static bool write_temp(const char *text, char *path_out, const char *suffix, char *err) {
-    snprintf(path_out, 64, "/tmp/cacao-bench-XXXXXX%s", suffix);
-    const int fd = mkstemps(path_out, (int)strlen(suffix));
-    if (fd < 0) return fail_with(err, "--plot: cannot create a temporary file: %s", strerror(errno));
-    const size_t n = strlen(text);
-    const bool ok = write(fd, text, n) == (ssize_t)n;
-    close(fd);
-    if (!ok) remove(path_out);
-    return ok ? true : fail_with(err, "--plot: cannot write a temporary file");
-}
-
-bool bench_write_plot(const char *path, const bench_run *run, char *err) {
-    plot_point *points = calloc(run->result_count ? run->result_count : 1, sizeof *points);
-    text_buffer data = {0}, script = {0}, names = {0};
-    int shown_truth = -1;
-    for (uint32_t s = 0; points && s < run->scene_count; ++s) {
-        const int truth = bench_plot_truth(&run->scenes[s]);
-        if (truth < 0) continue;
-        if (shown_truth < 0 || truth < shown_truth) shown_truth = truth;
-        append_scene_blocks(&data, run, s, truth, points);
-        append(&names, "%s%s", names.length ? " " : "", run->scenes[s].name);
-    }
-    const bool had_memory = points != NULL;
-    free(points);
-    char data_path[64] = "", script_path[64] = "";
-    char *temp = cacao_temp_path_for(path);
-    bool ok = had_memory && temp && !data.failed && !names.failed;
-    if (!ok) fail_with(err, "%s: out of memory", path);
-    if (ok) ok = write_temp(data.data, data_path, ".dat", err);
-    if (ok) {
-        append(&script, "datafile = ");
-        append_gp_string(&script, data_path);
-        append(&script, "\noutfile = ");
-        append_gp_string(&script, temp);
-        const size_t length = strlen(path);
-        append(&script, "\nformat = \"%s\"\nscenes = ", strcasecmp(path + length - 4, ".svg") == 0 ? "svg" : "png");
-        append_gp_string(&script, names.data);
-        append(&script, "\nylabel = \"RMSE against %s (non-background pixels)\"\nrefname = ",
-               bench_truth_names[shown_truth < 0 ? 0 : shown_truth]);
-        append_gp_string(&script, run->point_count ? run->reference_name : "");
-        append(&script, "\n%s", cacao_bench_pareto_gp);
-        ok = !script.failed ? write_temp(script.data, script_path, ".gp", err) : fail_with(err, "out of memory");
-    }
-    if (ok) ok = run_gnuplot(script_path, err);
-    if (data_path[0]) remove(data_path);
-    if (script_path[0]) remove(script_path);
-    free(data.data);
-    free(script.data);
-    free(names.data);
-    if (!temp) return false;
-    char commit_err[BENCH_ERR];
-    const bool committed = cacao_commit_temp(temp, path, ok, commit_err, sizeof commit_err);
-    if (ok && !committed) fail_with(err, "%s", commit_err);
-    return ok && committed;
+    return NULL;
 }

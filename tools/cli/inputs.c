@@ -13,6 +13,9 @@
 #include "scene.h"
 #include "text_file.h"
 
+const char *const cli_scene_file_names[CLI_SCENE_FILE_COUNT] = {"depth.pfm", "depth_reversed.pfm", "normals.pfm",
+                                                                 "camera.json"};
+
 void cli_extension(const char *path, char *out, size_t out_size) {
     const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
     out[0] = '\0';

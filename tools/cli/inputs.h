@@ -19,6 +19,11 @@ typedef struct cli_inputs {
     double ao_radius_world;   /* the scene's radius; 0 = none given */
 } cli_inputs;
 
+/* The files a scene folder's inputs are read from (depth.pfm or depth_reversed.pfm, normals.pfm,
+ * camera.json): what an output must not name. */
+#define CLI_SCENE_FILE_COUNT 4
+extern const char *const cli_scene_file_names[CLI_SCENE_FILE_COUNT];
+
 /* Loads and checks everything the options name. On error writes one line naming the file or
  * flag into err and returns false (with nothing held). */
 bool cli_inputs_load(const cli_options *options, cli_inputs *inputs, char *err, size_t err_size);

@@ -10,12 +10,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include <cjson/cJSON.h>
 
 #include "inputs.h"
 #include "options.h"
+#include "output_files.h"
 #include "outputs.h"
 #include "text_file.h"
 #include "vkdev.h"
@@ -29,33 +29,19 @@ static int fail(const char *message) {
 
 static unsigned png_bits(const cli_options *o) { return o->png16 ? 16u : o->png_bits ? o->png_bits : 8u; }
 
-/* Whether a and b name the same file: the same text, or the same existing file. */
-static bool same_file(const char *a, const char *b) {
-    struct stat sa, sb;
-    if (!a || !b) return false;
-    if (strcmp(a, b) == 0) return true;
-    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
-}
-
-/* -o and --json must not name each other or any input (the output would overwrite it). */
+/* -o and --json must not name each other or any input (the output would overwrite it), the files
+ * of a --scene folder included. */
 static bool check_output_collisions(const cli_options *o, char *err) {
-    if (same_file(o->output_path, o->json_path)) {
-        cacao_set_err(err, ERR_SIZE, "--output %s and --json %s name the same file", o->output_path, o->json_path);
-        return false;
+    char scene_files[CLI_SCENE_FILE_COUNT][4200];
+    cacao_named_path inputs[6 + CLI_SCENE_FILE_COUNT] = {
+        {"--depth", o->depth_path},     {"--normals", o->normals_path},   {"--camera", o->camera_path},
+        {"--compare", o->compare_path}, {"--settings", o->settings_path}, {"--scene", o->scene_dir}};
+    for (int i = 0; o->scene_dir && i < CLI_SCENE_FILE_COUNT; ++i) {
+        snprintf(scene_files[i], sizeof scene_files[i], "%s/%s", o->scene_dir, cli_scene_file_names[i]);
+        inputs[6 + i] = (cacao_named_path){"--scene", scene_files[i]};
     }
-    const struct {
-        const char *flag, *path;
-    } inputs[] = {{"--depth", o->depth_path},     {"--normals", o->normals_path},   {"--camera", o->camera_path},
-                  {"--compare", o->compare_path}, {"--settings", o->settings_path}, {"--scene", o->scene_dir}};
-    const struct { const char *flag, *path; } outputs[] = {{"--output", o->output_path}, {"--json", o->json_path}};
-    for (size_t k = 0; k < sizeof outputs / sizeof outputs[0]; ++k)
-        for (size_t i = 0; i < sizeof inputs / sizeof inputs[0]; ++i)
-            if (same_file(outputs[k].path, inputs[i].path)) {
-                cacao_set_err(err, ERR_SIZE, "%s %s: is also the %s input; it would be overwritten", outputs[k].flag, outputs[k].path,
-                        inputs[i].flag);
-                return false;
-            }
-    return true;
+    const cacao_named_path outputs[] = {{"--output", o->output_path}, {"--json", o->json_path}};
+    return cacao_check_outputs(outputs, 2, inputs, sizeof inputs / sizeof inputs[0], err, ERR_SIZE);
 }
 
 static bool check_output_flags(const cli_options *o, char *err) {
@@ -215,6 +201,7 @@ static int run_with_inputs(const cli_options *o, const cli_inputs *in) {
 
 static int run(const cli_options *o) {
     char err[ERR_SIZE];
+    if (!cli_check_estimator_flags(o, o->settings.estimator, "this run", err, sizeof err)) return fail(err);
     if (!check_output_flags(o, err)) return fail(err);
     cli_inputs in;
     if (!cli_inputs_load(o, &in, err, sizeof err)) return fail(err);

@@ -2,6 +2,7 @@
 #include "options.h"
 
 #include <cjson/cJSON.h>
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -42,6 +43,7 @@ typedef struct flag_def {
     const char *json2;
     const char *(*name_of)(int value); /* SET_ENUM: the runtime's name of a value; NULL past the last */
     int int_max; /* SET_INT: largest value */
+    unsigned estimators; /* the estimators it applies to, a bit per cacao_estimator; 0 = every one */
 } flag_def;
 
 /* cacao.h's names of the enum settings, for the int the table stores. */
@@ -50,6 +52,8 @@ static const char *precision_name(int value) { return cacao_precision_name((caca
 static const char *estimator_name(int value) { return cacao_estimator_name((cacao_estimator)value); }
 static const char *visibility_name(int value) { return cacao_visibility_name((cacao_visibility)value); }
 static const char *shader_forms_name(int value) { return cacao_shader_forms_name((cacao_shader_forms)value); }
+#define ESTIMATOR_NAME_COUNT (CACAO_ESTIMATOR_BITMASK + 1) /* the values, DEFAULT (0) included */
+#define HORIZON_ESTIMATORS ((1u << CACAO_ESTIMATOR_GTAO) | (1u << CACAO_ESTIMATOR_BITMASK))
 
 #define SECTION(title)                                                                                                 \
     { .name = title, .kind = FLAG_SECTION }
@@ -168,25 +172,37 @@ static const flag_def flags[] = {
      .json = "visibility",
      .help = "gtao/bitmask: falloff (occluders weighted 1 - t^2/R^2 by hit distance t) or binary (occluded "
              "within R)",
-     .name_of = visibility_name},
-    OPT("--frame", NULL, "N", FLAG_COUNT0, frame_index,
-        "gtao/bitmask: frame index of the sample pattern (temporal accumulation; 0 = deterministic)"),
-    SET("--thickness", "T", SET_FLOAT, thickness,
-        "bitmask: assumed occluder thickness, world units (default 1.0 R falloff, 0.5 R binary)"),
+     .name_of = visibility_name,
+     .estimators = HORIZON_ESTIMATORS},
+    {.name = "--frame",
+     .value = "N",
+     .kind = FLAG_COUNT0,
+     .offset = offsetof(cli_options, frame_index),
+     .help = "gtao/bitmask: frame index of the sample pattern (temporal accumulation; 0 = deterministic)",
+     .estimators = HORIZON_ESTIMATORS},
+    {.name = "--thickness",
+     .value = "T",
+     .kind = SET_FLOAT,
+     .offset = offsetof(cacao_settings, thickness),
+     .json = "thickness",
+     .help = "bitmask: assumed occluder thickness, world units (default 1.0 R falloff, 0.5 R binary)",
+     .estimators = 1u << CACAO_ESTIMATOR_BITMASK},
     {.name = "--slices",
      .value = "N",
      .kind = SET_INT,
      .offset = offsetof(cacao_settings, horizon_slices),
      .json = "horizon_slices",
      .help = "gtao/bitmask: slices per pixel, 1..16 (0 = by quality)",
-     .int_max = 16},
+     .int_max = 16,
+     .estimators = HORIZON_ESTIMATORS},
     {.name = "--steps",
      .value = "N",
      .kind = SET_INT,
      .offset = offsetof(cacao_settings, horizon_steps),
      .json = "horizon_steps",
      .help = "gtao/bitmask: steps per slice side, 1..32 (0 = by quality); depth reads = 2 x slices x steps",
-     .int_max = 32},
+     .int_max = 32,
+     .estimators = HORIZON_ESTIMATORS},
     SECTION("Device"),
     OPT("--device", NULL, "N|NAME", FLAG_PATH, device, "Vulkan device by index or name substring (default lavapipe)"),
     OPT("--list-devices", NULL, NULL, FLAG_SWITCH, list_devices, "list the Vulkan devices and exit"),
@@ -197,6 +213,7 @@ static const flag_def flags[] = {
     OPT("--version", NULL, NULL, FLAG_SWITCH, version, "print the version and embedded permutation count and exit"),
 };
 #define FLAG_COUNT_ALL (sizeof flags / sizeof flags[0])
+_Static_assert(FLAG_COUNT_ALL <= CLI_FLAG_SLOTS, "cli_options.given has a slot per entry of the flag table");
 
 static bool is_setting(const flag_def *def) { return def->kind >= SET_FLOAT; }
 
@@ -229,7 +246,24 @@ static bool runtime_default_is_zero(size_t offset) {
     return cacao_settings_resolve(&probe, &resolved, NULL, 0) == CACAO_SUCCESS && *float_field(&resolved, offset) == 0.0f;
 }
 
-/* Stores a literal float: finite, not negative, 0 as CACAO_ZERO where the runtime allows 0. */
+/* A literal above the largest float: the runtime's range message for this field (asked with the
+ * largest float, its value left out, as it is not the user's), else that the float range ends there. */
+static bool refuse_beyond_float(size_t offset, const char *label, char *err, size_t n) {
+    cacao_settings probe = {0}, resolved;
+    *float_field(&probe, offset) = FLT_MAX;
+    char why[256];
+    if (cacao_settings_resolve(&probe, &resolved, why, sizeof why) == CACAO_SUCCESS)
+        return cacao_set_err(err, n, "%s: larger than the largest float, %g", label, (double)FLT_MAX);
+    const char *value = strstr(why, " = "), *range = strstr(why, " is outside ");
+    if (value && range && value < range)
+        return cacao_set_err(err, n, "%s: %.*s%s", label, (int)(value - why), why, range);
+    return cacao_set_err(err, n, "%s: %s", label, why);
+}
+
+/* Stores a literal float: finite, not negative, 0 as CACAO_ZERO where the runtime allows 0. The
+ * range is checked on the double as given, before the conversion: a value beyond the float range
+ * gets the range message, and one that is nonzero but would become 0 (the default) or a denormal
+ * float is refused rather than changed. */
 static bool store_float(size_t offset, double literal, cacao_settings *s, const char *label, char *err, size_t n) {
     if (!isfinite(literal)) {
         cacao_set_err(err, n, "%s: not a finite number", label);
@@ -239,6 +273,10 @@ static bool store_float(size_t offset, double literal, cacao_settings *s, const 
         cacao_set_err(err, n, "%s: must not be negative", label);
         return false;
     }
+    if (literal > FLT_MAX) return refuse_beyond_float(offset, label, err, n);
+    if (literal > 0.0 && literal < FLT_MIN)
+        return cacao_set_err(err, n, "%s: too small to keep: a nonzero value must be at least %g (a float)", label,
+                             (double)FLT_MIN);
     if (literal == 0.0 && runtime_default_is_zero(offset)) { /* e.g. thickness: 0 = relative to R */
         *float_field(s, offset) = 0.0f;
         return true;
@@ -281,7 +319,7 @@ static bool store_enum(const flag_def *def, const char *name, cacao_settings *s,
     for (int i = 1; def->name_of(i); ++i)
         snprintf(choices + strlen(choices), sizeof choices - strlen(choices), "%s%s", i > 1 ? ", " : "",
                  def->name_of(i));
-    cacao_set_err(err, n, "%s: unknown value '%s' (one of %s)", label, name, choices);
+    cacao_set_err(err, n, "%s: unknown value '%s' (one of %s)", label, cacao_shown(name).text, choices);
     return false;
 }
 
@@ -335,8 +373,8 @@ static bool apply_pair_flag(const flag_def *def, const char *value, cacao_settin
 }
 
 static bool apply_setting_flag(const flag_def *def, const char *value, cli_options *o, char *err, size_t n) {
-    char label[160];
-    snprintf(label, sizeof label, "%s%s%s", def->name, value ? " " : "", value ? value : "");
+    char label[320]; /* the flag and its value as given, control bytes escaped */
+    snprintf(label, sizeof label, "%s%s%s", def->name, value ? " " : "", value ? cacao_shown(value).text : "");
     double number = 0;
     bool ok = true;
     switch (def->kind) {
@@ -384,7 +422,7 @@ static bool apply_option_flag(const flag_def *def, const char *value, cli_option
         return true;
     case FLAG_POSITIVE:
         if (!parse_number(value, &number) || !isfinite(number) || number <= 0) {
-            cacao_set_err(err, n, "%s %s: must be a finite number greater than 0", def->name, value);
+            cacao_set_err(err, n, "%s %s: must be a finite number greater than 0", def->name, cacao_shown(value).text);
             return false;
         }
         *(double *)field = number;
@@ -397,7 +435,7 @@ static bool apply_option_flag(const flag_def *def, const char *value, cli_option
         const bool ok = parse_number(value, &number) && number == floor(number) &&
                         (bits ? (number == 8 || number == 16) : (number >= low && number <= 100000));
         if (!ok) {
-            cacao_set_err(err, n, "%s %s: must be %s", def->name, value,
+            cacao_set_err(err, n, "%s %s: must be %s", def->name, cacao_shown(value).text,
                     bits  ? "8 or 16"
                     : low ? "a whole number from 1 to 100000"
                           : "a whole number from 0 to 100000");
@@ -436,6 +474,7 @@ static bool parse_pass(int argc, char **argv, cli_options *o, bool settings_file
         const bool ok =
             is_setting(def) ? apply_setting_flag(def, value, o, err, n) : apply_option_flag(def, value, o, err, n);
         if (!ok) return false;
+        o->given[def - flags] = true;
     }
     return true;
 }
@@ -541,6 +580,39 @@ bool cli_parse(int argc, char **argv, cli_options *o, char *err, size_t n) {
     flags_given(argc, argv, overridden);
     if (o->settings_path && !load_settings_file(o->settings_path, overridden, o, err, n)) return false;
     return parse_pass(argc, argv, o, false, err, n);
+}
+
+bool cli_given(const cli_options *o, const char *flag) {
+    const flag_def *def = find_flag(flag);
+    return def && o->given[def - flags];
+}
+
+/* "gtao and bitmask estimators" or "bitmask estimator": the estimators in the mask, by name. */
+static void estimator_list(unsigned mask, char *out, size_t size) {
+    out[0] = '\0';
+    int count = 0;
+    for (int e = 1; e < ESTIMATOR_NAME_COUNT; ++e)
+        if (mask >> e & 1) ++count;
+    for (int e = 1, shown = 0; e < ESTIMATOR_NAME_COUNT; ++e)
+        if (mask >> e & 1)
+            snprintf(out + strlen(out), size - strlen(out), "%s%s", shown++ ? (shown == count ? " and " : ", ") : "",
+                     cacao_estimator_name((cacao_estimator)e));
+    snprintf(out + strlen(out), size - strlen(out), " estimator%s", count > 1 ? "s" : "");
+}
+
+bool cli_check_estimator_flags(const cli_options *o, cacao_estimator estimator, const char *what, char *err,
+                               size_t n) {
+    const int e = estimator == CACAO_ESTIMATOR_DEFAULT ? CACAO_ESTIMATOR_CACAO : (int)estimator;
+    for (size_t i = 0; i < FLAG_COUNT_ALL; ++i) {
+        const flag_def *def = &flags[i];
+        if (!def->estimators || !o->given[i] || (e > 0 && e < ESTIMATOR_NAME_COUNT && (def->estimators >> e & 1)))
+            continue;
+        char applies[64];
+        estimator_list(def->estimators, applies, sizeof applies);
+        return cacao_set_err(err, n, "%s: only for the %s, and %s uses the %s estimator", def->name, applies, what,
+                             e > 0 && e < ESTIMATOR_NAME_COUNT ? cacao_estimator_name((cacao_estimator)e) : "?");
+    }
+    return true;
 }
 
 /* The shortest decimal that reads back as the same float, as a double (so JSON shows 0.06, not

@@ -19,6 +19,8 @@
 
 #include "cacao.h"
 
+#define CLI_FLAG_SLOTS 64 /* at least the entries of the flag table (options.c checks) */
+
 typedef struct cli_options {
     /* Input: a scene folder, or separate files; neither = the embedded default scene. */
     const char *scene_dir;
@@ -48,11 +50,22 @@ typedef struct cli_options {
     const char *settings_path;
     cacao_settings settings;
     bool radius_given;
+    bool given[CLI_FLAG_SLOTS]; /* by flag table entry: on the command line (ask with cli_given) */
 } cli_options;
 
 /* Parses argv (the --settings file first, then the flags). On error writes one line naming the
  * flag or file into err and returns false. */
 bool cli_parse(int argc, char **argv, cli_options *options, char *err, size_t err_size);
+
+/* Whether the command line gave the flag ("--output" or its alias "-o"); keys of the --settings
+ * file do not count (a file from --print-settings holds every key). */
+bool cli_given(const cli_options *options, const char *flag);
+
+/* Refuses a flag given on the command line that the estimator does not use (--visibility, --frame,
+ * --slices and --steps: gtao and bitmask; --thickness: bitmask), with one line naming the flag and,
+ * by `what` ("this run", "configuration low_native"), where the estimator comes from. */
+bool cli_check_estimator_flags(const cli_options *options, cacao_estimator estimator, const char *what, char *err,
+                               size_t err_size);
 
 /* Writes the --help text, generated from the flag table. */
 void cli_print_help(FILE *out);

@@ -113,6 +113,13 @@ void cacao_escape_text(const char *text, char *out, size_t size) {
     out[used] = '\0';
 }
 
+bool cacao_text_is_printable(const char *text) {
+    if (!text || !text[0]) return false;
+    for (const unsigned char *c = (const unsigned char *)text; *c; ++c)
+        if (*c < 0x20 || *c == 0x7f) return false;
+    return true;
+}
+
 /* ---- PFM ---------------------------------------------------------------------------------- */
 
 typedef struct pfm_header {

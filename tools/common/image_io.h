@@ -64,4 +64,20 @@ bool cacao_commit_temp(char *temp, const char *path, bool written_ok, char *err,
  * ASCII as \xNN, so that names taken from inputs stay on one line and carry no terminal escapes. */
 void cacao_escape_text(const char *text, char *out, size_t size);
 
+/* cacao_escape_text into a value, for a message: printf("%s", cacao_shown(arg).text). Cut at 255
+ * bytes. */
+typedef struct cacao_shown_text {
+    char text[256];
+} cacao_shown_text;
+static inline cacao_shown_text cacao_shown(const char *text) {
+    cacao_shown_text s;
+    cacao_escape_text(text, s.text, sizeof s.text);
+    return s;
+}
+
+/* Whether text taken from an input can be shown as it is (a name in a table, CSV, plot): not
+ * empty, and no control bytes (below 0x20, or 0x7f), which would break a line or carry a terminal
+ * escape. Bytes from 0x80 (UTF-8) are kept. */
+bool cacao_text_is_printable(const char *text);
+
 #endif /* CACAO_IMAGE_IO_H */

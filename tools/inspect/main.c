@@ -13,7 +13,8 @@
  *   cacao-inspect verify                                      re-validate modules, check plan keys are embedded
  *
  * Everything comes from the embedded table (generated/), reflection of the modules (SPIRV-Cross)
- * and the runtime's own cacao_plan_build: no second copy of any of that logic. */
+ * and the runtime's own cacao_plan_build: no second copy of any of that logic. The command line
+ * and the --costs JSON are checked first, in inspect_args.c. */
 #include <cjson/cJSON.h>
 #include <glslang/Include/glslang_c_interface.h>
 #include <stdio.h>
@@ -24,6 +25,7 @@
 #include "cacao_policy.h"
 #include "cacao_shared.h"
 #include "inputs.h"
+#include "inspect_args.h"
 #include "options.h"
 #include "shadergen.h"
 #include "text_file.h"
@@ -40,12 +42,6 @@ static int fail(const char *fmt, const char *arg) {
     return 1;
 }
 
-/* Key quality (0-based) of a quality name, or -1. */
-static int quality_from_word(const char *w) {
-    cacao_quality q;
-    return cacao_quality_from_name(w, &q) == CACAO_SUCCESS ? (int)cacaoi_key_quality(q) : -1;
-}
-
 /* Keys that share a module with permutation i, as "name, name". */
 static void dedup_group(uint32_t i, char *out, size_t n) {
     out[0] = '\0';
@@ -56,11 +52,11 @@ static void dedup_group(uint32_t i, char *out, size_t n) {
 }
 
 /* What one permutation cost in a cacao-bench run: the median of its per-run median times, and the
- * configurations (scene/config) it served. */
+ * configurations it served ("a,b", each once, however many). */
 typedef struct perm_cost {
     double *ms;
     uint32_t runs;
-    char served[2048];
+    char *served;
 } perm_cost;
 
 static int compare_doubles(const void *a, const void *b) {
@@ -73,68 +69,57 @@ static double median_of(double *v, uint32_t n) {
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-static void add_cost(perm_cost *c, double ms, const char *config) {
+/* Adds one run of a permutation; false when out of memory. */
+static bool add_cost(perm_cost *c, double ms, const char *config) {
     double *grown = realloc(c->ms, (c->runs + 1) * sizeof *grown);
-    if (!grown) return;
+    if (!grown) return false;
     c->ms = grown;
     c->ms[c->runs++] = ms;
-    const size_t len = strlen(c->served), config_len = strlen(config);
-    for (const char *at = strstr(c->served, config); at; at = strstr(at + 1, config))
-        if ((at == c->served || at[-1] == ',') && (at[config_len] == ',' || at[config_len] == 0)) return;
-    if (len + config_len + 3 < sizeof c->served)
-        snprintf(c->served + len, sizeof c->served - len, "%s%s", len ? "," : "", config);
+    const size_t len = c->served ? strlen(c->served) : 0, config_len = strlen(config);
+    for (const char *at = c->served ? strstr(c->served, config) : NULL; at; at = strstr(at + 1, config))
+        if ((at == c->served || at[-1] == ',') && (at[config_len] == ',' || at[config_len] == 0)) return true;
+    char *served = realloc(c->served, len + config_len + 2);
+    if (!served) return false;
+    snprintf(served + len, config_len + 2, "%s%s", len ? "," : "", config);
+    c->served = served;
+    return true;
 }
 
-/* Reads a cacao-bench --json file into costs[permutation]. */
+/* Reads a cacao-bench --json file (checked by inspect_read_costs) into costs[permutation]. */
 static int load_costs(const char *path, perm_cost *costs) {
     char err[1024];
-    char *text = cacao_read_whole_file(path, 256u << 20, err, sizeof err);
-    if (!text) return fail("--costs %s", err);
-    cJSON *root = cJSON_Parse(text);
-    free(text);
-    const cJSON *results = cJSON_GetObjectItemCaseSensitive(root, "results");
-    if (!cJSON_IsArray(results)) {
-        cJSON_Delete(root);
-        return fail("--costs %s: not a cacao-bench JSON (no \"results\" array)", path);
-    }
+    cJSON *root = inspect_read_costs(path, err, sizeof err);
+    if (!root) return fail("%s", err);
     const cJSON *r;
-    cJSON_ArrayForEach(r, results) {
+    bool ok = true;
+    cJSON_ArrayForEach(r, cJSON_GetObjectItemCaseSensitive(root, "results")) {
         const char *config = cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(r, "config"));
         const cJSON *p;
         cJSON_ArrayForEach(p, cJSON_GetObjectItemCaseSensitive(r, "passes")) {
             const char *name = cJSON_GetStringValue(cJSON_GetObjectItemCaseSensitive(p, "name"));
-            const cJSON *ms = cJSON_GetObjectItemCaseSensitive(p, "time_ms");
-            if (!config || !name || !cJSON_IsNumber(ms)) {
-                cJSON_Delete(root);
-                return fail("--costs %s: a result lacks config, pass name or time_ms", path);
-            }
-            for (uint32_t i = 0; i < table->permutation_count; ++i)
-                if (strcmp(table->permutations[i].name, name) == 0) add_cost(&costs[i], ms->valuedouble, config);
+            const double ms = cJSON_GetObjectItemCaseSensitive(p, "time_ms")->valuedouble;
+            for (uint32_t i = 0; ok && i < table->permutation_count; ++i)
+                if (strcmp(table->permutations[i].name, name) == 0) ok = add_cost(&costs[i], ms, config);
         }
     }
     cJSON_Delete(root);
-    return 0;
+    return ok ? 0 : fail("--costs %s: out of memory", path);
 }
 
 static void free_costs(perm_cost *costs) {
-    for (uint32_t i = 0; costs && i < table->permutation_count; ++i) free(costs[i].ms);
+    for (uint32_t i = 0; costs && i < table->permutation_count; ++i) {
+        free(costs[i].ms);
+        free(costs[i].served);
+    }
     free(costs);
 }
 
-static int cmd_list(int argc, char **argv) {
-    const char *pass = NULL, *costs_path = NULL;
-    int quality = -1;
-    bool json = false;
-    for (int i = 0; i < argc; ++i) {
-        if (strcmp(argv[i], "--json") == 0) json = true;
-        else if (strcmp(argv[i], "--costs") == 0 && i + 1 < argc) costs_path = argv[++i];
-        else if (strcmp(argv[i], "--pass") == 0 && i + 1 < argc) pass = argv[++i];
-        else if (strcmp(argv[i], "--quality") == 0 && i + 1 < argc) {
-            if ((quality = quality_from_word(argv[++i])) < 0) return fail("--quality: unknown level '%s'", argv[i]);
-        } else return fail("list: unknown argument '%s'", argv[i]);
-    }
-    perm_cost *costs = costs_path ? calloc(table->permutation_count, sizeof *costs) : NULL;
-    if (costs_path && (!costs || load_costs(costs_path, costs) != 0)) {
+static int cmd_list(const inspect_args *a) {
+    const char *pass = a->pass;
+    const int quality = a->quality;
+    const bool json = a->json;
+    perm_cost *costs = a->costs_path ? calloc(table->permutation_count, sizeof *costs) : NULL;
+    if (a->costs_path && (!costs || load_costs(a->costs_path, costs) != 0)) {
         free_costs(costs);
         return 1;
     }
@@ -206,12 +191,11 @@ static void print_reflection(const cacao_module *m) {
         printf("  %4u  %-40s %3u bytes\n", block.members[i].offset, block.members[i].name, block.members[i].size);
 }
 
-static int cmd_show(int argc, char **argv) {
-    if (argc != 1) return fail("show needs exactly one KEY (see 'cacao-inspect list')%s", "");
+static int cmd_show(const char *key_name) {
     cacao_key key;
-    if (!cacaoi_key_parse(argv[0], &key)) return fail("show: '%s' is not a permutation key", argv[0]);
+    cacaoi_key_parse(key_name, &key); /* checked by inspect_parse_args */
     const cacao_permutation *p = cacaoi_table_find(table, &key);
-    if (!p) return fail("show: '%s' is not embedded in this build", argv[0]);
+    if (!p) return fail("show: '%s' is not embedded in this build", key_name);
     const cacao_module *m = &table->modules[p->module];
     char defines[CACAO_KEY_DEFINES_MAX];
     cacaoi_key_defines(&key, defines, sizeof defines);
@@ -237,28 +221,6 @@ static int cmd_show(int argc, char **argv) {
     char *dis = sg_disassemble(m->words, m->word_count);
     printf("== SPIR-V disassembly\n%s", dis ? dis : "(disassembly failed)\n");
     free(dis);
-    return 0;
-}
-
-/* `plan` takes --size WxH and the settings flags of the cacao command (the same flag table),
- * or instead of --size the cacao command's inputs (--scene DIR, or --depth FILE --camera FILE ...). */
-static int parse_plan_flags(int argc, char **argv, cli_options *options, uint32_t *w, uint32_t *h) {
-    char *rest[64];
-    int n = 0;
-    rest[n++] = "cacao-inspect plan";
-    for (int i = 0; i < argc; ++i) {
-        if (strcmp(argv[i], "--size") == 0) {
-            if (i + 1 >= argc || sscanf(argv[i + 1], "%ux%u", w, h) != 2)
-                return fail("--size: '%s' is not WxH", i + 1 < argc ? argv[i + 1] : "");
-            ++i;
-        } else if (n < 64) {
-            rest[n++] = argv[i];
-        } else {
-            return fail("plan: too many flags (from '%s')", argv[i]);
-        }
-    }
-    char err[1024];
-    if (!cli_parse(n, rest, options, err, sizeof err)) return fail("plan: %s", err);
     return 0;
 }
 
@@ -341,17 +303,15 @@ static int plan_on_scene(const cli_options *options) {
     return rc;
 }
 
-static int cmd_plan(int argc, char **argv) {
-    cli_options options;
-    uint32_t w = 0, h = 0;
-    if (parse_plan_flags(argc, argv, &options, &w, &h)) return 1;
-    const bool on_inputs = options.scene_dir || options.depth_path;
-    if (on_inputs && (w || h)) return fail("--size: not with --scene or --depth (the size is the depth's)%s", "");
-    if (on_inputs) return plan_on_scene(&options);
-    if (!w || !h) return fail("plan needs --size WxH, --scene DIR or --depth FILE%s", "");
+/* `plan` takes --size WxH and the settings flags of the cacao command (the same flag table), or
+ * instead of --size the cacao command's inputs (--scene DIR, or --depth FILE --camera FILE ...);
+ * inspect_parse_args has checked which. */
+static int cmd_plan(const inspect_args *a) {
+    const cli_options *options = &a->options;
+    if (options->scene_dir || options->depth_path) return plan_on_scene(options);
     cacao_plan plan;
     char err[256];
-    if (cacao_plan_build(&options.settings, w, h, &plan, err, sizeof err) != CACAO_SUCCESS)
+    if (cacao_plan_build(&options->settings, a->width, a->height, &plan, err, sizeof err) != CACAO_SUCCESS)
         return fail("plan: %s", err);
     cacao_plan_print(&plan, stdout);
     int missing = 0;
@@ -499,17 +459,28 @@ static void usage(FILE *out) {
 }
 
 int main(int argc, char **argv) {
-    if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
-        usage(argc < 2 ? stderr : stdout);
-        return argc < 2 ? 2 : 0;
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
     }
-    const char *cmd = argv[1];
-    if (strcmp(cmd, "list") == 0) return cmd_list(argc - 2, argv + 2);
-    if (strcmp(cmd, "show") == 0) return cmd_show(argc - 2, argv + 2);
-    if (strcmp(cmd, "plan") == 0) return cmd_plan(argc - 2, argv + 2);
-    if (strcmp(cmd, "stats") == 0 && argc == 2) return cmd_stats();
-    if (strcmp(cmd, "facts") == 0 && argc == 2) return cmd_facts();
-    if (strcmp(cmd, "verify") == 0 && argc == 2) return cmd_verify();
-    usage(stderr);
-    return fail("unknown command '%s'", cmd);
+    static inspect_args args; /* holds the cacao command's options: kept off the stack */
+    char err[1024];
+    if (!inspect_parse_args(argc, argv, &args, err, sizeof err)) return fail("%s", err);
+    switch (args.command) {
+    case INSPECT_LIST:
+        return cmd_list(&args);
+    case INSPECT_SHOW:
+        return cmd_show(args.key);
+    case INSPECT_PLAN:
+        return cmd_plan(&args);
+    case INSPECT_STATS:
+        return cmd_stats();
+    case INSPECT_VERIFY:
+        return cmd_verify();
+    case INSPECT_FACTS:
+        return cmd_facts();
+    default:
+        usage(stdout);
+        return 0;
+    }
 }
