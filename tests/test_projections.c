@@ -10,7 +10,7 @@
  *  - a frustum made off-centre by k pixels moves the output by k pixels (a quarter-width
  *    asymmetric frustum) and by a sub-pixel TAA jitter;
  *  - the conformance matrix: every depth convention x handedness x centred/jittered gives the
- *    reference convention's output (column-major storage gives byte-identical constants, see
+ *    reference convention's output, for every estimator on the embedded scene (column-major storage gives byte-identical constants, see
  *    test_constants). */
 #include "gpu_scene.h"
 #include "projections.h"
@@ -248,11 +248,12 @@ static void test_off_centre_shift(vkdev *dev) {
  * the same family (perspective / orthographic) and jitter. */
 static void conformance_matrix(vkdev *dev, const char *name, const double *distance, const float *normals, uint32_t w,
                                uint32_t h, double sx_persp, double sy_persp, double sx_ortho, double sy_ortho, double n,
-                               double f, float radius, bool with_ortho) {
+                               double f, float radius, bool with_ortho, cacao_estimator estimator) {
     const size_t count = (size_t)w * h;
     float *depth = malloc(sizeof(float) * count), *ref = malloc(sizeof(float) * count);
     float *ao = malloc(sizeof(float) * count);
-    const cacao_settings s = {.quality = CACAO_QUALITY_HIGH, .radius = radius, .generate_normals = normals == NULL};
+    const cacao_settings s = {.estimator = estimator, .quality = CACAO_QUALITY_HIGH, .radius = radius,
+                              .generate_normals = normals == NULL};
     const double jitter[2] = {0.37 * 2.0 / w, -0.21 * 2.0 / h};
     double worst_mean = 0.0, worst_p99 = 0.0;
     int runs = 0;
@@ -286,8 +287,8 @@ static void conformance_matrix(vkdev *dev, const char *name, const double *dista
                         ++test_failures;
                     }
                 }
-    printf("conformance matrix, %s: %d runs, worst mean |diff| %.5f, worst p99 %.5f\n", name, runs, worst_mean,
-           worst_p99);
+    printf("conformance matrix, %s, %s: %d runs, worst mean |diff| %.5f, worst p99 %.5f\n", name,
+           cacao_estimator_name(estimator), runs, worst_mean, worst_p99);
     free(depth);
     free(ref);
     free(ao);
@@ -313,8 +314,10 @@ static void test_conformance_embedded(vkdev *dev) {
         memcpy(normals + (ortho ? 3 * (size_t)w * h : 0), b.normals, sizeof(float) * 3 * w * h);
         lens_free(&b);
     }
-    conformance_matrix(dev, "embedded scene", distance, normals, w, h, aspect * ty, ty, aspect * oh, oh, n, f,
-                       (float)scene.ao_radius_world, true);
+    /* every estimator: the horizon estimators' orthographic branch is theirs alone */
+    for (int est = CACAO_ESTIMATOR_CACAO; est <= CACAO_ESTIMATOR_BITMASK; ++est)
+        conformance_matrix(dev, "embedded scene", distance, normals, w, h, aspect * ty, ty, aspect * oh, oh, n, f,
+                           (float)scene.ao_radius_world, true, (cacao_estimator)est);
     free(distance);
     free(normals);
 }
@@ -330,7 +333,8 @@ static void test_conformance_shared(vkdev *dev, const char *shared) {
     const double p22 = cam.projection[10], p23 = cam.projection[11]; /* RH: d = -p22 + p23 / z */
     for (size_t i = 0; i < count; ++i) distance[i] = depth.data[i] >= 1.0f ? -1.0 : p23 / ((double)depth.data[i] + p22);
     conformance_matrix(dev, "street_track", distance, NULL, depth.width, depth.height, 1.0 / cam.projection[0],
-                       1.0 / cam.projection[5], 0.0, 0.0, cam.near_z, cam.far_z, (float)cam.ao_radius_world, false);
+                       1.0 / cam.projection[5], 0.0, 0.0, cam.near_z, cam.far_z, (float)cam.ao_radius_world, false,
+                       CACAO_ESTIMATOR_CACAO);
     free(distance);
     cacao_img_free(&depth);
     cacao_img_free(&gt);
