@@ -167,13 +167,19 @@ static void test_mostly_faded(vkdev *dev, uint32_t width, uint32_t height, bool 
     const vkdev_frame f = scene_frame(&sb, false, false);
     for (int q = 0; q < 5; ++q)
         for (int bl = 0; bl < 3; ++bl) {
-            const cacao_settings s = {.quality = qualities[q], .downsample = downsample, .generate_normals = true,
-                                      .blur_pass_count = blurs[bl], .fade_out_from = 0.5f * to, .fade_out_to = to};
+            const cacao_settings s = {.quality = qualities[q],
+                                      .downsample = downsample,
+                                      .generate_normals = true,
+                                      .blur_pass_count = blurs[bl],
+                                      .fade_out_from = 0.5f * to,
+                                      .fade_out_to = to};
             cacao_tile_counts c;
             if (!same_as_all_tiles(dev, s, &f, "three quarters faded", &c)) continue;
             const bool blurred = s.blur_pass_count != CACAO_BLUR_NONE;
             if (c.generate_run * 2 >= c.tiles || (blurred && c.blur_run >= c.blur_total))
-                fprintf(stderr, "three quarters faded, quality %d, %s, blur %d: generate ran %u of %u tiles, blur %u of %u groups\n",
+                fprintf(stderr,
+                        "three quarters faded, quality %d, %s, blur %d: generate ran %u of %u tiles, blur %u of %u "
+                        "groups\n",
                         (int)s.quality, downsample ? "downsampled" : "native", s.blur_pass_count, c.generate_run,
                         c.tiles, c.blur_run, c.blur_total);
             CHECK(c.generate_run * 2 < c.tiles);
