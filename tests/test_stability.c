@@ -453,23 +453,44 @@ static void test_nan_depth(vkdev *dev) {
     scene_buffers_free(&b);
 }
 
-/* Mean and largest |a - b| over n values. */
-static void stats_diff(const float *a, const float *b, size_t n, double *mean, double *max) {
-    *mean = 0;
-    *max = 0;
+/* Two renderings of the same geometry compared over every quality and resolution: the worst mean
+ * and largest |difference|, and whether every output of the second was finite and in [0,1]. */
+typedef struct worst_diff {
+    double mean, max;
+    bool finite;
+} worst_diff;
+
+/* Adds one configuration's comparison of b against a (n values) to w and prints it. */
+static void worst_diff_add(worst_diff *w, const char *what, int quality, bool downsampled, const float *a,
+                           const float *b, size_t n) {
+    double mean = 0, max = 0;
     for (size_t i = 0; i < n; ++i) {
         const double d = fabs((double)a[i] - b[i]);
-        *mean += d;
-        *max = fmax(*max, d);
+        mean += d;
+        max = fmax(max, d);
     }
-    *mean /= (double)n;
+    mean /= (double)n;
+    printf("%s %-7s %-11s: mean |diff| %.7f, max %.5f\n", what, quality_names[quality],
+           downsampled ? "downsampled" : "native", mean, max);
+    w->mean = fmax(w->mean, mean);
+    w->max = fmax(w->max, max);
+    w->finite = w->finite && all_finite_unit(b, n);
+}
+
+/* The row of a comparison: finite, mean and max within BOUND() of the measured ones. */
+static void report_worst_diff(const char *name, const worst_diff *w, double measured_mean, double measured_max,
+                              const char *behaviour) {
+    row_bounds rb = {.pass = true};
+    require(&rb, "finite, [0,1]", w->finite);
+    at_most(&rb, "mean", w->mean, measured_mean, FIG_MEAN);
+    at_most(&rb, "max", w->max, measured_max, FIG_PIXEL);
+    report(name, &rb, behaviour, "worst mean |diff| %.7f, worst max %.5f", w->mean, w->max);
 }
 
 /* The same geometry in standard and reverse-Z depth must give the same AO (up to the float
  * rounding of the two depth encodings), at every quality and resolution. */
 static void test_reverse_z(vkdev *dev) {
-    double worst_mean = 0, worst_max = 0;
-    bool finite = true;
+    worst_diff w = {.finite = true};
     scene_buffers b;
     const float radius = scene_buffers_default(320, 180, &b);
     const size_t n = (size_t)b.width * b.height;
@@ -479,20 +500,10 @@ static void test_reverse_z(vkdev *dev) {
             const cacao_settings s = {.quality = q, .downsample = ds, .radius = radius};
             vkdev_frame f = scene_frame(&b, false, true), fr = scene_frame(&b, true, true);
             if (!run(dev, &s, &f, a) || !run(dev, &s, &fr, r)) continue;
-            double mean, max;
-            stats_diff(a, r, n, &mean, &max);
-            worst_mean = fmax(worst_mean, mean);
-            worst_max = fmax(worst_max, max);
-            printf("reverse-Z vs standard %-7s %-11s: mean |diff| %.7f, max %.5f\n", quality_names[q],
-                   ds ? "downsampled" : "native", mean, max);
-            finite = finite && all_finite_unit(r, n);
+            worst_diff_add(&w, "reverse-Z vs standard", q, ds, a, r, n);
         }
-    row_bounds rb = {.pass = true};
-    require(&rb, "finite, [0,1]", finite);
-    at_most(&rb, "mean", worst_mean, 0.0000039, FIG_MEAN);
-    at_most(&rb, "max", worst_max, 0.00208, FIG_PIXEL);
-    report("reverse-Z vs standard depth, every quality", &rb, "depth linearised from the matrix in fp32",
-           "worst mean |diff| %.7f, worst max %.5f", worst_mean, worst_max);
+    report_worst_diff("reverse-Z vs standard depth, every quality", &w, 0.0000039, 0.00208,
+                      "depth linearised from the matrix in fp32");
     free(a);
     free(r);
     scene_buffers_free(&b);
@@ -547,8 +558,7 @@ static void test_fp16(vkdev *dev) {
                          "device has no shaderFloat16");
         return;
     }
-    double worst_mean = 0, worst_max = 0;
-    bool finite = true;
+    worst_diff w = {.finite = true};
     scene_buffers b;
     const float radius = scene_buffers_default(320, 180, &b);
     const size_t n = (size_t)b.width * b.height;
@@ -564,22 +574,11 @@ static void test_fp16(vkdev *dev) {
             if (!run(dev, &s, &f, a)) continue;
             s.precision = CACAO_PRECISION_FP16;
             if (!run(dev, &s, &f, h)) continue;
-            double mean, max;
-            stats_diff(a, h, n, &mean, &max);
-            worst_mean = fmax(worst_mean, mean);
-            worst_max = fmax(worst_max, max);
-            printf("fp16 vs fp32 %-7s %-11s: mean |diff| %.6f, max %.5f\n", quality_names[q],
-                   ds ? "downsampled" : "native", mean, max);
-            finite = finite && all_finite_unit(h, n);
+            worst_diff_add(&w, "fp16 vs fp32", q, ds, a, h, n);
         }
     /* The same figures in the full suite and in --fp16 alone (one device, one computation). */
-    row_bounds rb = {.pass = true};
-    require(&rb, "finite, [0,1]", finite);
-    at_most(&rb, "mean", worst_mean, 0.000212, FIG_MEAN);
-    at_most(&rb, "max", worst_max, 0.00537, FIG_PIXEL);
-    report("fp16 vs fp32 (blur, apply, upsample), every quality, native and downsampled", &rb,
-           "only the AO values run in half precision; depths stay R16F in both",
-           "worst mean |diff| %.6f, worst max %.5f", worst_mean, worst_max);
+    report_worst_diff("fp16 vs fp32 (blur, apply, upsample), every quality, native and downsampled", &w, 0.000212,
+                      0.00537, "only the AO values run in half precision; depths stay R16F in both");
     free(a);
     free(h);
     scene_buffers_free(&b);
