@@ -8,7 +8,7 @@
  * maps, ping-pong blur chains, the fp16 permutations), so each one is its own synchronization
  * case; docs/integration.md promises all of them are clean.
  * Each output must also be finite and in [0,1], and an fp16 configuration may differ from its
- * fp32 twin only by rounding (the same bound as test_stability's fp16 comparison).
+ * fp32 twin only by rounding (mean |diff| below 0.25/255).
  * One context serves every configuration, as in an engine whose user changes settings: each is
  * set_settings + resize on the same context, so the rebuild of intermediates and pipelines is
  * swept too.

@@ -1,14 +1,21 @@
-/* test_tiles - tile classification (docs/tiles.md) changes how much runs, never the result:
- *   - with skipping on, the AO is bit-identical to compute_all_tiles (every tile computed) on the
- *     embedded scene (sky and ground, a fade-out inside it: tiles of all three classes) at every
- *     quality, native and downsampled, with no blur,
- *     2 and 8 blur passes, in standard and reverse Z, also with NaN in the depth;
+/* test_tiles - tile classification (docs/tiles.md) and generate's per-pixel skip change how much
+ * runs, never the result. The reference is compute_all_tiles, which skips nothing of any kind:
+ * classify calls every tile active, so every tile is generated and every blur group runs, and
+ * generate computes every pixel's detail AO and taps, background and faded pixels included. The
+ * reference therefore shares none of the skipping rules (class thresholds, the one-tile margin,
+ * generate's per-pixel background and fade test): it only evaluates the AO formulas everywhere.
+ * A skip taken where the formulas would not give exactly 1 shows as a pixel that differs.
+ *   - with skipping on, the AO is bit-identical to the reference on the embedded scene (sky and
+ *     ground, a fade-out inside it: tiles of all three classes) at every quality, native and
+ *     downsampled, with no blur, 2 and 8 blur passes, in standard and reverse Z, also with NaN
+ *     in the depth;
+ *   - skipping happens: with a fade-out that takes three quarters of the pixels, more than half of
+ *     the generate tiles and some blur groups are skipped, native and downsampled, with and
+ *     without a blur, and the output is still the reference's;
  *   - a frame that is all background (depth at the far plane) is exactly 1 everywhere and runs no
- *     generate and no blur group; compute_all_tiles gives the same 1s with every tile active;
+ *     generate and no blur group; the reference gives the same 1s with every tile active;
  *   - a frame with no background (the sky replaced by a far wall, fade-out beyond it) classifies
- *     no tile as background and skips nothing, with the same output;
- *   - with a fade-out that takes three quarters of the pixels, more than half of the generate
- *     tiles are skipped and the output is still the full computation's.
+ *     no tile as background and skips nothing, with the same output.
  * The counts come from the runtime (cacao_record_tile_counts) through vkdev's timings. */
 #include <math.h>
 #include <stdlib.h>
@@ -130,29 +137,55 @@ static int compare_float(const void *a, const void *b) {
     return (x > y) - (x < y);
 }
 
-static void test_mostly_faded(vkdev *dev, const scene_buffers *sb, const cacao_scene *scene) {
-    /* fade_out_to at the view z of the 25th percentile: three quarters of the pixels lie beyond */
+/* View z of the 25th percentile of the pixels of sb (standard depth; sky at infinity). */
+static float first_quartile_z(const scene_buffers *sb, const cacao_camera *camera) {
     const size_t n = (size_t)sb->width * sb->height;
     float *z = malloc(n * sizeof(float));
-    const double nz = scene->camera.near_z, fz = scene->camera.far_z;
+    const double nz = camera->near_z, fz = camera->far_z;
     for (size_t i = 0; i < n; ++i) {
         const double d = sb->depth[i];
         z[i] = d >= 1.0 ? INFINITY : (float)(nz * fz / (fz - d * (fz - nz)));
     }
     qsort(z, n, sizeof(float), compare_float);
-    const float to = z[n / 4];
+    const float quartile = z[n / 4];
     free(z);
+    return quartile;
+}
+
+/* Skipping happens where it should: fade_out_to at the view z of the 25th percentile, so three
+ * quarters of the pixels lie beyond it (or are sky). Native at 256x144 and downsampled at
+ * 512x288 (the same 16x9 tiles of slice texels; at 256x144 downsampled all 8x5 tiles lie within
+ * one of an active tile). Generate must skip more than half its tiles, and with a blur some
+ * groups must be skipped, while the output stays the reference's. */
+static void test_mostly_faded(vkdev *dev, uint32_t width, uint32_t height, bool downsample) {
+    static const int blurs[] = {CACAO_BLUR_NONE, 2, 8};
+    const cacao_scene scene = cacao_default_scene(width, height);
+    scene_buffers sb;
+    scene_buffers_render(&scene, &sb);
+    const float to = first_quartile_z(&sb, &scene.camera);
     CHECK(isfinite(to));
-    const vkdev_frame f = scene_frame(sb, false, false);
-    for (int q = 0; q < 5; ++q) {
-        const cacao_settings s = {.quality = qualities[q], .generate_normals = true, .fade_out_from = 0.5f * to,
-                                  .fade_out_to = to};
-        cacao_tile_counts c;
-        if (!same_as_all_tiles(dev, s, &f, "three quarters faded", &c)) continue;
-        if (c.generate_run * 2 >= c.tiles)
-            fprintf(stderr, "three quarters faded: generate ran %u of %u tiles\n", c.generate_run, c.tiles);
-        CHECK(c.generate_run * 2 < c.tiles);
-    }
+    const vkdev_frame f = scene_frame(&sb, false, false);
+    for (int q = 0; q < 5; ++q)
+        for (int bl = 0; bl < 3; ++bl) {
+            const cacao_settings s = {.quality = qualities[q],
+                                      .downsample = downsample,
+                                      .generate_normals = true,
+                                      .blur_pass_count = blurs[bl],
+                                      .fade_out_from = 0.5f * to,
+                                      .fade_out_to = to};
+            cacao_tile_counts c;
+            if (!same_as_all_tiles(dev, s, &f, "three quarters faded", &c)) continue;
+            const bool blurred = s.blur_pass_count != CACAO_BLUR_NONE;
+            if (c.generate_run * 2 >= c.tiles || (blurred && c.blur_run >= c.blur_total))
+                fprintf(stderr,
+                        "three quarters faded, quality %d, %s, blur %d: generate ran %u of %u tiles, blur %u of %u "
+                        "groups\n",
+                        (int)s.quality, downsample ? "downsampled" : "native", s.blur_pass_count, c.generate_run,
+                        c.tiles, c.blur_run, c.blur_total);
+            CHECK(c.generate_run * 2 < c.tiles);
+            if (blurred) CHECK(c.blur_run < c.blur_total);
+        }
+    scene_buffers_free(&sb);
 }
 
 static void test_nan_depth(vkdev *dev, const scene_buffers *sb) {
@@ -178,7 +211,8 @@ int main(void) {
     test_equal_everywhere(&dev, &sb);
     test_all_background(&dev, &sb);
     test_no_background(&dev, &sb);
-    test_mostly_faded(&dev, &sb, &scene);
+    test_mostly_faded(&dev, 256, 144, false);
+    test_mostly_faded(&dev, 512, 288, true);
     test_nan_depth(&dev, &sb);
     scene_buffers_free(&sb);
     vkdev_destroy(&dev);

@@ -178,9 +178,10 @@ typedef struct cacao_settings {
                                        (FALLOFF) or 0.5 R (BINARY) */
     int horizon_slices;             /* GTAO/BITMASK: slices per pixel 1..16; 0 = by quality */
     int horizon_steps;              /* GTAO/BITMASK: steps per side 1..32; 0 = by quality */
-    bool compute_all_tiles;         /* CACAO: true computes every tile (no skipping of background and
-                                       faded tiles: docs/tiles.md); the output is the same, only
-                                       slower. For measurement and tests. */
+    bool compute_all_tiles;         /* CACAO: true skips nothing: every tile is generated and
+                                       blurred, and generate computes the taps of background and
+                                       faded pixels too (docs/tiles.md); the output is the same,
+                                       only slower. For measurement and tests. */
     cacao_shader_forms shader_forms; /* 0 = the context's choice (see cacao_shader_forms) */
 } cacao_settings;
 

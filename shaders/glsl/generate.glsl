@@ -148,9 +148,11 @@ float generate_texel(ivec2 xy, int layer)
      * all quiet skips the loops; whole quiet tiles are not dispatched: docs/tiles.md). Edges are
      * still computed: the blur of a visible neighbour reads them. The Q3 base pass keeps every
      * pixel: its raw values feed the importance map and the load counter, which steer the
-     * adaptive pass elsewhere. */
+     * adaptive pass elsewhere. compute_all_tiles (CB.tiles_all) skips nothing: test_tiles's
+     * reference, which checks that the skip changes no pixel. */
 #if GEN_BASE == 0
-    bool faded = zc >= CB.background_z || sat(pc.z * CB.effect_fade_out_mul + CB.effect_fade_out_add) == 0.0;
+    bool faded = CB.tiles_all == 0 &&
+                 (zc >= CB.background_z || sat(pc.z * CB.effect_fade_out_mul + CB.effect_fade_out_add) == 0.0);
 #else
     const bool faded = false;
 #endif

@@ -1,9 +1,21 @@
-# cacao-inspect against facts known independently of it: the key space has 88 keys (hand count in
-# test_keys), a blur key has 16 variants, `show` prints the key's defines, its reflected uniform
-# block and a disassembly with a GLCompute entry point, `plan` for HIGHEST lists the adaptive
-# passes in spec order, `verify` passes, and unknown keys / commands fail with a message.
-# Inputs: INSPECT.
+# cacao-inspect against facts known independently of it: this full build embeds every key of the
+# key space (its size, and the blur pass's, counted by table_dump --key-count from cacaoi_key_list,
+# not from the embedded table inspect reads), `show` prints the key's defines, its reflected
+# uniform block and a disassembly with a GLCompute entry point, `plan` for HIGHEST lists the
+# adaptive passes in spec order, `verify` passes, and unknown keys / commands fail with a message.
+# Inputs: INSPECT, TABLE_DUMP.
 include(${CMAKE_CURRENT_LIST_DIR}/inspect_common.cmake)
+# key_count(var [pass]): the number of keys of the key space (of one pass) into var.
+function(key_count var)
+  execute_process(COMMAND ${TABLE_DUMP} --key-count ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE n
+                  ERROR_VARIABLE err OUTPUT_STRIP_TRAILING_WHITESPACE)
+  if(NOT rc EQUAL 0 OR NOT n MATCHES "^[1-9][0-9]*$")
+    message(FATAL_ERROR "table_dump --key-count ${ARGN}: exit ${rc}, '${n}'\n${err}")
+  endif()
+  set(${var} ${n} PARENT_SCOPE)
+endfunction()
+key_count(keys)
+key_count(blur_keys blur)
 function(expect text what)
   string(FIND "${text}" "${what}" at)
   if(at LESS 0)
@@ -12,21 +24,21 @@ function(expect text what)
 endfunction()
 
 inspect(0 stats)
-expect("${out}" "permutations: 88 before dedup")
+expect("${out}" "permutations: ${keys} before dedup")
 inspect(0 verify)
 expect("${out}" "every key they dispatch is embedded")
 inspect(0 list --json)
 string(JSON n LENGTH "${out}")
-if(NOT n EQUAL 88)
-  message(FATAL_ERROR "list --json has ${n} entries, expected 88")
+if(NOT n EQUAL keys)
+  message(FATAL_ERROR "list --json has ${n} entries, expected the key space's ${keys}")
 endif()
 string(JSON first GET "${out}" 0 key)
 expect("${first}" "prepare_depths.half.native")
 inspect(0 list --pass blur)
 string(REGEX MATCHALL "\nblur\\.[1-8]\\.fp(16|32)" rows "${out}")
 list(LENGTH rows n)
-if(NOT n EQUAL 16)
-  message(FATAL_ERROR "list --pass blur shows ${n} rows, expected 16:\n${out}")
+if(NOT n EQUAL blur_keys)
+  message(FATAL_ERROR "list --pass blur shows ${n} rows, expected the key space's ${blur_keys}:\n${out}")
 endif()
 inspect(0 show generate.q2)
 expect("${out}" "#define CACAO_PASS 2")

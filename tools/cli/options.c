@@ -146,8 +146,8 @@ static const flag_def flags[] = {
     SET("--no-normals", NULL, SET_BOOL, generate_normals,
         "reconstruct normals from depth even when normals are given (automatic without normals)"),
     SET("--all-tiles", NULL, SET_BOOL, compute_all_tiles,
-        "compute every tile, skipping no background or faded tile (docs/tiles.md): the same output, "
-        "slower; for measurement"),
+        "skip nothing: every tile, and the taps of background and faded pixels (docs/tiles.md): the "
+        "same output, slower; for measurement"),
     {.name = "--shader-forms",
      .value = "F",
      .kind = SET_ENUM,
