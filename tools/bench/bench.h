@@ -9,6 +9,7 @@
 
 #include "inputs.h"
 #include "outputs.h"
+#include "sweep.h"
 #include "timing.h"
 #include "vkdev.h"
 
@@ -19,16 +20,8 @@
 enum { BENCH_GT_FALLOFF, BENCH_GT, BENCH_TRUTHS };
 extern const char *const bench_truth_names[BENCH_TRUTHS]; /* "ao_gt_falloff", "ao_gt" */
 
-/* One configuration: what differs between the rows of a sweep. blur is literal (0 = none). */
-typedef struct bench_config {
-    char name[64]; /* [gtao_|bitmask_]<quality>_<native|downsampled>[_blurN][_fp16][_gennormals] */
-    cacao_estimator estimator;
-    cacao_quality quality;
-    bool downsample;
-    int blur;
-    bool fp16;
-    bool reconstruct_normals; /* forces reconstruction; otherwise as the inputs and flags say */
-} bench_config;
+/* One configuration (sweep.h). */
+typedef sweep_config bench_config;
 
 typedef struct bench_scene {
     char name[256];
