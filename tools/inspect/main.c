@@ -11,6 +11,8 @@
  *   cacao-inspect stats                                       counts, dedup, bytes per pass
  *   cacao-inspect facts                                       the counts and limits the docs state, as JSON
  *   cacao-inspect verify                                      re-validate modules, check plan keys are embedded
+ *   cacao-inspect gpu --config NAME | --all [--amd FILE]      a GPU compiler's statistics of the permutations
+ *                                                             and configurations' estimated frame cost (gpu.c)
  *
  * Everything comes from the embedded table (generated/), reflection of the modules (SPIRV-Cross)
  * and the runtime's own cacao_plan_build: no second copy of any of that logic. */
@@ -23,6 +25,7 @@
 #include "cacao.h"
 #include "cacao_policy.h"
 #include "cacao_shared.h"
+#include "gpu.h"
 #include "inputs.h"
 #include "options.h"
 #include "shadergen.h"
@@ -496,6 +499,7 @@ static void usage(FILE *out) {
                  "       cacao-inspect stats\n"
                  "       cacao-inspect facts   (the counts and limits the docs state, as JSON)\n"
                  "       cacao-inspect verify\n");
+    inspect_gpu_usage(out);
 }
 
 int main(int argc, char **argv) {
@@ -510,6 +514,7 @@ int main(int argc, char **argv) {
     if (strcmp(cmd, "stats") == 0 && argc == 2) return cmd_stats();
     if (strcmp(cmd, "facts") == 0 && argc == 2) return cmd_facts();
     if (strcmp(cmd, "verify") == 0 && argc == 2) return cmd_verify();
+    if (strcmp(cmd, "gpu") == 0) return inspect_gpu(argc - 2, argv + 2);
     usage(stderr);
     return fail("unknown command '%s'", cmd);
 }
