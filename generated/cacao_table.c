@@ -3,7 +3,7 @@
 
 #include "cacao_table.h"
 
-extern const cacao_module cacaoi_generated_modules[88];
+extern const cacao_module cacaoi_generated_modules[82];
 
 static const cacao_permutation permutations[] = {
     {{0, 0, 0, 0, 0}, "prepare_depths.half.native", 0, {8, 8, 1}, 1268, 0, {1, 0, 0, 3, 0, 0, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
@@ -88,15 +88,9 @@ static const cacao_permutation permutations[] = {
     {{16, 1, 0, 0, 1}, "apply_gpu.nonsmart.fp16", 79, {8, 8, 1}, 1268, 0, {1, 0, 0, 0, 0, 0, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, 0, 4}},
     {{16, 2, 0, 0, 0}, "apply_gpu.half.fp32", 80, {8, 8, 1}, 1268, 0, {1, 0, 0, 0, 0, 0, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, 0, 4}},
     {{16, 2, 0, 0, 1}, "apply_gpu.half.fp16", 81, {8, 8, 1}, 1268, 0, {1, 0, 0, 0, 0, 0, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, 0, 4}},
-    {{17, 0, 0, 0, 0}, "upsample_gpu.smart.fp32", 82, {16, 16, 1}, 1268, 0, {1, 0, 0, 3, 0, 3, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, 0, 4}},
-    {{17, 0, 0, 0, 1}, "upsample_gpu.smart.fp16", 83, {16, 16, 1}, 1268, 0, {1, 0, 0, 3, 0, 3, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, 0, 4}},
-    {{17, 1, 0, 0, 0}, "upsample_gpu.nonsmart.fp32", 84, {16, 16, 1}, 1268, 0, {1, 0, 0, 3, 0, 3, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, 0, 4}},
-    {{17, 1, 0, 0, 1}, "upsample_gpu.nonsmart.fp16", 85, {16, 16, 1}, 1268, 0, {1, 0, 0, 3, 0, 3, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, 0, 4}},
-    {{17, 2, 0, 0, 0}, "upsample_gpu.half.fp32", 86, {16, 16, 1}, 1268, 0, {1, 0, 0, 3, 0, 3, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, 0, 4}},
-    {{17, 2, 0, 0, 1}, "upsample_gpu.half.fp16", 87, {16, 16, 1}, 1268, 0, {1, 0, 0, 3, 0, 3, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, 0, 4}},
 };
 
 const cacao_table cacaoi_embedded_table = {
-    permutations, 88, cacaoi_generated_modules, 88, "main",
+    permutations, 82, cacaoi_generated_modules, 82, "main",
     "glslang 12.0.0", "SPIRV-Tools v2023.1", "all",
 };

@@ -158,16 +158,12 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                      .quad = {[CACAO_DEPTHS_HALF] = 2, [CACAO_DEPTHS_FULL] = 2, [CACAO_DEPTHS_MIPS] = 2}},
     /* The GPU forms (cacao_shader_forms): the rows above, other shapes. The blur: every n in
      * shared memory, 2x2 texels per thread (CACAO_BLUR_GPU_OUT); apply: one pixel per invocation
-     * through the sampler; upsample: one half-res position per thread, the same span per group. */
+     * through the sampler. */
     PASS(BLUR_GPU) = {"blur_gpu", {NULL}, 1, false, true, true, WG(BLUR_GPU), CACAOI_GRID_BLUR, 4,
                       {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(SSAO_IMAGE, SSAO_PONG, ALL), R(TILES, TILES, ALL)},
                       .lists = {CACAO_LIST_BLUR}},
     PASS(APPLY_GPU) = {"apply_gpu", {"smart", "nonsmart", "half"}, 3, false, false, true, WG(APPLY), CACAOI_GRID_OUTPUT,
                        3, {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL)}},
-    PASS(UPSAMPLE_GPU) = {"upsample_gpu", {"smart", "nonsmart", "half"}, 3, false, false, true, WG(UPSAMPLE_GPU),
-                          CACAOI_GRID_UPSAMPLE, 5,
-                          {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), R(DEPTHS, DEPTHS, ALL), R(SSAO, SSAO_PING, ALL),
-                           W(OUTPUT, OUTPUT, ALL)}},
     PASS(FILL) = {"fill", {NULL}, 1, false, false, false, {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE_LAYERS, 3,
                   {CONSTANTS, R(TILES, TILES, ALL), W(SSAO_IMAGE, SSAO_PING, ALL)},
                   .lists = {CACAO_LIST_FILL_SLICES}},

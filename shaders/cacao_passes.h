@@ -133,9 +133,6 @@ static inline void cacaoi_blur_out(unsigned pass, unsigned n, uint32_t out[2]) {
     out[0] = pass == CACAO_PASS_BLUR_GPU ? CACAO_BLUR_GPU_OUT(n) : CACAO_BLUR_OUT_X(n);
     out[1] = pass == CACAO_PASS_BLUR_GPU ? CACAO_BLUR_GPU_OUT(n) : CACAO_BLUR_OUT_Y(n);
 }
-_Static_assert(CACAO_WG_UPSAMPLE_GPU_X * CACAO_UPSAMPLE_GPU_BLOCK == CACAO_UPSAMPLE_SPAN_X &&
-                   CACAO_WG_UPSAMPLE_GPU_Y * CACAO_UPSAMPLE_GPU_BLOCK == CACAO_UPSAMPLE_SPAN_Y,
-               "both upsample forms cover one span per group (CACAOI_GRID_UPSAMPLE)");
 
 /* What a compiled module of this pass variant must declare: per slot, its descriptor kind (or
  * NONE), and for image slots the resource whose format and layering it has. False for a pass or

@@ -21,10 +21,13 @@ const cacaoi_quality_row cacaoi_qualities[CACAO_KEY_QUALITY_COUNT] = {
 
 unsigned cacaoi_form_pass(unsigned pass, bool gpu_forms) {
     if (!gpu_forms) return pass;
-    return pass == CACAO_PASS_BLUR       ? CACAO_PASS_BLUR_GPU
-           : pass == CACAO_PASS_APPLY    ? CACAO_PASS_APPLY_GPU
-           : pass == CACAO_PASS_UPSAMPLE ? CACAO_PASS_UPSAMPLE_GPU
-                                         : pass;
+    return pass == CACAO_PASS_BLUR ? CACAO_PASS_BLUR_GPU : pass == CACAO_PASS_APPLY ? CACAO_PASS_APPLY_GPU : pass;
+}
+
+bool cacaoi_pass_in_forms(unsigned pass, bool gpu_forms) {
+    for (unsigned q = 0; q < CACAO_PASS_COUNT; ++q)
+        if (cacaoi_form_pass(q, !gpu_forms) == pass && cacaoi_form_pass(q, gpu_forms) != pass) return false;
+    return true;
 }
 
 size_t cacaoi_step_bindings(const cacaoi_step *step, cacaoi_pass_binding out[CACAO_PLAN_MAX_BINDINGS]) {

@@ -63,9 +63,13 @@ typedef struct cacao_key_config {
     bool gpu_forms;        /* the GPU forms of the blur, apply and upsample (cacao_shader_forms) */
 } cacao_key_config;
 
-/* The pass of the configuration's forms: BLUR, APPLY, UPSAMPLE or their GPU rows (any other pass
- * is itself). */
+/* The pass of the configuration's forms: BLUR, APPLY or their GPU rows (any other pass, the
+ * upsample included, is itself). */
 unsigned cacaoi_form_pass(unsigned pass, bool gpu_forms);
+
+/* True when configurations with these forms can dispatch the pass (false for the other forms'
+ * rows: the CPU blur and apply under GPU forms, their GPU rows under CPU forms). */
+bool cacaoi_pass_in_forms(unsigned pass, bool gpu_forms);
 
 /* ---- The sequence ---- */
 

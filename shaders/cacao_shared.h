@@ -32,12 +32,14 @@
 /* Prepare with normals from depth: the depths (CACAO_DEPTHS_* variants) and the normals in one
  * pass; PREPARE_DEPTHS and PREPARE_NORMALS run instead where the caller gives normals. */
 #define CACAO_PASS_PREPARE 14
-/* The GPU forms (cacao_shader_forms) of the blur, apply and upsample: the same arithmetic and
- * output, shaped for a GPU (shared memory and few texels per invocation, the hardware sampler). */
+/* The GPU forms (cacao_shader_forms) of the blur and apply: the same arithmetic and output,
+ * shaped for a GPU (shared memory and few texels per invocation, the hardware sampler). The
+ * upsample has one form: one half-res position per thread cost a GPU compiler's estimate more
+ * (navi21: 26.3 against 17.1 Mcycles at 1920x1080, docs/gpu.md) than the 2x2 positions of the
+ * shared form. */
 #define CACAO_PASS_BLUR_GPU 15
 #define CACAO_PASS_APPLY_GPU 16
-#define CACAO_PASS_UPSAMPLE_GPU 17
-#define CACAO_PASS_COUNT 18
+#define CACAO_PASS_COUNT 17
 
 /* Depth-prepare variants (spec: prepare.md). HALF = slices 0 and 3 only (LOWEST), FULL = four
  * slices, MIPS = four slices plus mips 1..3 (HIGH and HIGHEST; MEDIUM never reads mips). */
@@ -168,10 +170,6 @@
 #define CACAO_UPSAMPLE_BLOCK 2           /* each upsample thread filters BxB half-res positions */
 #define CACAO_UPSAMPLE_SPAN_X (CACAO_WG_UPSAMPLE_X * CACAO_UPSAMPLE_BLOCK) /* half-res per group */
 #define CACAO_UPSAMPLE_SPAN_Y (CACAO_WG_UPSAMPLE_Y * CACAO_UPSAMPLE_BLOCK)
-/* The GPU form: one half-res position per thread, the same span per group. */
-#define CACAO_WG_UPSAMPLE_GPU_X 16
-#define CACAO_WG_UPSAMPLE_GPU_Y 16
-#define CACAO_UPSAMPLE_GPU_BLOCK 1
 #define CACAO_WG_HORIZON_X 8               /* slice prepare, main and denoise: one pixel per thread */
 #define CACAO_WG_HORIZON_Y 8
 

@@ -1,8 +1,7 @@
 /* apply.glsl - apply (native) and upsample (downsampled): the slices' AO into the output. */
 
 /* ============================== APPLY / UPSAMPLE shared ============================== */
-#if CACAO_PASS == CACAO_PASS_APPLY || CACAO_PASS == CACAO_PASS_UPSAMPLE || CACAO_PASS == CACAO_PASS_APPLY_GPU || \
-    CACAO_PASS == CACAO_PASS_UPSAMPLE_GPU
+#if CACAO_PASS == CACAO_PASS_APPLY || CACAO_PASS == CACAO_PASS_UPSAMPLE || CACAO_PASS == CACAO_PASS_APPLY_GPU
 
 /* Bilinear read of one layer of the AO texture (LinearClamp). */
 rfloat ao_bilinear(vec2 uv, int layer) { return rfloat(textureLod(ssao, vec3(uv, float(layer)), 0.0).r); }
@@ -205,19 +204,12 @@ void main()
 #endif /* APPLY_GPU */
 
 /* ============================== UPSAMPLE ============================== */
-#if CACAO_PASS == CACAO_PASS_UPSAMPLE || CACAO_PASS == CACAO_PASS_UPSAMPLE_GPU
-/* spec: upsample.md (bilateral 5x5, Smart / NonSmart / Half). The GPU form: one half-res position
- * per thread (a 5x5 window of the table in registers, not 6x6 for 2x2 positions), 16x16 threads:
- * the same span per group, table and arithmetic. */
-#if CACAO_PASS == CACAO_PASS_UPSAMPLE_GPU
-layout(local_size_x = CACAO_WG_UPSAMPLE_GPU_X, local_size_y = CACAO_WG_UPSAMPLE_GPU_Y) in;
-#define UP_B CACAO_UPSAMPLE_GPU_BLOCK
-#define UP_THREADS (CACAO_WG_UPSAMPLE_GPU_X * CACAO_WG_UPSAMPLE_GPU_Y)
-#else
+#if CACAO_PASS == CACAO_PASS_UPSAMPLE
+/* spec: upsample.md (bilateral 5x5, Smart / NonSmart / Half). One form for CPUs and GPUs: one
+ * half-res position per thread cost a GPU compiler's estimate more than 2x2 (cacao_shared.h). */
 layout(local_size_x = CACAO_WG_UPSAMPLE_X, local_size_y = CACAO_WG_UPSAMPLE_Y) in;
 #define UP_B CACAO_UPSAMPLE_BLOCK
 #define UP_THREADS (CACAO_WG_UPSAMPLE_X * CACAO_WG_UPSAMPLE_Y)
-#endif
 #define UP_TABLE_X (CACAO_UPSAMPLE_SPAN_X + 4) /* the group's half-res positions + 2 apron each side */
 #define UP_TABLE_Y (CACAO_UPSAMPLE_SPAN_Y + 4)
 #define UP_WIN (UP_B + 4)                       /* one thread's window of table entries */

@@ -104,7 +104,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     }
 
     static bench_scene scenes[BENCH_MAX_SCENES];
-    static bench_config configs[BENCH_MAX_CONFIGS];
+    static bench_config configs[SWEEP_FULL_SIZE];
     bench_result *results = NULL;
     bench_run run = {
         .reference_name = name, .points = have_points ? points : NULL, .point_count = have_points ? point_count : 0};

@@ -10,11 +10,11 @@
 
 #include "inputs.h"
 #include "outputs.h"
+#include "sweep.h"
 #include "timing.h"
 #include "vkdev.h"
 
 #define BENCH_MAX_SCENES 16
-#define BENCH_MAX_CONFIGS (5 * 2 * 2 * 2 * 9 + 2 * 5 * 2 * 9) /* the full sweep */
 #define BENCH_MAX_POINTS 10000                                /* --reference points */
 #define BENCH_ERR 1024
 
@@ -22,16 +22,8 @@
 enum { BENCH_GT_FALLOFF, BENCH_GT, BENCH_TRUTHS };
 extern const char *const bench_truth_names[BENCH_TRUTHS]; /* "ao_gt_falloff", "ao_gt" */
 
-/* One configuration: what differs between the rows of a sweep. blur is literal (0 = none). */
-typedef struct bench_config {
-    char name[64]; /* [gtao_|bitmask_]<quality>_<native|downsampled>[_blurN][_fp16][_gennormals] */
-    cacao_estimator estimator;
-    cacao_quality quality;
-    bool downsample;
-    int blur;
-    bool fp16;
-    bool reconstruct_normals; /* forces reconstruction; otherwise as the inputs and flags say */
-} bench_config;
+/* One configuration (sweep.h). */
+typedef sweep_config bench_config;
 
 typedef struct bench_scene {
     char name[256];

@@ -212,7 +212,7 @@ bool bench_load_plot_from(const char *path, bench_scene *scenes, bench_config *c
     cJSON *root = read_root(&r, "--plot-from", path, err);
     if (!root) return false;
     const cJSON *jscenes = take_array(&r, root, "scenes", 1, BENCH_MAX_SCENES);
-    const cJSON *jconfigs = jscenes ? take_array(&r, root, "configurations", 1, BENCH_MAX_CONFIGS) : NULL;
+    const cJSON *jconfigs = jscenes ? take_array(&r, root, "configurations", 1, SWEEP_FULL_SIZE) : NULL;
     const int ns = cJSON_GetArraySize(jscenes), nc = cJSON_GetArraySize(jconfigs);
     bool ok = jconfigs && read_scenes(&r, jscenes, scenes) && read_configs(&r, jconfigs, configs);
     run->scene_count = ok ? (uint32_t)ns : 0;

@@ -246,91 +246,12 @@ static bool parse_flags(int argc, char **argv, bench_options *o) {
 
 /* ---- Configurations --------------------------------------------------------------------------- */
 
-/* The full sweep in its order: CACAO's configurations by quality, resolution, then blur,
- * precision, normals; then the horizon-slice estimators (native, fp32 only) by estimator, quality,
- * normals and denoise passes. The default sweep is the subset at the default blur (CACAO 2, the
- * slice estimators 1), fp32, normals as given. */
-static uint32_t full_sweep(bench_config *out) {
-    uint32_t n = 0;
-    for (int q = 0; q < 5; ++q)
-        for (int ds = 0; ds < 2; ++ds)
-            for (int gen = 0; gen < 2; ++gen)
-                for (int fp16 = 0; fp16 < 2; ++fp16)
-                    for (int k = 0; k <= 8; ++k) {
-                        static const int blurs[] = {2, 0, 1, 3, 4, 5, 6, 7, 8}; /* the default first */
-                        const int b = blurs[k];
-                        bench_config *c = &out[n++];
-                        *c = (bench_config){.estimator = CACAO_ESTIMATOR_CACAO,
-                                            .quality = (cacao_quality)(CACAO_QUALITY_LOWEST + q),
-                                            .downsample = ds,
-                                            .blur = b,
-                                            .fp16 = fp16,
-                                            .reconstruct_normals = gen};
-                        char blur_part[16] = "";
-                        if (b != 2) snprintf(blur_part, sizeof blur_part, "_blur%d", b);
-                        snprintf(c->name, sizeof c->name, "%s_%s%s%s%s", cacao_quality_name(c->quality),
-                                 ds ? "downsampled" : "native", blur_part, fp16 ? "_fp16" : "",
-                                 gen ? "_gennormals" : "");
-                    }
-    for (int e = 0; e < 2; ++e)
-        for (int q = 0; q < 5; ++q)
-            for (int gen = 0; gen < 2; ++gen)
-                for (int k = 0; k <= 8; ++k) {
-                    static const int blurs[] = {1, 0, 2, 3, 4, 5, 6, 7, 8}; /* the default first */
-                    const int b = blurs[k];
-                    bench_config *c = &out[n++];
-                    *c = (bench_config){.estimator = (cacao_estimator)(CACAO_ESTIMATOR_GTAO + e),
-                                        .quality = (cacao_quality)(CACAO_QUALITY_LOWEST + q),
-                                        .blur = b,
-                                        .reconstruct_normals = gen};
-                    char blur_part[16] = "";
-                    if (b != 1) snprintf(blur_part, sizeof blur_part, "_blur%d", b);
-                    snprintf(c->name, sizeof c->name, "%s_%s_native%s%s", cacao_estimator_name(c->estimator),
-                             cacao_quality_name(c->quality), blur_part, gen ? "_gennormals" : "");
-                }
-    return n;
-}
-
-static bool is_default_config(const bench_config *c) {
-    return c->blur == (c->estimator == CACAO_ESTIMATOR_CACAO ? 2 : 1) && !c->fp16 && !c->reconstruct_normals;
-}
-
-/* Marks the configurations the comma list names (names or globs), all of it however long. */
-static bool choose_listed(const char *configs, const bench_config *all, uint32_t total, bool *chosen) {
-    char *list = strdup(configs);
-    if (!list) return fail("--configs: out of memory");
-    char *save = NULL;
-    bool ok = true;
-    for (char *p = strtok_r(list, ",", &save); ok && p; p = strtok_r(NULL, ",", &save)) {
-        bool any = false;
-        for (uint32_t i = 0; i < total; ++i)
-            if (fnmatch(p, all[i].name, 0) == 0) any = chosen[i] = true;
-        if (!any) {
-            char shown[256];
-            cacao_escape_text(p, shown, sizeof shown);
-            ok = fail("--configs: '%s' matches no configuration (see --list-configs --sweep full)", shown);
-        }
-    }
-    free(list);
-    return ok;
-}
-
 /* The configurations the options select, in sweep order (each once); the flags of one estimator
  * are refused when a selected configuration runs another. */
 static bool select_configs(const bench_options *o, bench_config *out, uint32_t *count) {
-    bench_config all[BENCH_MAX_CONFIGS];
-    const uint32_t total = full_sweep(all);
-    bool chosen[BENCH_MAX_CONFIGS] = {0};
-    if (!o->configs) {
-        for (uint32_t i = 0; i < total; ++i) chosen[i] = o->full_sweep || is_default_config(&all[i]);
-    } else if (!choose_listed(o->configs, all, total, chosen)) {
-        return false;
-    }
-    *count = 0;
-    for (uint32_t i = 0; i < total; ++i)
-        if (chosen[i]) out[(*count)++] = all[i];
-    if (*count == 0) return fail("--configs: empty list");
     char err[BENCH_ERR], what[96];
+    if (!sweep_select(o->configs, o->full_sweep, out, count, err, sizeof err))
+        return fail("--configs: %s (see --list-configs --sweep full)", err);
     for (uint32_t c = 0; c < *count; ++c) {
         snprintf(what, sizeof what, "configuration %s", out[c].name);
         if (!cli_check_estimator_flags(&o->cli, out[c].estimator, what, err, sizeof err)) return fail("%s", err);
@@ -412,20 +333,6 @@ static void load_average(double out[3]) {
     fclose(f);
 }
 
-static void driver_of(const vkdev *dev, char *out, size_t n) {
-    VkPhysicalDeviceProperties p;
-    vkGetPhysicalDeviceProperties(dev->physical_device, &p);
-    snprintf(out, n, "driver version 0x%x, Vulkan %u.%u.%u", p.driverVersion, VK_API_VERSION_MAJOR(p.apiVersion),
-             VK_API_VERSION_MINOR(p.apiVersion), VK_API_VERSION_PATCH(p.apiVersion));
-    if (p.apiVersion < VK_API_VERSION_1_2) return;
-    VkPhysicalDeviceDriverProperties driver = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
-    VkPhysicalDeviceProperties2 p2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &driver};
-    vkGetPhysicalDeviceProperties2(dev->physical_device, &p2);
-    snprintf(out, n, "%s %s (Vulkan %u.%u.%u)", driver.driverName, driver.driverInfo,
-             VK_API_VERSION_MAJOR(p.apiVersion), VK_API_VERSION_MINOR(p.apiVersion),
-             VK_API_VERSION_PATCH(p.apiVersion));
-}
-
 static double seconds_now(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -435,14 +342,7 @@ static double seconds_now(void) {
 /* The settings one configuration runs with on one scene: the flags' settings, the scene's radius
  * unless --radius was given, then the configuration's own fields. */
 static cacao_settings config_settings(const bench_options *o, const bench_config *c, const bench_scene *s) {
-    cacao_settings set = cli_inputs_settings(&o->cli, &s->inputs);
-    set.estimator = c->estimator;
-    set.quality = c->quality;
-    set.downsample = c->downsample;
-    set.blur_pass_count = c->blur == 0 ? CACAO_BLUR_NONE : c->blur;
-    set.precision = c->fp16 ? CACAO_PRECISION_FP16 : CACAO_PRECISION_FP32;
-    if (c->reconstruct_normals) set.generate_normals = true;
-    return set;
+    return sweep_settings(c, cli_inputs_settings(&o->cli, &s->inputs));
 }
 
 /* Runs one configuration on one scene into r; its AO goes to ao_path (a staged file) unless NULL. */
@@ -488,7 +388,7 @@ static bool run_all(const bench_options *o, const bench_config *configs, uint32_
     if (!vkdev_create(&(vkdev_options){.validation = o->cli.validate, .device = o->cli.device}, &dev, err, sizeof err))
         return fail("%s", err);
     snprintf(run->device, sizeof run->device, "%s", dev.device_name);
-    driver_of(&dev, run->driver, sizeof run->driver);
+    vkdev_driver(&dev, run->driver, sizeof run->driver);
     size_t largest = 1;
     for (uint32_t s = 0; s < scene_count; ++s) {
         const size_t p = (size_t)scenes[s].inputs.depth.width * scenes[s].inputs.depth.height;
@@ -651,7 +551,7 @@ static bool plot_possible(const bench_options *o, const bench_scene *scenes, uin
 /* --plot-from: the plot of an earlier run's JSON, with the reference points in run. */
 static bool plot_from(const bench_options *o, bench_run *run) {
     static bench_scene scenes[BENCH_MAX_SCENES];
-    static bench_config configs[BENCH_MAX_CONFIGS];
+    static bench_config configs[SWEEP_FULL_SIZE];
     bench_result *results = NULL;
     bench_outputs out = {0};
     char err[BENCH_ERR];
@@ -700,7 +600,7 @@ int main(int argc, char **argv) {
         fputs(help_text, stdout);
         return 0;
     }
-    static bench_config configs[BENCH_MAX_CONFIGS];
+    static bench_config configs[SWEEP_FULL_SIZE];
     uint32_t config_count = 0;
     if (!o.plot_from && !select_configs(&o, configs, &config_count)) return 1;
     if (o.list_configs) {

@@ -87,8 +87,20 @@ static bool create_instance(vkdev *dev, bool validation, char *err, size_t n) {
     return true;
 }
 
-/* lavapipe (a CPU device) unless `want` names another by index or name substring. */
-static bool pick_device(vkdev *dev, const char *want, char *err, size_t n) {
+static bool has_device_extension(VkPhysicalDevice pd, const char *name) {
+    uint32_t n = 0;
+    vkEnumerateDeviceExtensionProperties(pd, NULL, &n, NULL);
+    VkExtensionProperties *ext = calloc(n ? n : 1, sizeof *ext);
+    bool found = false;
+    if (ext && vkEnumerateDeviceExtensionProperties(pd, NULL, &n, ext) == VK_SUCCESS)
+        for (uint32_t i = 0; i < n; ++i) found |= strcmp(ext[i].extensionName, name) == 0;
+    free(ext);
+    return found;
+}
+
+/* The device `want` names by index or name substring; without a name, the first device offering
+ * `required` (an extension) where one is given, else lavapipe (a CPU device), else the first. */
+static bool pick_device(vkdev *dev, const char *want, const char *required, char *err, size_t n) {
     uint32_t count = 0;
     vkEnumeratePhysicalDevices(dev->instance, &count, NULL);
     if (count == 0) {
@@ -105,38 +117,30 @@ static bool pick_device(vkdev *dev, const char *want, char *err, size_t n) {
         VkPhysicalDeviceProperties p;
         vkGetPhysicalDeviceProperties(devices[i], &p);
         if (!want) {
-            if (p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) chosen = (int)i;
+            if (required ? has_device_extension(devices[i], required) : p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
+                chosen = (int)i;
         } else if (end && *end == '\0' && end != want) {
             if ((long)i == index) chosen = (int)i;
         } else if (strstr(p.deviceName, want)) {
             chosen = (int)i;
         }
     }
-    if (chosen < 0 && !want) chosen = 0;
-    if (chosen < 0) {
-        cacao_set_err(err, n, "--device %s: no such Vulkan device (see --list-devices)", want);
-        return false;
-    }
+    if (chosen < 0 && !want && !required) chosen = 0;
+    if (chosen < 0 && !want)
+        return cacao_set_err(err, n, "no Vulkan device offers %s (RADV's null device does: see docs/gpu.md)", required);
+    if (chosen < 0) return cacao_set_err(err, n, "--device %s: no such Vulkan device (see cacao --list-devices)", want);
     dev->physical_device = devices[chosen];
     VkPhysicalDeviceProperties p;
     vkGetPhysicalDeviceProperties(dev->physical_device, &p);
     snprintf(dev->device_name, sizeof dev->device_name, "%s", p.deviceName);
     dev->timestamp_period_ns = p.limits.timestampPeriod;
+    if (required && !has_device_extension(dev->physical_device, required))
+        return cacao_set_err(err, n, "--device %s: '%s' does not offer %s", want, dev->device_name, required);
     return true;
 }
 
-static bool has_device_extension(VkPhysicalDevice pd, const char *name) {
-    uint32_t n = 0;
-    vkEnumerateDeviceExtensionProperties(pd, NULL, &n, NULL);
-    VkExtensionProperties *ext = calloc(n ? n : 1, sizeof *ext);
-    bool found = false;
-    if (ext && vkEnumerateDeviceExtensionProperties(pd, NULL, &n, ext) == VK_SUCCESS)
-        for (uint32_t i = 0; i < n; ++i) found |= strcmp(ext[i].extensionName, name) == 0;
-    free(ext);
-    return found;
-}
-
-static bool create_device(vkdev *dev, bool subgroup_size_control, char *err, size_t n) {
+/* The compute queue family: one with timestamps where frames are timed, any otherwise. */
+static bool pick_queue_family(vkdev *dev, bool timestamps, char *err, size_t n) {
     uint32_t families = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(dev->physical_device, &families, NULL);
     VkQueueFamilyProperties props[16];
@@ -144,11 +148,39 @@ static bool create_device(vkdev *dev, bool subgroup_size_control, char *err, siz
     vkGetPhysicalDeviceQueueFamilyProperties(dev->physical_device, &families, props);
     dev->queue_family = UINT32_MAX;
     for (uint32_t i = 0; i < families && dev->queue_family == UINT32_MAX; ++i)
-        if ((props[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && props[i].timestampValidBits > 0) dev->queue_family = i;
-    if (dev->queue_family == UINT32_MAX) {
-        cacao_set_err(err, n, "device '%s' has no compute queue with timestamps", dev->device_name);
-        return false;
-    }
+        if ((props[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && (!timestamps || props[i].timestampValidBits > 0))
+            dev->queue_family = i;
+    if (dev->queue_family == UINT32_MAX)
+        return cacao_set_err(err, n, "device '%s' has no compute queue%s", dev->device_name,
+                             timestamps ? " with timestamps" : "");
+    return true;
+}
+
+/* What frames need besides the device: command pool and buffer, fence, timestamp queries. */
+static bool create_frame_objects(vkdev *dev, char *err, size_t n) {
+    vkGetDeviceQueue(dev->device, dev->queue_family, 0, &dev->queue);
+    const VkCommandPoolCreateInfo pool = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                          .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+                                          .queueFamilyIndex = dev->queue_family};
+    const VkFenceCreateInfo fence = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    const VkQueryPoolCreateInfo query = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
+                                         .queryType = VK_QUERY_TYPE_TIMESTAMP,
+                                         .queryCount = MAX_TIMESTAMPS};
+    if (vkCreateCommandPool(dev->device, &pool, NULL, &dev->pool) != VK_SUCCESS ||
+        vkCreateFence(dev->device, &fence, NULL, &dev->fence) != VK_SUCCESS ||
+        vkCreateQueryPool(dev->device, &query, NULL, &dev->timestamps) != VK_SUCCESS)
+        return cacao_set_err(err, n, "cannot create command pool, fence or query pool");
+    const VkCommandBufferAllocateInfo alloc = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+                                               .commandPool = dev->pool,
+                                               .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+                                               .commandBufferCount = 1};
+    if (vkAllocateCommandBuffers(dev->device, &alloc, &dev->cmd) != VK_SUCCESS)
+        return cacao_set_err(err, n, "cannot allocate a command buffer");
+    return true;
+}
+
+static bool create_device(vkdev *dev, const vkdev_options *options, char *err, size_t n) {
+    if (!pick_queue_family(dev, !dev->statistics_only, err, n)) return false;
     if (!has_device_extension(dev->physical_device, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) {
         cacao_set_err(err, n, "device '%s' lacks VK_KHR_push_descriptor, which cacao needs", dev->device_name);
         return false;
@@ -158,13 +190,15 @@ static bool create_device(vkdev *dev, bool subgroup_size_control, char *err, siz
     VkPhysicalDeviceFeatures2 supported = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f16};
     vkGetPhysicalDeviceFeatures2(dev->physical_device, &supported);
     dev->fp16 = f16.shaderFloat16 && has_device_extension(dev->physical_device, "VK_KHR_shader_float16_int8");
+    /* The features to enable, chained as they apply. */
+    void *chain = NULL;
     VkPhysicalDeviceShaderFloat16Int8Features f16_on = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES, .shaderFloat16 = dev->fp16};
+    if (dev->fp16) f16_on.pNext = chain, chain = &f16_on;
     /* Subgroup size control (asked for by the subgroup test): the feature, and the compute range. */
     VkPhysicalDeviceSubgroupSizeControlFeaturesEXT sizes_on = {
-        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_FEATURES_EXT,
-        .pNext = dev->fp16 ? &f16_on : NULL};
-    const bool sizes = subgroup_size_control &&
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_FEATURES_EXT};
+    const bool sizes = options->subgroup_size_control &&
                        has_device_extension(dev->physical_device, VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME);
     if (sizes) {
         VkPhysicalDeviceSubgroupSizeControlFeaturesEXT sizes_supported = {
@@ -181,11 +215,13 @@ static bool create_device(vkdev *dev, bool subgroup_size_control, char *err, siz
             dev->subgroup_size_min = range.minSubgroupSize;
             dev->subgroup_size_max = range.maxSubgroupSize;
         }
+        sizes_on.pNext = chain, chain = &sizes_on;
     }
-    VkPhysicalDeviceFeatures2 enabled = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
-                                         .pNext = sizes       ? (void *)&sizes_on
-                                                  : dev->fp16 ? (void *)&f16_on
-                                                              : NULL};
+    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR statistics_on = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR,
+        .pipelineExecutableInfo = VK_TRUE};
+    if (dev->statistics_only) statistics_on.pNext = chain, chain = &statistics_on;
+    VkPhysicalDeviceFeatures2 enabled = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = chain};
     enabled.features.shaderStorageImageWriteWithoutFormat = supported.features.shaderStorageImageWriteWithoutFormat;
     enabled.features.shaderStorageImageExtendedFormats = supported.features.shaderStorageImageExtendedFormats;
     const float priority = 1.0f;
@@ -193,10 +229,11 @@ static bool create_device(vkdev *dev, bool subgroup_size_control, char *err, siz
                                            .queueFamilyIndex = dev->queue_family,
                                            .queueCount = 1,
                                            .pQueuePriorities = &priority};
-    const char *extensions[3] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    const char *extensions[4] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
     uint32_t extension_count = 1;
     if (dev->fp16) extensions[extension_count++] = "VK_KHR_shader_float16_int8";
     if (sizes) extensions[extension_count++] = VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME;
+    if (dev->statistics_only) extensions[extension_count++] = VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME;
     const VkDeviceCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
         .pNext = &enabled,
@@ -210,36 +247,16 @@ static bool create_device(vkdev *dev, bool subgroup_size_control, char *err, siz
         cacao_set_err(err, n, "vkCreateDevice failed on '%s' (VkResult %d)", dev->device_name, (int)vr);
         return false;
     }
-    vkGetDeviceQueue(dev->device, dev->queue_family, 0, &dev->queue);
-    const VkCommandPoolCreateInfo pool = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
-                                          .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
-                                          .queueFamilyIndex = dev->queue_family};
-    const VkFenceCreateInfo fence = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    const VkQueryPoolCreateInfo query = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
-                                         .queryType = VK_QUERY_TYPE_TIMESTAMP,
-                                         .queryCount = MAX_TIMESTAMPS};
-    if (vkCreateCommandPool(dev->device, &pool, NULL, &dev->pool) != VK_SUCCESS ||
-        vkCreateFence(dev->device, &fence, NULL, &dev->fence) != VK_SUCCESS ||
-        vkCreateQueryPool(dev->device, &query, NULL, &dev->timestamps) != VK_SUCCESS) {
-        cacao_set_err(err, n, "cannot create command pool, fence or query pool");
-        return false;
-    }
-    const VkCommandBufferAllocateInfo alloc = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
-                                               .commandPool = dev->pool,
-                                               .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
-                                               .commandBufferCount = 1};
-    if (vkAllocateCommandBuffers(dev->device, &alloc, &dev->cmd) != VK_SUCCESS) {
-        cacao_set_err(err, n, "cannot allocate a command buffer");
-        return false;
-    }
-    return true;
+    return dev->statistics_only || create_frame_objects(dev, err, n);
 }
 
 bool vkdev_create(const vkdev_options *options, vkdev *dev, char *err, size_t n) {
     memset(dev, 0, sizeof *dev);
     dev->validation = options->validation;
-    if (!create_instance(dev, options->validation, err, n) || !pick_device(dev, options->device, err, n) ||
-        !create_device(dev, options->subgroup_size_control, err, n)) {
+    dev->statistics_only = options->pipeline_statistics;
+    const char *required = options->pipeline_statistics ? VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME : NULL;
+    if (!create_instance(dev, options->validation, err, n) || !pick_device(dev, options->device, required, err, n) ||
+        !create_device(dev, options, err, n)) {
         vkdev_destroy(dev);
         return false;
     }
@@ -248,7 +265,7 @@ bool vkdev_create(const vkdev_options *options, vkdev *dev, char *err, size_t n)
 
 void vkdev_destroy(vkdev *dev) {
     if (dev->device) {
-        vkDeviceWaitIdle(dev->device);
+        if (!dev->statistics_only) vkDeviceWaitIdle(dev->device); /* a compiler's null device runs nothing */
         if (dev->timestamps) vkDestroyQueryPool(dev->device, dev->timestamps, NULL);
         if (dev->fence) vkDestroyFence(dev->device, dev->fence, NULL);
         if (dev->pool) vkDestroyCommandPool(dev->device, dev->pool, NULL);
@@ -263,6 +280,20 @@ void vkdev_destroy(vkdev *dev) {
     uint32_t messages = dev->validation_messages;
     memset(dev, 0, sizeof *dev);
     dev->validation_messages = messages;
+}
+
+void vkdev_driver(const vkdev *dev, char *out, size_t n) {
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(dev->physical_device, &p);
+    snprintf(out, n, "driver version 0x%x, Vulkan %u.%u.%u", p.driverVersion, VK_API_VERSION_MAJOR(p.apiVersion),
+             VK_API_VERSION_MINOR(p.apiVersion), VK_API_VERSION_PATCH(p.apiVersion));
+    if (p.apiVersion < VK_API_VERSION_1_2) return;
+    VkPhysicalDeviceDriverProperties driver = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceProperties2 p2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &driver};
+    vkGetPhysicalDeviceProperties2(dev->physical_device, &p2);
+    snprintf(out, n, "%s %s (Vulkan %u.%u.%u)", driver.driverName, driver.driverInfo,
+             VK_API_VERSION_MAJOR(p.apiVersion), VK_API_VERSION_MINOR(p.apiVersion),
+             VK_API_VERSION_PATCH(p.apiVersion));
 }
 
 bool vkdev_list(FILE *out, char *err, size_t n) {

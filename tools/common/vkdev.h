@@ -30,6 +30,7 @@ typedef struct vkdev {
     uint32_t subgroup_size_min, subgroup_size_max; /* compute, VK_EXT_subgroup_size_control enabled; 0: not */
     uint32_t required_subgroup_size; /* passed to cacao_context_desc by vkdev_context_create; 0: default */
     cacao_shader_forms shader_forms; /* passed to cacao_context_desc likewise; 0: the device's choice */
+    bool statistics_only;            /* vkdev_options.pipeline_statistics: no pool, fence, queries or command buffer */
 } vkdev;
 
 typedef struct vkdev_options {
@@ -37,12 +38,20 @@ typedef struct vkdev_options {
     const char *device; /* NULL: lavapipe (CPU) if present, else the first device; or an index or a name substring */
     bool quiet;         /* do not print validation messages */
     bool subgroup_size_control; /* enable VK_EXT_subgroup_size_control where offered (tests) */
+    /* A device for reading a compiler's pipeline statistics: VK_KHR_pipeline_executable_properties
+     * and its pipelineExecutableInfo feature enabled, and nothing that records or submits work (a
+     * compiler's null device, such as RADV's with RADV_FORCE_FAMILY, can create pipelines and no
+     * more). device NULL picks the first device offering the extension instead of lavapipe. */
+    bool pipeline_statistics;
 } vkdev_options;
 
 /* Creates everything; on failure writes a message into err and returns false. The validation
  * layer reports into *dev, so dev must not move while it is alive. */
 bool vkdev_create(const vkdev_options *options, vkdev *dev, char *err, size_t err_size);
 void vkdev_destroy(vkdev *dev);
+
+/* The device's driver in words: its name and version, and the Vulkan version it offers. */
+void vkdev_driver(const vkdev *dev, char *out, size_t out_size);
 
 /* Lists the physical devices (index, name, type) to out. Returns false if Vulkan is unusable. */
 bool vkdev_list(FILE *out, char *err, size_t err_size);

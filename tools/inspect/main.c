@@ -11,6 +11,8 @@
  *   cacao-inspect stats                                       counts, dedup, bytes per pass
  *   cacao-inspect facts                                       the counts and limits the docs state, as JSON
  *   cacao-inspect verify                                      re-validate modules, check plan keys are embedded
+ *   cacao-inspect gpu --config NAME | --all [--amd FILE]      a GPU compiler's statistics of the permutations
+ *                                                             and configurations' estimated frame cost (gpu.c)
  *
  * Everything comes from the embedded table (generated/), reflection of the modules (SPIRV-Cross)
  * and the runtime's own cacao_plan_build: no second copy of any of that logic. The command line
@@ -24,6 +26,7 @@
 #include "cacao.h"
 #include "cacao_policy.h"
 #include "cacao_shared.h"
+#include "gpu.h"
 #include "inputs.h"
 #include "inspect_args.h"
 #include "options.h"
@@ -456,6 +459,7 @@ static void usage(FILE *out) {
                  "       cacao-inspect stats\n"
                  "       cacao-inspect facts   (the counts and limits the docs state, as JSON)\n"
                  "       cacao-inspect verify\n");
+    inspect_gpu_usage(out);
 }
 
 int main(int argc, char **argv) {
@@ -463,6 +467,8 @@ int main(int argc, char **argv) {
         usage(stderr);
         return 2;
     }
+    /* gpu parses its own arguments (gpu.c) */
+    if (strcmp(argv[1], "gpu") == 0) return inspect_gpu(argc - 2, argv + 2);
     static inspect_args args; /* holds the cacao command's options: kept off the stack */
     char err[1024];
     if (!inspect_parse_args(argc, argv, &args, err, sizeof err)) return fail("%s", err);
