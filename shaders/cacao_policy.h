@@ -60,7 +60,7 @@ typedef struct cacao_key_config {
     bool normals_from_input;
     unsigned blur_passes;  /* 0..8 (horizon estimators: denoise passes) */
     unsigned estimator;    /* CACAO_KEY_ESTIMATOR_* */
-    bool gpu_forms;        /* the GPU forms of the blur, apply and upsample (cacao_shader_forms) */
+    bool gpu_forms;        /* the GPU forms of the blur and apply (cacao_shader_forms) */
 } cacao_key_config;
 
 /* The pass of the configuration's forms: BLUR, APPLY or their GPU rows (any other pass, the

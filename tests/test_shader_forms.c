@@ -1,4 +1,4 @@
-/* test_shader_forms - the GPU forms of the blur, apply and upsample (cacao_shader_forms) compute
+/* test_shader_forms - the GPU forms of the blur and apply (cacao_shader_forms) compute
  * what the CPU forms compute, on lavapipe with validation:
  *   - fp32: bit-identical output at every quality, native and downsampled, blur none, 1, 3 (the
  *     CPU form's last register blur), 4 (its first shared-memory one) and 8, on the embedded scene

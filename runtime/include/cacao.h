@@ -108,7 +108,7 @@ typedef enum cacao_visibility {
     CACAO_VISIBILITY_BINARY,      /* occluders within R count fully, beyond R not at all */
 } cacao_visibility;
 
-/* The shapes of the blur, apply and upsample shaders (the arithmetic, and so the output, is the
+/* The shapes of the blur and apply shaders (the arithmetic, and so the output, is the
  * same: bit for bit on lavapipe in fp32). A CPU rasterizer runs large blocks of texels per
  * invocation in registers fastest; a GPU spills such blocks to memory and wants shared memory, one
  * or a few texels per invocation and its hardware sampler. */
@@ -182,7 +182,8 @@ typedef struct cacao_settings {
                                        blurred, and generate computes the taps of background and
                                        faded pixels too (docs/tiles.md); the output is the same,
                                        only slower. For measurement and tests. */
-    cacao_shader_forms shader_forms; /* 0 = the context's choice (see cacao_shader_forms) */
+    cacao_shader_forms shader_forms; /* 0 = the context's choice (see cacao_shader_forms); resolving
+                                        keeps 0 */
 } cacao_settings;
 
 /* Fills every defaulted field of *in into *out and checks every field. An explicit zero keeps its

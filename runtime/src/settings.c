@@ -136,8 +136,10 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
                         (double)s.fade_out_to, (double)fade_from);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
-    if (s.shader_forms == CACAO_SHADER_FORMS_DEFAULT) s.shader_forms = (cacao_shader_forms)shader_forms_names.default_value;
-    if ((int)s.shader_forms < CACAO_SHADER_FORMS_CPU || (int)s.shader_forms > CACAO_SHADER_FORMS_GPU) {
+    /* shader_forms stays DEFAULT: a context replaces it by its device's forms; a plan alone takes
+     * CPU (cacaoi_key_config_of), and a settings file written from these settings does not pin
+     * one device's choice on another. */
+    if ((int)s.shader_forms < CACAO_SHADER_FORMS_DEFAULT || (int)s.shader_forms > CACAO_SHADER_FORMS_GPU) {
         cacaoi_set_error(error, error_size, "settings.shader_forms = %d is not a cacao_shader_forms", (int)in->shader_forms);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }

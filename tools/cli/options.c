@@ -153,7 +153,7 @@ static const flag_def flags[] = {
      .kind = SET_ENUM,
      .offset = offsetof(cacao_settings, shader_forms),
      .json = "shader_forms",
-     .help = "cpu or gpu: the shapes of the blur, apply and upsample shaders (the same output); the "
+     .help = "cpu or gpu: the shapes of the blur and apply shaders (the same output); the "
              "default picks by the device, cpu on lavapipe",
      .name_of = shader_forms_name},
     SECTION("Estimator (docs/estimators.md)"),
@@ -647,6 +647,7 @@ cJSON *cli_settings_to_json(const cacao_settings *resolved) {
             cJSON_AddNumberToObject(root, def->json, s.blur_pass_count == CACAO_BLUR_NONE ? 0 : s.blur_pass_count);
             break;
         case SET_ENUM: {
+            if (*int_field(&s, def->offset) == 0) break; /* left to the runtime (shader_forms): absent keeps it so */
             const char *name = def->name_of(*int_field(&s, def->offset));
             cJSON_AddStringToObject(root, def->json, name ? name : "?");
             break;
@@ -692,8 +693,8 @@ static void default_text(const flag_def *def, const cacao_settings *d, char *tex
     case SET_BLUR:
         snprintf(text, size, "%d", s.blur_pass_count);
         break;
-    case SET_ENUM:
-        snprintf(text, size, "%s", def->name_of(*int_field(&s, def->offset)));
+    case SET_ENUM: /* a field the runtime leaves DEFAULT (shader_forms): its help says who decides */
+        if (*int_field(&s, def->offset) != 0) snprintf(text, size, "%s", def->name_of(*int_field(&s, def->offset)));
         break;
     case SET_INT:
         snprintf(text, size, "%d", *int_field(&s, def->offset));
