@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "cacao_keys.h"
+#include "cacao_policy.h"
 #include "fuzz_input.h"
 #include "image_io.h"
 #include "inspect_args.h"
