@@ -103,8 +103,18 @@ static void test_choice(vkdev *dev) {
     cacao_settings cpu = plain;
     cpu.shader_forms = CACAO_SHADER_FORMS_CPU;
     if (run_forms(dev, CACAO_SHADER_FORMS_GPU, &cpu, &f, ao, &p)) CHECK(plan_has(&p, "blur.") && !plan_has(&p, "blur_gpu"));
-    /* a value outside the enum: refused, naming the field */
+    /* what a context reports it runs: the device's (a CPU here), or the desc's */
     cacao_context *ctx = NULL;
+    CHECK(vkdev_context_create(dev, &ctx) == CACAO_SUCCESS && cacao_context_shader_forms(ctx) == CACAO_SHADER_FORMS_CPU);
+    cacao_context_destroy(ctx);
+    ctx = NULL;
+    dev->shader_forms = CACAO_SHADER_FORMS_GPU;
+    CHECK(vkdev_context_create(dev, &ctx) == CACAO_SUCCESS && cacao_context_shader_forms(ctx) == CACAO_SHADER_FORMS_GPU);
+    dev->shader_forms = CACAO_SHADER_FORMS_DEFAULT;
+    cacao_context_destroy(ctx);
+    ctx = NULL;
+    CHECK(cacao_context_shader_forms(NULL) == CACAO_SHADER_FORMS_DEFAULT);
+    /* a value outside the enum: refused, naming the field */
     const cacao_context_desc bad = {.physical_device = dev->physical_device, .device = dev->device,
                                     .shader_forms = (cacao_shader_forms)7};
     CHECK(cacao_context_create(&bad, &ctx) == CACAO_ERROR_INVALID_ARGUMENT && ctx == NULL);

@@ -464,6 +464,10 @@ CACAO_API cacao_result cacao_context_intermediate(const cacao_context *context, 
 /* The precision that actually runs (FP32 when FP16 was asked but the device lacks it). */
 CACAO_API cacao_precision cacao_context_precision(const cacao_context *context);
 
+/* The shader forms the context runs for settings that leave shader_forms DEFAULT: the desc's, or
+ * the device's (CPU on a CPU device, GPU on others). DEFAULT for a NULL context. */
+CACAO_API cacao_shader_forms cacao_context_shader_forms(const cacao_context *context);
+
 /* Number of permutations embedded in this build. */
 CACAO_API uint32_t cacao_embedded_permutation_count(void);
 

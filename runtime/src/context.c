@@ -11,6 +11,9 @@ const char *cacao_context_last_error(const cacao_context *ctx) { return ctx ? ct
 
 const cacao_plan *cacao_context_plan(const cacao_context *ctx) { return ctx && ctx->ready ? &ctx->plan : NULL; }
 
+cacao_shader_forms cacao_context_shader_forms(const cacao_context *ctx) {
+    return ctx ? ctx->forms : CACAO_SHADER_FORMS_DEFAULT;
+}
 cacao_precision cacao_context_precision(const cacao_context *ctx) {
     return ctx && ctx->ready ? ctx->plan.settings.precision : CACAO_PRECISION_DEFAULT;
 }
