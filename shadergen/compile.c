@@ -24,12 +24,6 @@ const char *sg_spirv_tools_version(void) {
     return version;
 }
 
-char *sg_read_file(const char *path) {
-    char err[512];
-    char *text = cacao_read_whole_file(path, 64u << 20, err, sizeof err);
-    if (!text) fprintf(stderr, "shadergen: %s\n", err);
-    return text;
-}
 
 /* Appends text to a growing buffer. */
 typedef struct sg_buf {
@@ -85,8 +79,10 @@ static const sg_source *find_source(const sg_sources *sources, const char *name)
     return NULL;
 }
 
-/* Reads file `name` (relative to dir) and, recursively, every file it includes. */
-static bool load_file(const char *dir, const char *name, unsigned depth, sg_sources *out) {
+/* Reads file `name` (relative to dir) and, recursively, every file it includes; a file that cannot
+ * be read is reported with the includer and line that named it (from: NULL for the entry). */
+static bool load_file(const char *dir, const char *name, unsigned depth, const char *from, unsigned from_line,
+                      sg_sources *out) {
     if (find_source(out, name)) return true;
     if (depth > SG_MAX_INCLUDE_DEPTH || out->count >= SG_MAX_SOURCES) {
         fprintf(stderr, "shadergen: %s: includes nest deeper than %d or name more than %d files\n", name,
@@ -95,7 +91,10 @@ static bool load_file(const char *dir, const char *name, unsigned depth, sg_sour
     }
     char path[4096];
     snprintf(path, sizeof path, "%s%s", dir, name);
-    char *text = sg_read_file(path);
+    char err[512];
+    char *text = cacao_read_whole_file(path, 64u << 20, err, sizeof err);
+    if (!text && from) fprintf(stderr, "shadergen: %s:%u: cannot include \"%s\": %s\n", from, from_line, name, err);
+    if (!text && !from) fprintf(stderr, "shadergen: %s\n", err);
     char *copy = malloc(strlen(name) + 1);
     if (!text || !copy) {
         free(text);
@@ -104,13 +103,14 @@ static bool load_file(const char *dir, const char *name, unsigned depth, sg_sour
     }
     memcpy(copy, name, strlen(name) + 1);
     out->files[out->count++] = (sg_source){copy, text};
-    for (const char *p = text; *p;) {
+    unsigned line = 1;
+    for (const char *p = text; *p; ++line) {
         const char *end = strchr(p, '\n');
         const size_t len = end ? (size_t)(end - p) : strlen(p);
         char inc[256], rel[512];
         if (include_name(p, len, inc, sizeof inc)) {
             relative_to(name, inc, rel, sizeof rel);
-            if (!load_file(dir, rel, depth + 1, out)) return false;
+            if (!load_file(dir, rel, depth + 1, copy, line, out)) return false;
         }
         p += len + (end ? 1 : 0);
     }
@@ -122,7 +122,7 @@ bool sg_load_sources(const char *entry_path, sg_sources *out) {
     const char *slash = strrchr(entry_path, '/');
     char dir[4096];
     snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - entry_path) + 1 : 0, entry_path);
-    if (load_file(dir, slash ? slash + 1 : entry_path, 0, out)) return true;
+    if (load_file(dir, slash ? slash + 1 : entry_path, 0, NULL, 0, out)) return true;
     sg_free_sources(out);
     return false;
 }

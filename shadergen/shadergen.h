@@ -104,7 +104,5 @@ bool sg_emit(const char *dir, const sg_module *modules, size_t count, const char
 const char *sg_glslang_version(void);
 const char *sg_spirv_tools_version(void);
 
-/* Reads a whole file; NULL (with a message naming the file) on failure. */
-char *sg_read_file(const char *path);
 
 #endif /* SHADERGEN_H */

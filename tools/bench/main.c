@@ -29,16 +29,7 @@
 
 
 /* Prints one line "cacao-bench: ..." to stderr; returns false. */
-static bool fail(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
-static bool fail(const char *fmt, ...) {
-    va_list ap;
-    va_start(ap, fmt);
-    fputs("cacao-bench: ", stderr);
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
-    va_end(ap);
-    return false;
-}
+#define fail(...) cacao_error_line("cacao-bench: ", __VA_ARGS__)
 
 /* ---- Flags ---------------------------------------------------------------------------------- */
 

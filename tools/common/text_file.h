@@ -20,6 +20,17 @@ static inline __attribute__((format(printf, 3, 4))) bool cacao_set_err(char *err
     return false;
 }
 
+/* One error line "<prefix><message>" on stderr, the tools' way of failing; returns false. */
+static inline __attribute__((format(printf, 2, 3))) bool cacao_error_line(const char *prefix, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    fputs(prefix, stderr);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+    return false;
+}
+
 /* cacao_check_input says why path cannot be read as a file ("cannot open: <system reason>", "is a
  * directory", "is not a regular file" for a FIFO, socket or device, which are refused rather than
  * read so that no reader can block on them); it looks with stat() and opens nothing.

@@ -30,15 +30,7 @@
 static const cacao_table *const table = &cacaoi_embedded_table;
 
 /* One line "cacao-inspect: gpu: ..." on stderr; returns false. */
-static bool complain(const char *fmt, ...) {
-    va_list ap;
-    va_start(ap, fmt);
-    fputs("cacao-inspect: gpu: ", stderr);
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
-    va_end(ap);
-    return false;
-}
+#define complain(...) cacao_error_line("cacao-inspect: gpu: ", __VA_ARGS__)
 
 /* ---- Flags ---------------------------------------------------------------------------------- */
 
