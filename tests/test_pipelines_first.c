@@ -5,8 +5,8 @@
  *     cacao_record refuses (NOT_READY) until a resize;
  *   - a later resize with the same settings keeps every one of them (the same handles, the same
  *     count) and its frame is bit-identical to a context that never called it;
- *   - calling it again with the same settings keeps them; after a settings change it replaces
- *     them with the new plan's;
+ *   - calling it again with the same settings keeps them; after a settings change
+ *     cacao_context_pipeline says none until it replaces them with the new plan's;
  * for every quality (native and downsampled) and both horizon estimators. */
 #include <string.h>
 
@@ -50,6 +50,7 @@ static void check_settings(vkdev *dev, const cacao_settings *s, const vkdev_fram
     cacao_settings other = *s;
     other.blur_pass_count = s->blur_pass_count == 3 ? 5 : 3;
     CHECK(cacao_context_set_settings(ctx, &other) == CACAO_SUCCESS);
+    CHECK(cacao_context_pipeline(ctx, 0) == VK_NULL_HANDLE); /* the old ones are not the new settings' */
     CHECK(cacao_context_create_pipelines(ctx, NULL) == CACAO_SUCCESS);
     CHECK(cacao_context_plan(ctx) == NULL);
     cacao_plan other_plan;

@@ -350,7 +350,7 @@ CACAO_API cacao_result cacao_context_create_pipelines(cacao_context *context, ca
 /* The pipeline step `step` of the settings' plan dispatches (after cacao_context_create_pipelines
  * or a resize; steps in cacao_plan_build's order, which the size does not change), for tools that
  * inspect, name or profile pipelines; steps with one permutation share one pipeline.
- * VK_NULL_HANDLE before either call or for a step past the plan's. */
+ * VK_NULL_HANDLE before either call (and after a set_settings until one) or for a step past the plan's. */
 CACAO_API VkPipeline cacao_context_pipeline(const cacao_context *context, uint32_t step);
 
 /* The plan the context records (valid after a successful resize; NULL before). */

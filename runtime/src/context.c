@@ -237,6 +237,8 @@ cacao_result cacao_context_set_settings(cacao_context *ctx, const cacao_settings
     if (r != CACAO_SUCCESS) return r;
     ctx->settings = *settings;
     ctx->ready = false; /* takes effect at the next resize */
+    ctx->pipelines_only = false; /* the pipelines (kept for a resize that can use them) are no longer
+                                    the settings' own: cacao_context_pipeline says none */
     return CACAO_SUCCESS;
 }
 
@@ -420,11 +422,10 @@ cacao_result cacao_context_create_pipelines(cacao_context *ctx, cacao_memory_inf
     cacao_plan plan;
     cacao_result r = plan_settings(ctx, PIPELINE_PLAN_SIZE, PIPELINE_PLAN_SIZE, &plan);
     if (r != CACAO_SUCCESS) return r;
-    if (ctx->ready || ctx->pipelines_only) {
-        if (pipelines_fit(ctx, &plan)) { /* the settings' pipelines exist already */
-            if (out_info) *out_info = ctx->memory;
-            return CACAO_SUCCESS;
-        }
+    if (pipelines_fit(ctx, &plan)) { /* the settings' pipelines exist already */
+        ctx->pipelines_only = !ctx->ready;
+        if (out_info) *out_info = ctx->memory;
+        return CACAO_SUCCESS;
     }
     release_frame_resources(ctx); /* other settings: their pipelines, and the intermediates of a size */
     ctx->plan = plan;
