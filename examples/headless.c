@@ -3,7 +3,16 @@
  * An "engine" that owns its Vulkan device, uploads a depth buffer, and records cacao into its own
  * command buffer next to its own work (a clear of the AO image), submits once, and reads the AO
  * back. Works on any Vulkan 1.1 device with VK_KHR_push_descriptor (lavapipe included).
- * Prints the mean AO of the floor and of a crease; exits non-zero on any failure. */
+ * Prints the mean AO of the floor and of a crease; exits non-zero on any failure. With an argument,
+ * writes the AO there too (W x H little-endian floats, row by row).
+ *
+ * Built with -DCACAO_EXAMPLE_VOLK (and volk.c), it is an engine on volk: no loader linked, every
+ * vk* call through volk's pointers, and cacao handed the same entry points (cacao_context_desc
+ * .instance / .get_instance_proc_addr / .get_device_proc_addr). Without it, cacao finds the loader
+ * on its own. The consumer_volk test checks that both write the same bytes. */
+#ifdef CACAO_EXAMPLE_VOLK
+#include <volk.h> /* before cacao.h: it defines VK_NO_PROTOTYPES */
+#endif
 #include <cacao.h>
 #include <math.h>
 #include <stdio.h>
@@ -52,12 +61,18 @@ static void barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkIm
     vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, NULL, 0, NULL, 1, &b);
 }
 
-int main(void) {
+int main(int argc, char **argv) {
     /* 1. Instance and device: Vulkan 1.1 plus VK_KHR_push_descriptor; any device will do. */
+#ifdef CACAO_EXAMPLE_VOLK
+    CHECK_VK(volkInitialize());
+#endif
     VkApplicationInfo app = {.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO, .apiVersion = VK_API_VERSION_1_1};
     VkInstanceCreateInfo ici = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, .pApplicationInfo = &app};
     VkInstance instance;
     CHECK_VK(vkCreateInstance(&ici, NULL, &instance));
+#ifdef CACAO_EXAMPLE_VOLK
+    volkLoadInstance(instance);
+#endif
     uint32_t count = 1;
     vkEnumeratePhysicalDevices(instance, &count, &gpu);
     if (count == 0) return fprintf(stderr, "no Vulkan device\n"), 1;
@@ -70,6 +85,9 @@ int main(void) {
     VkDeviceCreateInfo dci = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, .queueCreateInfoCount = 1, .pQueueCreateInfos = &qi,
                               .enabledExtensionCount = 1, .ppEnabledExtensionNames = &ext, .pEnabledFeatures = &features};
     CHECK_VK(vkCreateDevice(gpu, &dci, NULL, &dev));
+#ifdef CACAO_EXAMPLE_VOLK
+    volkLoadDevice(dev);
+#endif
     VkQueue queue;
     vkGetDeviceQueue(dev, 0, 0, &queue);
 
@@ -107,15 +125,21 @@ int main(void) {
         }
 
     /* 3. cacao: a context on the engine's device, settings, and the intermediates for this size. */
+    cacao_context_desc desc = {.physical_device = gpu, .device = dev};
+#ifdef CACAO_EXAMPLE_VOLK
+    desc.instance = instance; /* cacao loads its entry points the way the engine does */
+    desc.get_instance_proc_addr = vkGetInstanceProcAddr;
+    desc.get_device_proc_addr = vkGetDeviceProcAddr;
+#endif
     cacao_context *ctx;
     cacao_memory_info mem;
-    if (cacao_context_create(&(cacao_context_desc){.physical_device = gpu, .device = dev}, &ctx) ||
+    if (cacao_context_create(&desc, &ctx) ||
         cacao_context_set_settings(ctx, &(cacao_settings){.quality = CACAO_QUALITY_HIGH, .radius = 0.5f,
                                                           .generate_normals = true}) ||
         cacao_context_resize(ctx, W, H, &mem))
         return fprintf(stderr, "cacao: %s\n", cacao_context_last_error(ctx)), 1;
-    printf("cacao holds %llu bytes in %u images and %u pipelines\n", (unsigned long long)mem.total_bytes,
-           mem.image_count, mem.pipeline_count);
+    printf("cacao holds %llu bytes (%u device allocation) in %u images and %u pipelines\n",
+           (unsigned long long)mem.total_bytes, mem.allocation_count, mem.image_count, mem.pipeline_count);
 
     /* 4. One command buffer: upload, the engine's own clear, cacao, readback. */
     VkCommandPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, .queueFamilyIndex = 0};
@@ -170,6 +194,11 @@ int main(void) {
         if (dy < -0.25) { crease_ao = host[(y + 1) * W + W / 2]; break; }
     }
     printf("AO: open floor %.3f, floor-wall crease %.3f\n", floor_ao, crease_ao);
+    if (argc > 1) {
+        FILE *out = fopen(argv[1], "wb");
+        if (!out || fwrite(host, sizeof *host, W * H, out) != W * H || fclose(out) != 0)
+            return fprintf(stderr, "%s: cannot write the AO\n", argv[1]), 1;
+    }
 
     /* 6. Teardown: cacao frees what it created; the engine frees what it created. */
     cacao_context_destroy(ctx);

@@ -4,6 +4,7 @@ set -euo pipefail
 packages=(cmake ninja-build gcc pkg-config
           glslang-dev glslang-tools spirv-tools libspirv-cross-c-shared-dev
           libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
+          libvulkan-volk-dev # the consumer_volk test: an engine on volk, no loader linked
           libpng-dev libcjson-dev libopenexr-dev
           gnuplot-nox   # cacao-bench's plots
           python3-numpy # tools/accuracy-report.py, tools/estimators-report.py

@@ -7,6 +7,17 @@
  * cacao_context_destroy. cacao_record() records barriers and dispatches into the caller's command
  * buffer; it never submits, waits or allocates.
  *
+ * Vulkan entry points: cacao calls no vk* symbol of the loader. By default it opens the system
+ * loader (libvulkan.so.1) itself and takes its entry points from there, so a caller that links
+ * the loader needs nothing more. Engines built on volk, with VK_NO_PROTOTYPES or with their own
+ * dispatch give cacao_context_desc.get_instance_proc_addr (with .instance), and optionally
+ * .get_device_proc_addr; cacao then loads every function through them (docs/integration.md).
+ * Include volk.h (or define VK_NO_PROTOTYPES) before this header in such a build.
+ *
+ * Host memory: every allocation cacao makes (the context itself included) and every Vulkan
+ * object it creates go through cacao_context_desc.allocation_callbacks when given. Device memory:
+ * all intermediates of a context share one VkDeviceMemory per memory type (cacao_memory_info).
+ *
  * Typical use:
  *     cacao_context *ctx;
  *     cacao_context_create(&(cacao_context_desc){.physical_device = pd, .device = dev}, &ctx);
@@ -296,7 +307,20 @@ typedef struct cacao_context cacao_context;
 typedef struct cacao_context_desc {
     VkPhysicalDevice physical_device;               /* required */
     VkDevice device;                                /* required; VK_KHR_push_descriptor enabled */
-    const VkAllocationCallbacks *allocation_callbacks; /* optional */
+    const VkAllocationCallbacks *allocation_callbacks; /* optional: cacao's own host allocations
+                                                       (the context, scratch lists) and every Vulkan
+                                                       object it creates go through it */
+    /* Optional: where cacao gets its Vulkan entry points. With get_instance_proc_addr (and the
+     * instance, required with it), instance-level functions come from
+     * get_instance_proc_addr(instance, ...) and device-level ones from get_device_proc_addr(device,
+     * ...) (default: the one get_instance_proc_addr gives), so layers and the caller's own dispatch
+     * (volk, VK_NO_PROTOTYPES) are honoured. Without it, cacao opens the system loader
+     * libvulkan.so.1 (dlopen) and uses the instance when given, else the loader's exported
+     * functions; a loader that cannot be opened is CACAO_ERROR_UNSUPPORTED_DEVICE. A function that
+     * cannot be loaded is CACAO_ERROR_UNSUPPORTED_DEVICE naming it. */
+    VkInstance instance;
+    PFN_vkGetInstanceProcAddr get_instance_proc_addr;
+    PFN_vkGetDeviceProcAddr get_device_proc_addr;
     VkPipelineCache pipeline_cache;                 /* optional */
     bool shader_float16_enabled;                    /* the device was created with shaderFloat16 on */
     bool separate_depth_stencil_layouts_enabled;    /* ... with separateDepthStencilLayouts on (Vulkan
@@ -328,6 +352,9 @@ CACAO_API cacao_result cacao_context_set_settings(cacao_context *context, const 
 /* Memory the context holds for its intermediates. */
 typedef struct cacao_memory_info {
     uint64_t total_bytes;       /* device memory allocated for intermediates and buffers */
+    uint32_t allocation_count;  /* VkDeviceMemory objects holding them: 1 where one device-local
+                                   memory type suits them all, else 2 (images, buffers), else one
+                                   per memory type used */
     uint32_t image_count;       /* intermediate images */
     uint32_t pipeline_count;    /* compute pipelines (one per distinct permutation of the plan) */
 } cacao_memory_info;

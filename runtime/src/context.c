@@ -1,5 +1,7 @@
 /* context.c - context lifetime, intermediates and pipelines, all driven by the plan. */
 #include <assert.h>
+#include <dlfcn.h>
+#include <stdalign.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -26,11 +28,23 @@ cacao_result cacaoi_fail(cacao_context *ctx, cacao_result result, const char *fm
     return result;
 }
 
-static cacao_result vk_fail(cacao_context *ctx, VkResult vr, const char *what) {
-    cacao_result r = (vr == VK_ERROR_OUT_OF_HOST_MEMORY || vr == VK_ERROR_OUT_OF_DEVICE_MEMORY)
-                         ? CACAO_ERROR_OUT_OF_MEMORY
-                         : CACAO_ERROR_VULKAN;
-    return cacaoi_fail(ctx, r, "%s failed (VkResult %d)", what, (int)vr);
+/* A failed Vulkan call: CACAO_ERROR_OUT_OF_MEMORY for either out-of-memory result, else
+ * CACAO_ERROR_VULKAN; the message names the call (printf-style `what`) and the result. */
+static cacao_result vk_fail(cacao_context *ctx, VkResult vr, const char *what, ...)
+    __attribute__((format(printf, 3, 4)));
+static cacao_result vk_fail(cacao_context *ctx, VkResult vr, const char *what, ...) {
+    char call[160];
+    va_list ap;
+    va_start(ap, what);
+    cacaoi_set_error_v(call, sizeof call, what, ap);
+    va_end(ap);
+    const char *meaning = vr == VK_ERROR_OUT_OF_HOST_MEMORY     ? "out of host memory"
+                          : vr == VK_ERROR_OUT_OF_DEVICE_MEMORY ? "out of device memory"
+                                                                : "error";
+    const cacao_result r = vr == VK_ERROR_OUT_OF_HOST_MEMORY || vr == VK_ERROR_OUT_OF_DEVICE_MEMORY
+                               ? CACAO_ERROR_OUT_OF_MEMORY
+                               : CACAO_ERROR_VULKAN;
+    return cacaoi_fail(ctx, r, "%s failed: %s (VkResult %d)", call, meaning, (int)vr);
 }
 
 /* Descriptor type of each binding of the one set layout (its slot row). */
@@ -42,6 +56,75 @@ VkDescriptorType cacaoi_binding_type(unsigned binding) {
     default: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     }
 }
+
+/* ---- Host memory: the caller's callbacks when given, else the C library --------------------- */
+
+static void *host_alloc(const VkAllocationCallbacks *alloc, size_t bytes, VkSystemAllocationScope scope) {
+    void *p = alloc ? alloc->pfnAllocation(alloc->pUserData, bytes, alignof(max_align_t), scope) : malloc(bytes);
+    if (p) memset(p, 0, bytes);
+    return p;
+}
+
+static void host_free(const VkAllocationCallbacks *alloc, void *p) {
+    if (!p) return;
+    if (alloc)
+        alloc->pfnFree(alloc->pUserData, p);
+    else
+        free(p);
+}
+
+/* ---- Entry points ----------------------------------------------------------------------------- */
+
+/* An instance-level function: through the caller's get_instance_proc_addr and instance, or the
+ * system loader's (its exported function where no instance was given). */
+static PFN_vkVoidFunction instance_function(const cacao_context *ctx, PFN_vkGetInstanceProcAddr get_instance_proc_addr,
+                                            VkInstance instance, const char *name) {
+    if (instance) return get_instance_proc_addr(instance, name);
+    PFN_vkVoidFunction f = NULL;
+    void *symbol = dlsym(ctx->loader, name);
+    memcpy(&f, &symbol, sizeof f); /* POSIX: a data pointer from dlsym holds a function's address */
+    return f;
+}
+
+static cacao_result load_functions(cacao_context *ctx, const cacao_context_desc *desc) {
+    PFN_vkGetInstanceProcAddr get_instance_proc_addr = desc->get_instance_proc_addr;
+    if (get_instance_proc_addr && !desc->instance)
+        return cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT,
+                           "context_desc.get_instance_proc_addr needs context_desc.instance");
+    if (!get_instance_proc_addr) {
+        ctx->loader = dlopen("libvulkan.so.1", RTLD_NOW | RTLD_LOCAL);
+        void *symbol = ctx->loader ? dlsym(ctx->loader, "vkGetInstanceProcAddr") : NULL;
+        if (!symbol)
+            return cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
+                               "context_desc.get_instance_proc_addr is not given and the Vulkan loader "
+                               "libvulkan.so.1 cannot be used (%s)",
+                               dlerror());
+        memcpy(&get_instance_proc_addr, &symbol, sizeof get_instance_proc_addr);
+    }
+    const char *missing = NULL;
+#define CACAOI_LOAD_INSTANCE(name)                                                                  \
+    ctx->vk.name = (PFN_vk##name)instance_function(ctx, get_instance_proc_addr, desc->instance, "vk" #name); \
+    if (!ctx->vk.name && !missing) missing = "vk" #name;
+    CACAOI_VK_INSTANCE_FUNCTIONS(CACAOI_LOAD_INSTANCE)
+#undef CACAOI_LOAD_INSTANCE
+    if (missing)
+        return cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE, "context_desc: the instance gives no %s", missing);
+    PFN_vkGetDeviceProcAddr get_device_proc_addr =
+        desc->get_device_proc_addr ? desc->get_device_proc_addr : ctx->vk.GetDeviceProcAddr;
+#define CACAOI_LOAD_DEVICE(name)                                                                    \
+    ctx->vk.name = (PFN_vk##name)get_device_proc_addr(ctx->device, "vk" #name);                     \
+    if (!ctx->vk.name && !missing) missing = "vk" #name;
+    CACAOI_VK_DEVICE_FUNCTIONS(CACAOI_LOAD_DEVICE)
+#undef CACAOI_LOAD_DEVICE
+    if (!ctx->vk.CmdPushDescriptorSetKHR)
+        return cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
+                           "context_desc.device: VK_KHR_push_descriptor is not enabled on this device");
+    if (missing)
+        return cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE, "context_desc.device gives no %s", missing);
+    return CACAO_SUCCESS;
+}
+
+/* ---- Layouts ------------------------------------------------------------------------------------ */
 
 static cacao_result create_layouts(cacao_context *ctx) {
     const VkSamplerCreateInfo nearest_info = {
@@ -56,8 +139,8 @@ static cacao_result create_layouts(cacao_context *ctx) {
     };
     VkSamplerCreateInfo linear_info = nearest_info;
     linear_info.magFilter = linear_info.minFilter = VK_FILTER_LINEAR;
-    VkResult vr = vkCreateSampler(ctx->device, &nearest_info, ctx->alloc, &ctx->nearest_sampler);
-    if (vr == VK_SUCCESS) vr = vkCreateSampler(ctx->device, &linear_info, ctx->alloc, &ctx->linear_sampler);
+    VkResult vr = ctx->vk.CreateSampler(ctx->device, &nearest_info, ctx->alloc, &ctx->nearest_sampler);
+    if (vr == VK_SUCCESS) vr = ctx->vk.CreateSampler(ctx->device, &linear_info, ctx->alloc, &ctx->linear_sampler);
     if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateSampler");
 
     VkDescriptorSetLayoutBinding bindings[CACAO_BINDING_COUNT];
@@ -79,25 +162,28 @@ static cacao_result create_layouts(cacao_context *ctx) {
         .bindingCount = CACAO_BINDING_COUNT,
         .pBindings = bindings,
     };
-    vr = vkCreateDescriptorSetLayout(ctx->device, &set_info, ctx->alloc, &ctx->set_layout);
+    vr = ctx->vk.CreateDescriptorSetLayout(ctx->device, &set_info, ctx->alloc, &ctx->set_layout);
     if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateDescriptorSetLayout");
     const VkPipelineLayoutCreateInfo layout_info = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
         .setLayoutCount = 1,
         .pSetLayouts = &ctx->set_layout,
     };
-    vr = vkCreatePipelineLayout(ctx->device, &layout_info, ctx->alloc, &ctx->pipeline_layout);
+    vr = ctx->vk.CreatePipelineLayout(ctx->device, &layout_info, ctx->alloc, &ctx->pipeline_layout);
     return vr == VK_SUCCESS ? CACAO_SUCCESS : vk_fail(ctx, vr, "vkCreatePipelineLayout");
 }
 
-static bool has_extension(VkPhysicalDevice physical_device, const char *name) {
+/* Whether the physical device offers an extension; *out_of_memory tells a failed list apart. */
+static bool has_extension(const cacao_context *ctx, const char *name, bool *out_of_memory) {
     uint32_t n = 0;
-    if (vkEnumerateDeviceExtensionProperties(physical_device, NULL, &n, NULL) != VK_SUCCESS || n == 0) return false;
-    VkExtensionProperties *ext = malloc(n * sizeof *ext);
+    VkResult vr = ctx->vk.EnumerateDeviceExtensionProperties(ctx->physical_device, NULL, &n, NULL);
+    if (vr != VK_SUCCESS || n == 0) return false;
+    VkExtensionProperties *ext = host_alloc(ctx->alloc, n * sizeof *ext, VK_SYSTEM_ALLOCATION_SCOPE_COMMAND);
+    *out_of_memory = !ext;
     bool found = false;
-    if (ext && vkEnumerateDeviceExtensionProperties(physical_device, NULL, &n, ext) == VK_SUCCESS)
+    if (ext && ctx->vk.EnumerateDeviceExtensionProperties(ctx->physical_device, NULL, &n, ext) == VK_SUCCESS)
         for (uint32_t i = 0; i < n && !found; ++i) found = strcmp(ext[i].extensionName, name) == 0;
-    free(ext);
+    host_free(ctx->alloc, ext);
     return found;
 }
 
@@ -106,10 +192,13 @@ static cacao_result check_subgroup_size(cacao_context *ctx) {
     const uint32_t size = ctx->required_subgroup_size;
     VkPhysicalDeviceSubgroupSizeControlPropertiesEXT range = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_PROPERTIES_EXT};
-    if (has_extension(ctx->physical_device, VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME)) {
+    bool out_of_memory = false;
+    if (has_extension(ctx, VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME, &out_of_memory)) {
         VkPhysicalDeviceProperties2 props = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &range};
-        vkGetPhysicalDeviceProperties2(ctx->physical_device, &props);
+        ctx->vk.GetPhysicalDeviceProperties2(ctx->physical_device, &props);
     }
+    if (out_of_memory)
+        return cacaoi_fail(ctx, CACAO_ERROR_OUT_OF_MEMORY, "host memory for the device's extension list");
     if ((size & (size - 1)) != 0 || size < range.minSubgroupSize || size > range.maxSubgroupSize ||
         !(range.requiredSubgroupSizeStages & VK_SHADER_STAGE_COMPUTE_BIT))
         return cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
@@ -123,32 +212,38 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
     if (!out) return CACAO_ERROR_INVALID_ARGUMENT;
     *out = NULL;
     if (!desc || !desc->physical_device || !desc->device) return CACAO_ERROR_INVALID_ARGUMENT;
-    cacao_context *ctx = calloc(1, sizeof *ctx);
+    const VkAllocationCallbacks *alloc = desc->allocation_callbacks;
+    if (alloc && (!alloc->pfnAllocation || !alloc->pfnReallocation || !alloc->pfnFree))
+        return CACAO_ERROR_INVALID_ARGUMENT; /* Vulkan's rule for VkAllocationCallbacks */
+    cacao_context *ctx = host_alloc(alloc, sizeof *ctx, VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
     if (!ctx) return CACAO_ERROR_OUT_OF_MEMORY;
+    if (alloc) {
+        ctx->alloc_copy = *alloc;
+        ctx->alloc = &ctx->alloc_copy;
+    }
     ctx->physical_device = desc->physical_device;
     ctx->device = desc->device;
-    ctx->alloc = desc->allocation_callbacks;
     ctx->pipeline_cache = desc->pipeline_cache;
     ctx->required_subgroup_size = desc->required_subgroup_size;
     ctx->pipeline_create_flags = desc->pipeline_create_flags;
+    cacao_result r = load_functions(ctx, desc);
+    if (r != CACAO_SUCCESS) {
+        cacao_context_destroy(ctx);
+        return r;
+    }
     VkPhysicalDeviceProperties props;
-    vkGetPhysicalDeviceProperties(ctx->physical_device, &props);
+    ctx->vk.GetPhysicalDeviceProperties(ctx->physical_device, &props);
+    ctx->buffer_image_granularity = props.limits.bufferImageGranularity;
     ctx->forms = desc->shader_forms != CACAO_SHADER_FORMS_DEFAULT ? desc->shader_forms
                  : props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? CACAO_SHADER_FORMS_CPU
                                                                    : CACAO_SHADER_FORMS_GPU;
-
-    ctx->push_descriptor = (PFN_vkCmdPushDescriptorSetKHR)vkGetDeviceProcAddr(ctx->device, "vkCmdPushDescriptorSetKHR");
-    cacao_result r = CACAO_SUCCESS;
     if ((int)desc->shader_forms < CACAO_SHADER_FORMS_DEFAULT || (int)desc->shader_forms > CACAO_SHADER_FORMS_GPU)
         r = cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "context_desc.shader_forms = %d is not a cacao_shader_forms",
                         (int)desc->shader_forms);
-    if (r == CACAO_SUCCESS && !ctx->push_descriptor)
-        r = cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
-                        "context_desc.device: VK_KHR_push_descriptor is not enabled on this device");
     VkPhysicalDeviceShaderFloat16Int8Features f16 = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES};
     VkPhysicalDeviceFeatures2 features = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f16};
-    vkGetPhysicalDeviceFeatures2(ctx->physical_device, &features);
+    ctx->vk.GetPhysicalDeviceFeatures2(ctx->physical_device, &features);
     ctx->fp16_available = desc->shader_float16_enabled && f16.shaderFloat16;
     ctx->separate_depth_layouts = desc->separate_depth_stencil_layouts_enabled;
     if (r == CACAO_SUCCESS && !features.features.shaderStorageImageWriteWithoutFormat)
@@ -178,7 +273,7 @@ static void release_pipelines(cacao_context *ctx) {
     for (uint32_t i = 0; i < CACAO_PLAN_MAX_STEPS; ++i) {
         bool shared = false;
         for (uint32_t j = 0; j < i && !shared; ++j) shared = ctx->pipelines[j] == ctx->pipelines[i];
-        if (ctx->pipelines[i] && !shared) vkDestroyPipeline(ctx->device, ctx->pipelines[i], ctx->alloc);
+        if (ctx->pipelines[i] && !shared) ctx->vk.DestroyPipeline(ctx->device, ctx->pipelines[i], ctx->alloc);
     }
     memset(ctx->pipelines, 0, sizeof ctx->pipelines);
 }
@@ -188,20 +283,20 @@ static void release_images_and_buffers(cacao_context *ctx) {
     VkDevice d = ctx->device;
     for (unsigned r = 0; r < CACAO_RES_COUNT; ++r) {
         cacao_intermediate *im = &ctx->images[r];
-        if (im->view) vkDestroyImageView(d, im->view, ctx->alloc);
-        if (im->image) vkDestroyImage(d, im->image, ctx->alloc);
-        if (im->memory) vkFreeMemory(d, im->memory, ctx->alloc);
+        if (im->view) ctx->vk.DestroyImageView(d, im->view, ctx->alloc);
+        if (im->image) ctx->vk.DestroyImage(d, im->image, ctx->alloc);
         memset(im, 0, sizeof *im);
+        if (ctx->buffers[r]) ctx->vk.DestroyBuffer(d, ctx->buffers[r], ctx->alloc);
+        ctx->buffers[r] = VK_NULL_HANDLE;
     }
-    for (unsigned b = 0; b < CACAO_RES_COUNT; ++b) {
-        if (ctx->buffers[b]) vkDestroyBuffer(d, ctx->buffers[b], ctx->alloc);
-        if (ctx->buffer_memory[b]) vkFreeMemory(d, ctx->buffer_memory[b], ctx->alloc);
-        ctx->buffers[b] = VK_NULL_HANDLE;
-        ctx->buffer_memory[b] = VK_NULL_HANDLE;
+    for (unsigned t = 0; t < VK_MAX_MEMORY_TYPES; ++t) {
+        if (ctx->memory_blocks[t]) ctx->vk.FreeMemory(d, ctx->memory_blocks[t], ctx->alloc);
+        ctx->memory_blocks[t] = VK_NULL_HANDLE;
     }
     ctx->ready = false;
     ctx->memory.total_bytes = 0;
     ctx->memory.image_count = 0;
+    ctx->memory.allocation_count = 0;
 }
 
 /* Frees everything resize created (not the layouts). */
@@ -221,13 +316,15 @@ static bool pipelines_fit(const cacao_context *ctx, const cacao_plan *plan) {
 
 void cacao_context_destroy(cacao_context *ctx) {
     if (!ctx) return;
-    release_frame_resources(ctx);
+    release_frame_resources(ctx); /* each release calls Vulkan only for a handle it created */
     VkDevice d = ctx->device;
-    if (ctx->pipeline_layout) vkDestroyPipelineLayout(d, ctx->pipeline_layout, ctx->alloc);
-    if (ctx->set_layout) vkDestroyDescriptorSetLayout(d, ctx->set_layout, ctx->alloc);
-    if (ctx->nearest_sampler) vkDestroySampler(d, ctx->nearest_sampler, ctx->alloc);
-    if (ctx->linear_sampler) vkDestroySampler(d, ctx->linear_sampler, ctx->alloc);
-    free(ctx);
+    if (ctx->pipeline_layout) ctx->vk.DestroyPipelineLayout(d, ctx->pipeline_layout, ctx->alloc);
+    if (ctx->set_layout) ctx->vk.DestroyDescriptorSetLayout(d, ctx->set_layout, ctx->alloc);
+    if (ctx->nearest_sampler) ctx->vk.DestroySampler(d, ctx->nearest_sampler, ctx->alloc);
+    if (ctx->linear_sampler) ctx->vk.DestroySampler(d, ctx->linear_sampler, ctx->alloc);
+    if (ctx->loader) dlclose(ctx->loader);
+    const VkAllocationCallbacks alloc = ctx->alloc_copy;
+    host_free(ctx->alloc ? &alloc : NULL, ctx);
 }
 
 cacao_result cacao_context_set_settings(cacao_context *ctx, const cacao_settings *settings) {
@@ -242,25 +339,9 @@ cacao_result cacao_context_set_settings(cacao_context *ctx, const cacao_settings
     return CACAO_SUCCESS;
 }
 
-static cacao_result allocate_memory(cacao_context *ctx, VkMemoryRequirements req, VkMemoryPropertyFlags flags,
-                                    VkDeviceMemory *out) {
-    VkPhysicalDeviceMemoryProperties props;
-    vkGetPhysicalDeviceMemoryProperties(ctx->physical_device, &props);
-    for (uint32_t i = 0; i < props.memoryTypeCount; ++i) {
-        if (!(req.memoryTypeBits & (1u << i)) || (props.memoryTypes[i].propertyFlags & flags) != flags) continue;
-        const VkMemoryAllocateInfo info = {
-            .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size, .memoryTypeIndex = i};
-        VkResult vr = vkAllocateMemory(ctx->device, &info, ctx->alloc, out);
-        if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkAllocateMemory");
-        ctx->memory.total_bytes += req.size;
-        return CACAO_SUCCESS;
-    }
-    return cacaoi_fail(ctx, CACAO_ERROR_OUT_OF_MEMORY, "no device-local memory type fits an intermediate");
-}
-
 static cacao_result check_format(cacao_context *ctx, VkFormat format, bool linear, const char *what) {
     VkFormatProperties props;
-    vkGetPhysicalDeviceFormatProperties(ctx->physical_device, format, &props);
+    ctx->vk.GetPhysicalDeviceFormatProperties(ctx->physical_device, format, &props);
     VkFormatFeatureFlags need = VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
     if (linear) need |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
     if ((props.optimalTilingFeatures & need) != need)
@@ -269,6 +350,7 @@ static cacao_result check_format(cacao_context *ctx, VkFormat format, bool linea
     return CACAO_SUCCESS;
 }
 
+/* An intermediate image of the plan, without memory yet (place_in_memory binds it). */
 static cacao_result create_image(cacao_context *ctx, const cacao_plan_image *pi) {
     cacao_intermediate *im = &ctx->images[pi->resource];
     const cacaoi_resource_row *row = &cacaoi_resources[pi->resource];
@@ -288,31 +370,35 @@ static cacao_result create_image(cacao_context *ctx, const cacao_plan_image *pi)
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
         .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
     };
-    VkResult vr = vkCreateImage(ctx->device, &info, ctx->alloc, &im->image);
-    if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateImage");
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(ctx->device, im->image, &req);
-    r = allocate_memory(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, &im->memory);
-    if (r != CACAO_SUCCESS) return r;
-    vr = vkBindImageMemory(ctx->device, im->image, im->memory, 0);
-    if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkBindImageMemory");
-    /* CACAO's deinterleaved intermediates are arrays of slices; the rest are plain 2D images. */
-    const bool array = row->layered;
-    VkImageViewCreateInfo view = {
-        .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
-        .image = im->image,
-        .viewType = array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D,
-        .format = pi->format,
-        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, pi->layers},
-    };
-    vr = vkCreateImageView(ctx->device, &view, ctx->alloc, &im->view);
-    if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateImageView");
+    VkResult vr = ctx->vk.CreateImage(ctx->device, &info, ctx->alloc, &im->image);
+    if (vr != VK_SUCCESS) {
+        im->image = VK_NULL_HANDLE; /* not to be destroyed, whatever the driver left there */
+        return vk_fail(ctx, vr, "vkCreateImage (%s)", row->name);
+    }
     ctx->memory.image_count++;
     return CACAO_SUCCESS;
 }
 
+/* The view of an image once it has memory: all layers of its one level, for sampling and storage
+ * (CACAO's deinterleaved intermediates are arrays of slices; the rest are plain 2D images). */
+static cacao_result create_view(cacao_context *ctx, const cacao_plan_image *pi) {
+    cacao_intermediate *im = &ctx->images[pi->resource];
+    const cacaoi_resource_row *row = &cacaoi_resources[pi->resource];
+    const VkImageViewCreateInfo view = {
+        .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+        .image = im->image,
+        .viewType = row->layered ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D,
+        .format = pi->format,
+        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, pi->layers},
+    };
+    VkResult vr = ctx->vk.CreateImageView(ctx->device, &view, ctx->alloc, &im->view);
+    if (vr == VK_SUCCESS) return CACAO_SUCCESS;
+    im->view = VK_NULL_HANDLE;
+    return vk_fail(ctx, vr, "vkCreateImageView (%s)", row->name);
+}
+
 /* A buffer of the plan, with its resource row's usage (and transfers: the frame's updates and
- * resets, and copies for inspection). */
+ * resets, and copies for inspection), without memory yet. */
 static cacao_result create_buffer(cacao_context *ctx, const cacao_plan_buffer *pb) {
     const unsigned index = pb->resource;
     const VkBufferCreateInfo info = {
@@ -322,14 +408,117 @@ static cacao_result create_buffer(cacao_context *ctx, const cacao_plan_buffer *p
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
     };
-    VkResult vr = vkCreateBuffer(ctx->device, &info, ctx->alloc, &ctx->buffers[index]);
-    if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateBuffer");
-    VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(ctx->device, ctx->buffers[index], &req);
-    cacao_result r = allocate_memory(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, &ctx->buffer_memory[index]);
-    if (r != CACAO_SUCCESS) return r;
-    vr = vkBindBufferMemory(ctx->device, ctx->buffers[index], ctx->buffer_memory[index], 0);
-    return vr == VK_SUCCESS ? CACAO_SUCCESS : vk_fail(ctx, vr, "vkBindBufferMemory");
+    VkResult vr = ctx->vk.CreateBuffer(ctx->device, &info, ctx->alloc, &ctx->buffers[index]);
+    if (vr == VK_SUCCESS) return CACAO_SUCCESS;
+    ctx->buffers[index] = VK_NULL_HANDLE;
+    return vk_fail(ctx, vr, "vkCreateBuffer (%s)", cacaoi_resources[index].name);
+}
+
+/* ---- Device memory: one allocation per memory type for all of a plan's resources ------------ */
+
+typedef struct placement {
+    cacao_resource resource;
+    bool buffer;
+    VkMemoryRequirements requirements;
+    uint32_t type;       /* memory type index */
+    VkDeviceSize offset; /* in that type's allocation */
+} placement;
+
+/* The first device-local memory type among type_bits, or UINT32_MAX. */
+static uint32_t device_local_type(const VkPhysicalDeviceMemoryProperties *props, uint32_t type_bits) {
+    for (uint32_t i = 0; i < props->memoryTypeCount; ++i)
+        if ((type_bits & (1u << i)) && (props->memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT))
+            return i;
+    return UINT32_MAX;
+}
+
+/* Pure: picks each resource's memory type (one for all where one suits all, else one for the
+ * images and one for the buffers, else each its own first) and its offset in that type's block:
+ * images first, then buffers, the first buffer after an image on a new bufferImageGranularity
+ * page. Returns false where a resource has no device-local type (its index in *failed). */
+static bool place_resources(const VkPhysicalDeviceMemoryProperties *props, VkDeviceSize granularity, placement *p,
+                            uint32_t count, VkDeviceSize block_bytes[VK_MAX_MEMORY_TYPES], uint32_t *failed) {
+    uint32_t all = ~0u, images = ~0u, buffers = ~0u;
+    for (uint32_t i = 0; i < count; ++i) {
+        all &= p[i].requirements.memoryTypeBits;
+        *(p[i].buffer ? &buffers : &images) &= p[i].requirements.memoryTypeBits;
+    }
+    const uint32_t shared = device_local_type(props, all);
+    const uint32_t image_type = device_local_type(props, images), buffer_type = device_local_type(props, buffers);
+    bool last_was_image[VK_MAX_MEMORY_TYPES] = {false};
+    memset(block_bytes, 0, VK_MAX_MEMORY_TYPES * sizeof block_bytes[0]);
+    for (uint32_t i = 0; i < count; ++i) { /* the caller lists images before buffers */
+        uint32_t type = shared;
+        if (type == UINT32_MAX && image_type != UINT32_MAX && buffer_type != UINT32_MAX)
+            type = p[i].buffer ? buffer_type : image_type;
+        if (type == UINT32_MAX) type = device_local_type(props, p[i].requirements.memoryTypeBits);
+        if (type == UINT32_MAX) {
+            *failed = i;
+            return false;
+        }
+        VkDeviceSize align = p[i].requirements.alignment ? p[i].requirements.alignment : 1;
+        if (p[i].buffer && last_was_image[type] && granularity > align) align = granularity;
+        p[i].type = type;
+        p[i].offset = (block_bytes[type] + align - 1) / align * align;
+        block_bytes[type] = p[i].offset + p[i].requirements.size;
+        last_was_image[type] = !p[i].buffer;
+    }
+    return true;
+}
+
+/* Allocates the blocks for the plan's images and buffers (created, without memory) and binds
+ * each at its place. */
+static cacao_result allocate_and_bind(cacao_context *ctx, const cacao_plan *plan) {
+    placement p[CACAO_RES_COUNT + CACAO_PLAN_MAX_BUFFERS];
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < plan->image_count; ++i, ++count) {
+        p[count] = (placement){.resource = plan->images[i].resource};
+        ctx->vk.GetImageMemoryRequirements(ctx->device, ctx->images[p[count].resource].image, &p[count].requirements);
+    }
+    for (uint32_t i = 0; i < plan->buffer_count; ++i, ++count) {
+        p[count] = (placement){.resource = plan->buffers[i].resource, .buffer = true};
+        ctx->vk.GetBufferMemoryRequirements(ctx->device, ctx->buffers[p[count].resource], &p[count].requirements);
+    }
+    VkPhysicalDeviceMemoryProperties props;
+    ctx->vk.GetPhysicalDeviceMemoryProperties(ctx->physical_device, &props);
+    VkDeviceSize block_bytes[VK_MAX_MEMORY_TYPES];
+    uint32_t failed = 0;
+    if (!place_resources(&props, ctx->buffer_image_granularity, p, count, block_bytes, &failed))
+        return cacaoi_fail(ctx, CACAO_ERROR_OUT_OF_MEMORY, "no device-local memory type can hold %s",
+                           cacaoi_resources[p[failed].resource].name);
+    for (uint32_t t = 0; t < VK_MAX_MEMORY_TYPES; ++t) {
+        if (!block_bytes[t]) continue;
+        const VkMemoryAllocateInfo info = {
+            .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = block_bytes[t], .memoryTypeIndex = t};
+        VkResult vr = ctx->vk.AllocateMemory(ctx->device, &info, ctx->alloc, &ctx->memory_blocks[t]);
+        if (vr != VK_SUCCESS) {
+            ctx->memory_blocks[t] = VK_NULL_HANDLE;
+            return vk_fail(ctx, vr, "vkAllocateMemory (%llu bytes, memory type %u, for the intermediates)",
+                           (unsigned long long)block_bytes[t], t);
+        }
+        ctx->memory.total_bytes += block_bytes[t];
+        ctx->memory.allocation_count++;
+    }
+    for (uint32_t i = 0; i < count; ++i) {
+        const VkDeviceMemory block = ctx->memory_blocks[p[i].type];
+        const cacao_resource res = p[i].resource;
+        VkResult vr = p[i].buffer ? ctx->vk.BindBufferMemory(ctx->device, ctx->buffers[res], block, p[i].offset)
+                                  : ctx->vk.BindImageMemory(ctx->device, ctx->images[res].image, block, p[i].offset);
+        if (vr != VK_SUCCESS)
+            return vk_fail(ctx, vr, p[i].buffer ? "vkBindBufferMemory (%s)" : "vkBindImageMemory (%s)",
+                           cacaoi_resources[p[i].resource].name);
+    }
+    return CACAO_SUCCESS;
+}
+
+/* Every intermediate and buffer of the plan, in memory, with its view. */
+static cacao_result create_intermediates(cacao_context *ctx, const cacao_plan *plan) {
+    cacao_result r = CACAO_SUCCESS;
+    for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan->image_count; ++i) r = create_image(ctx, &plan->images[i]);
+    for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan->buffer_count; ++i) r = create_buffer(ctx, &plan->buffers[i]);
+    if (r == CACAO_SUCCESS) r = allocate_and_bind(ctx, plan);
+    for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan->image_count; ++i) r = create_view(ctx, &plan->images[i]);
+    return r;
 }
 
 /* The module's reflected bindings must be exactly what the plan step provides. */
@@ -368,8 +557,8 @@ static cacao_result create_pipeline(cacao_context *ctx, uint32_t index) {
         .pCode = module->words,
     };
     VkShaderModule shader;
-    VkResult vr = vkCreateShaderModule(ctx->device, &module_info, ctx->alloc, &shader);
-    if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateShaderModule");
+    VkResult vr = ctx->vk.CreateShaderModule(ctx->device, &module_info, ctx->alloc, &shader);
+    if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateShaderModule (%s)", step->key_name);
     const VkPipelineShaderStageRequiredSubgroupSizeCreateInfoEXT subgroup = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_REQUIRED_SUBGROUP_SIZE_CREATE_INFO_EXT,
         .requiredSubgroupSize = ctx->required_subgroup_size};
@@ -383,9 +572,12 @@ static cacao_result create_pipeline(cacao_context *ctx, uint32_t index) {
                   .pName = cacaoi_embedded_table.entry_point},
         .layout = ctx->pipeline_layout,
     };
-    vr = vkCreateComputePipelines(ctx->device, ctx->pipeline_cache, 1, &info, ctx->alloc, &ctx->pipelines[index]);
-    vkDestroyShaderModule(ctx->device, shader, ctx->alloc);
-    if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateComputePipelines");
+    vr = ctx->vk.CreateComputePipelines(ctx->device, ctx->pipeline_cache, 1, &info, ctx->alloc, &ctx->pipelines[index]);
+    ctx->vk.DestroyShaderModule(ctx->device, shader, ctx->alloc);
+    if (vr != VK_SUCCESS) {
+        ctx->pipelines[index] = VK_NULL_HANDLE;
+        return vk_fail(ctx, vr, "vkCreateComputePipelines (%s)", step->key_name);
+    }
     ctx->memory.pipeline_count++;
     return CACAO_SUCCESS;
 }
@@ -454,8 +646,7 @@ cacao_result cacao_context_resize(cacao_context *ctx, uint32_t width, uint32_t h
     if (!keep_pipelines) release_pipelines(ctx);
     release_images_and_buffers(ctx);
     ctx->plan = plan;
-    for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan.image_count; ++i) r = create_image(ctx, &plan.images[i]);
-    for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan.buffer_count; ++i) r = create_buffer(ctx, &plan.buffers[i]);
+    r = create_intermediates(ctx, &plan);
     for (uint32_t i = 0; r == CACAO_SUCCESS && !keep_pipelines && i < plan.step_count; ++i) r = create_pipeline(ctx, i);
     if (r != CACAO_SUCCESS) {
         release_frame_resources(ctx);

@@ -116,7 +116,7 @@ static void record_frame_start(cacao_context *ctx, VkCommandBuffer cmd, const ca
     const VkMemoryBarrier memory = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
                                     .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
                                     .dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT};
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+    ctx->vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
                          VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &memory, 0, NULL,
                          n, barriers);
 }
@@ -124,9 +124,9 @@ static void record_frame_start(cacao_context *ctx, VkCommandBuffer cmd, const ca
 static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in) {
     cacao_constants constants;
     cacaoi_fill_constants(&ctx->plan, in, &constants);
-    vkCmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_CONSTANTS], 0, sizeof constants, &constants);
+    ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_CONSTANTS], 0, sizeof constants, &constants);
     if (ctx->plan.uses_load_counter)
-        vkCmdFillBuffer(cmd, ctx->buffers[CACAO_RES_LOAD_COUNTER], 0, sizeof(uint32_t), 0);
+        ctx->vk.CmdFillBuffer(cmd, ctx->buffers[CACAO_RES_LOAD_COUNTER], 0, sizeof(uint32_t), 0);
     if (ctx->plan.uses_tiles) { /* empty lists; the compact pass appends (docs/tiles.md) */
         uint32_t header[CACAO_TILE_HEADER] = {0};
         const cacao_plan *p = &ctx->plan;
@@ -135,16 +135,16 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
             header[CACAO_TILE_COMMAND(list)] = width ? width : 1;
             header[CACAO_TILE_COMMAND(list) + 2] = p->slice_count; /* every list covers all layers */
         }
-        vkCmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], 0, sizeof header, header);
+        ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], 0, sizeof header, header);
         const VkDeviceSize lists =
             sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_LIST_BASE(CACAO_LIST_GENERATE, (VkDeviceSize)p->tiles_x * p->tiles_y);
-        vkCmdFillBuffer(cmd, ctx->buffers[CACAO_RES_TILES], lists, VK_WHOLE_SIZE, CACAO_TILE_NO_ENTRY);
+        ctx->vk.CmdFillBuffer(cmd, ctx->buffers[CACAO_RES_TILES], lists, VK_WHOLE_SIZE, CACAO_TILE_NO_ENTRY);
     }
     const VkMemoryBarrier memory = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
         .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
         .dstAccessMask = VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &memory, 0,
+    ctx->vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &memory, 0,
                          NULL, 0, NULL);
 }
 
@@ -186,7 +186,7 @@ static void record_step(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inp
             .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT,
             .dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
                              (tiles ? VK_ACCESS_INDIRECT_COMMAND_READ_BIT : 0)};
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+        ctx->vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | (tiles ? VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT : 0),
                              0, 1, &memory, 0, NULL, 0, NULL);
     }
@@ -206,12 +206,12 @@ static void record_step(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inp
             .pBufferInfo = buffer ? &infos[i].buffer : NULL,
         };
     }
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->pipelines[index]);
-    ctx->push_descriptor(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->pipeline_layout, 0, step->binding_count, writes);
+    ctx->vk.CmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->pipelines[index]);
+    ctx->vk.CmdPushDescriptorSetKHR(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->pipeline_layout, 0, step->binding_count, writes);
     if (step->list)
-        vkCmdDispatchIndirect(cmd, ctx->buffers[CACAO_RES_TILES], sizeof(uint32_t) * CACAO_TILE_COMMAND(step->list));
+        ctx->vk.CmdDispatchIndirect(cmd, ctx->buffers[CACAO_RES_TILES], sizeof(uint32_t) * CACAO_TILE_COMMAND(step->list));
     else
-        vkCmdDispatch(cmd, step->dispatch[0], step->dispatch[1], step->dispatch[2]);
+        ctx->vk.CmdDispatch(cmd, step->dispatch[0], step->dispatch[1], step->dispatch[2]);
 }
 
 cacao_result cacao_record(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in) {
@@ -227,18 +227,18 @@ cacao_result cacao_record(cacao_context *ctx, VkCommandBuffer cmd, const cacao_i
     record_constants(ctx, cmd, in);
     const VkQueryPool timer = in->timestamp_query_pool;
     if (timer)
-        vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timer, in->timestamp_first_query);
+        ctx->vk.CmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timer, in->timestamp_first_query);
     for (uint32_t i = 0; i < ctx->plan.step_count; ++i) {
         record_step(ctx, cmd, in, i);
         if (timer)
-            vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timer, in->timestamp_first_query + i + 1);
+            ctx->vk.CmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timer, in->timestamp_first_query + i + 1);
     }
 
     /* Output back to the caller's layout; its later accesses are ordered after our writes. */
     const VkImageMemoryBarrier done =
         image_barrier(in->output.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL, in->output.layout,
                       VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, NULL, 0,
+    ctx->vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, NULL, 0,
                          NULL, 1, &done);
     ctx->last_error[0] = '\0';
     return CACAO_SUCCESS;
@@ -256,15 +256,15 @@ cacao_result cacao_record_tile_counts(cacao_context *ctx, VkCommandBuffer cmd, V
     const VkMemoryBarrier before = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
                                     .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
                                     .dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT};
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before, 0,
+    ctx->vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before, 0,
                          NULL, 0, NULL);
     const VkBufferCopy region = {0, offset, CACAO_TILE_COUNTS_BYTES};
-    vkCmdCopyBuffer(cmd, ctx->buffers[CACAO_RES_TILES], dst, 1, &region);
+    ctx->vk.CmdCopyBuffer(cmd, ctx->buffers[CACAO_RES_TILES], dst, 1, &region);
     /* The next frame's header reset (a transfer write) waits for this read. */
     const VkMemoryBarrier after = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
                                    .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
                                    .dstAccessMask = VK_ACCESS_HOST_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT};
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+    ctx->vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                          0, 1, &after, 0, NULL, 0, NULL);
     return CACAO_SUCCESS;
 }

@@ -7,22 +7,48 @@
 
 #include "internal.h"
 
+/* Every Vulkan entry point the runtime calls, loaded per context through the caller's
+ * vkGetInstanceProcAddr / vkGetDeviceProcAddr or the system loader (cacao_context_desc). The
+ * runtime is built with VK_NO_PROTOTYPES: it names no vk* symbol. */
+#define CACAOI_VK_INSTANCE_FUNCTIONS(X)                                                              \
+    X(GetDeviceProcAddr) X(GetPhysicalDeviceProperties) X(GetPhysicalDeviceProperties2)             \
+    X(GetPhysicalDeviceFeatures2) X(GetPhysicalDeviceMemoryProperties)                              \
+    X(GetPhysicalDeviceFormatProperties) X(EnumerateDeviceExtensionProperties)
+#define CACAOI_VK_DEVICE_FUNCTIONS(X)                                                                \
+    X(AllocateMemory) X(FreeMemory) X(BindBufferMemory) X(BindImageMemory) X(CreateBuffer)          \
+    X(DestroyBuffer) X(CreateImage) X(DestroyImage) X(CreateImageView) X(DestroyImageView)          \
+    X(GetBufferMemoryRequirements) X(GetImageMemoryRequirements) X(CreateSampler) X(DestroySampler) \
+    X(CreateDescriptorSetLayout) X(DestroyDescriptorSetLayout) X(CreatePipelineLayout)              \
+    X(DestroyPipelineLayout) X(CreateShaderModule) X(DestroyShaderModule)                           \
+    X(CreateComputePipelines) X(DestroyPipeline) X(CmdBindPipeline) X(CmdDispatch)                 \
+    X(CmdDispatchIndirect) X(CmdPipelineBarrier) X(CmdUpdateBuffer) X(CmdFillBuffer)                \
+    X(CmdCopyBuffer) X(CmdWriteTimestamp) X(CmdPushDescriptorSetKHR)
+
+#define CACAOI_VK_MEMBER(name) PFN_vk##name name;
+typedef struct cacaoi_vk {
+    CACAOI_VK_INSTANCE_FUNCTIONS(CACAOI_VK_MEMBER)
+    CACAOI_VK_DEVICE_FUNCTIONS(CACAOI_VK_MEMBER)
+} cacaoi_vk;
+#undef CACAOI_VK_MEMBER
+
 typedef struct cacao_intermediate {
     VkImage image;
-    VkDeviceMemory memory;
     VkImageView view; /* all layers of its one level, for sampling and storage */
 } cacao_intermediate;
 
 
 struct cacao_context {
+    cacaoi_vk vk;
+    void *loader; /* the system loader cacao opened (no get_instance_proc_addr given), or NULL */
     VkPhysicalDevice physical_device;
     VkDevice device;
-    const VkAllocationCallbacks *alloc;
+    const VkAllocationCallbacks *alloc; /* &alloc_copy, or NULL */
+    VkAllocationCallbacks alloc_copy;   /* the caller's callbacks, kept for the context's life */
+    VkDeviceSize buffer_image_granularity;
     VkPipelineCache pipeline_cache;
     uint32_t required_subgroup_size; /* 0: the driver's choice */
     VkPipelineCreateFlags pipeline_create_flags; /* the caller's, on every pipeline */
     cacao_shader_forms forms;        /* CPU or GPU: for settings that leave shader_forms DEFAULT */
-    PFN_vkCmdPushDescriptorSetKHR push_descriptor;
     bool fp16_available;
     bool separate_depth_layouts; /* DEPTH_READ_ONLY_OPTIMAL may be used (the caller enabled the feature) */
 
@@ -38,7 +64,8 @@ struct cacao_context {
     VkPipeline pipelines[CACAO_PLAN_MAX_STEPS]; /* one per plan step */
     cacao_intermediate images[CACAO_RES_COUNT];
     VkBuffer buffers[CACAO_RES_COUNT];             /* the plan's buffers, by resource */
-    VkDeviceMemory buffer_memory[CACAO_RES_COUNT];
+    VkDeviceMemory memory_blocks[VK_MAX_MEMORY_TYPES]; /* every intermediate and buffer lives in
+                                                          these: one allocation per memory type used */
     cacao_memory_info memory;
     char last_error[256];
 };
