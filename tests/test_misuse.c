@@ -66,6 +66,17 @@ static cacao_context *test_context_errors(vkdev *dev) {
     CHECK_RESULT(cacao_context_create(&desc, NULL), CACAO_ERROR_INVALID_ARGUMENT, (cacao_context *)NULL, NULL);
     CHECK_RESULT(cacao_context_create(&(cacao_context_desc){.device = dev->device}, &ctx), CACAO_ERROR_INVALID_ARGUMENT,
                  (cacao_context *)NULL, NULL);
+    /* With no context to ask, creation's message goes to desc.error, naming the field. */
+    char create_error[128] = "";
+    CHECK(cacao_context_create(&(cacao_context_desc){.device = dev->device, .error = create_error,
+                                                    .error_size = sizeof create_error},
+                               &ctx) == CACAO_ERROR_INVALID_ARGUMENT &&
+          ctx == NULL && strstr(create_error, "context_desc.physical_device") != NULL);
+    CHECK(cacao_context_create(&(cacao_context_desc){.physical_device = dev->physical_device, .device = dev->device,
+                                                    .get_instance_proc_addr = vkGetInstanceProcAddr,
+                                                    .error = create_error, .error_size = sizeof create_error},
+                               &ctx) == CACAO_ERROR_INVALID_ARGUMENT &&
+          ctx == NULL && strstr(create_error, "context_desc.instance") != NULL);
     CHECK_RESULT(cacao_context_create(&desc, &ctx), CACAO_SUCCESS, (cacao_context *)NULL, NULL);
     if (!ctx) return NULL;
 

@@ -21,6 +21,7 @@ int main(void) {
     cacao_context *bad = NULL;
     dev.required_subgroup_size = hi ? 3 * hi : 3;
     CHECK(vkdev_context_create(&dev, &bad) == CACAO_ERROR_UNSUPPORTED_DEVICE && bad == NULL);
+    CHECK(strstr(dev.context_error, "required_subgroup_size") != NULL); /* desc.error names the field */
     dev.required_subgroup_size = 0;
     if (lo == hi) {
         printf("skipped: %s offers compute subgroup sizes %u..%u only (VK_EXT_subgroup_size_control%s)\n",

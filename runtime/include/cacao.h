@@ -321,6 +321,10 @@ typedef struct cacao_context_desc {
     VkInstance instance;
     PFN_vkGetInstanceProcAddr get_instance_proc_addr;
     PFN_vkGetDeviceProcAddr get_device_proc_addr;
+    char *error;                                    /* optional: where cacao_context_create writes
+                                                       the message of a failure (naming the field or
+                                                       the call), as cacao_context_last_error would */
+    size_t error_size;
     VkPipelineCache pipeline_cache;                 /* optional */
     bool shader_float16_enabled;                    /* the device was created with shaderFloat16 on */
     bool separate_depth_stencil_layouts_enabled;    /* ... with separateDepthStencilLayouts on (Vulkan
@@ -338,7 +342,8 @@ typedef struct cacao_context_desc {
                                                        settings' own shader_forms, if set, wins) */
 } cacao_context_desc;
 
-/* Creates a context. Creates no pipelines and allocates no images yet. */
+/* Creates a context. Creates no pipelines and allocates no images yet. On failure *out_context is
+ * NULL, nothing is left allocated, and desc->error (if given) says why. */
 CACAO_API cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context **out_context);
 
 /* Destroys everything the context created. The caller makes sure the GPU is done with it. NULL is

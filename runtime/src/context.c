@@ -208,15 +208,34 @@ static cacao_result check_subgroup_size(cacao_context *ctx) {
     return CACAO_SUCCESS;
 }
 
+/* cacao_context_create's failure before a context exists: the message into desc->error. */
+static cacao_result create_fail(const cacao_context_desc *desc, cacao_result r, const char *message) {
+    if (desc) cacaoi_set_error(desc->error, desc->error_size, "%s", message);
+    return r;
+}
+
+/* The context as far as it got: its message into desc->error, then everything freed. */
+static cacao_result create_abandon(const cacao_context_desc *desc, cacao_context *ctx, cacao_result r) {
+    cacaoi_set_error(desc->error, desc->error_size, "%s", ctx->last_error);
+    cacao_context_destroy(ctx);
+    return r;
+}
+
 cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context **out) {
-    if (!out) return CACAO_ERROR_INVALID_ARGUMENT;
+    if (!out) return create_fail(desc, CACAO_ERROR_INVALID_ARGUMENT, "out_context is NULL");
     *out = NULL;
-    if (!desc || !desc->physical_device || !desc->device) return CACAO_ERROR_INVALID_ARGUMENT;
+    if (!desc) return CACAO_ERROR_INVALID_ARGUMENT;
+    if (!desc->physical_device || !desc->device)
+        return create_fail(desc, CACAO_ERROR_INVALID_ARGUMENT,
+                           desc->device ? "context_desc.physical_device is required" : "context_desc.device is required");
     const VkAllocationCallbacks *alloc = desc->allocation_callbacks;
     if (alloc && (!alloc->pfnAllocation || !alloc->pfnReallocation || !alloc->pfnFree))
-        return CACAO_ERROR_INVALID_ARGUMENT; /* Vulkan's rule for VkAllocationCallbacks */
+        return create_fail(desc, CACAO_ERROR_INVALID_ARGUMENT,
+                           "context_desc.allocation_callbacks: pfnAllocation, pfnReallocation and pfnFree are "
+                           "required");
     cacao_context *ctx = host_alloc(alloc, sizeof *ctx, VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
-    if (!ctx) return CACAO_ERROR_OUT_OF_MEMORY;
+    if (!ctx)
+        return create_fail(desc, CACAO_ERROR_OUT_OF_MEMORY, "host memory for the context (allocation_callbacks)");
     if (alloc) {
         ctx->alloc_copy = *alloc;
         ctx->alloc = &ctx->alloc_copy;
@@ -227,10 +246,7 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
     ctx->required_subgroup_size = desc->required_subgroup_size;
     ctx->pipeline_create_flags = desc->pipeline_create_flags;
     cacao_result r = load_functions(ctx, desc);
-    if (r != CACAO_SUCCESS) {
-        cacao_context_destroy(ctx);
-        return r;
-    }
+    if (r != CACAO_SUCCESS) return create_abandon(desc, ctx, r);
     VkPhysicalDeviceProperties props;
     ctx->vk.GetPhysicalDeviceProperties(ctx->physical_device, &props);
     ctx->buffer_image_granularity = props.limits.bufferImageGranularity;
@@ -251,10 +267,7 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
                         "context_desc.physical_device lacks shaderStorageImageWriteWithoutFormat");
     if (r == CACAO_SUCCESS && ctx->required_subgroup_size) r = check_subgroup_size(ctx);
     if (r == CACAO_SUCCESS) r = create_layouts(ctx);
-    if (r != CACAO_SUCCESS) {
-        cacao_context_destroy(ctx);
-        return r;
-    }
+    if (r != CACAO_SUCCESS) return create_abandon(desc, ctx, r);
     *out = ctx;
     return CACAO_SUCCESS;
 }

@@ -472,7 +472,9 @@ static double now_ms(void) {
 }
 
 cacao_result vkdev_context_create_on_cache(vkdev *dev, VkPipelineCache cache, cacao_context **ctx) {
-    const cacao_context_desc desc = {.physical_device = dev->physical_device,
+    const cacao_context_desc desc = {.error = dev->context_error,
+                                     .error_size = sizeof dev->context_error,
+                                     .physical_device = dev->physical_device,
                                      .device = dev->device,
                                      .shader_float16_enabled = dev->fp16,
                                      .required_subgroup_size = dev->required_subgroup_size,
@@ -496,7 +498,7 @@ static cacao_result context_resized(vkdev *dev, VkPipelineCache cache, const cac
     *ms = 0;
     cacao_result r = vkdev_context_create_on_cache(dev, cache, ctx);
     if (r != CACAO_SUCCESS) {
-        cacao_set_err(err, n, "cacao_context_create: %s", cacao_result_string(r));
+        cacao_set_err(err, n, "cacao_context_create: %s: %s", cacao_result_string(r), dev->context_error);
         return r;
     }
     r = cacao_context_set_settings(*ctx, settings);

@@ -30,6 +30,7 @@ typedef struct vkdev {
     uint32_t subgroup_size_min, subgroup_size_max; /* compute, VK_EXT_subgroup_size_control enabled; 0: not */
     uint32_t required_subgroup_size; /* passed to cacao_context_desc by vkdev_context_create; 0: default */
     cacao_shader_forms shader_forms; /* passed to cacao_context_desc likewise; 0: the device's choice */
+    char context_error[256];         /* the message of vkdev_context_create's last failure */
     bool statistics_only;            /* vkdev_options.pipeline_statistics: no pool, fence, queries or command buffer */
 } vkdev;
 

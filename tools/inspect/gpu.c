@@ -223,14 +223,17 @@ static bool open_device(gpu_session *s) {
         s->dev.device, "vkGetPipelineExecutableStatisticsKHR");
     if (!s->get_executables || !s->get_statistics)
         return complain("'%s' offers no vkGetPipelineExecutable*KHR entry points", s->dev.device_name);
+    char error[256] = "";
     const cacao_context_desc desc = {.physical_device = s->dev.physical_device,
                                      .device = s->dev.device,
+                                     .error = error,
+                                     .error_size = sizeof error,
                                      .shader_float16_enabled = s->dev.fp16,
                                      .pipeline_create_flags = VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR,
                                      .shader_forms = s->options->forms};
     const cacao_result r = cacao_context_create(&desc, &s->ctx);
     if (r != CACAO_SUCCESS)
-        return complain("cacao_context_create on '%s': %s", s->dev.device_name, cacao_result_string(r));
+        return complain("cacao_context_create on '%s': %s: %s", s->dev.device_name, cacao_result_string(r), error);
     s->forms = cacao_context_shader_forms(s->ctx); /* --shader-forms, or the device's: what plans must use */
     return true;
 }
