@@ -26,6 +26,9 @@ typedef struct vkdev {
     bool fp16;                    /* shaderFloat16 enabled */
     bool validation;              /* validation layer on */
     uint32_t validation_messages; /* warnings and errors reported by the layer */
+    bool expect_out_of_memory;    /* set by a test that makes allocations fail: the layer's report of
+                                     a call returning VK_ERROR_OUT_OF_*_MEMORY is counted here ... */
+    uint32_t out_of_memory_reports; /* ... and not as a validation message */
     char device_name[256];
     uint32_t subgroup_size_min, subgroup_size_max; /* compute, VK_EXT_subgroup_size_control enabled; 0: not */
     uint32_t required_subgroup_size; /* passed to cacao_context_desc by vkdev_context_create; 0: default */
