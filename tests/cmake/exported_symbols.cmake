@@ -3,7 +3,7 @@
 # shared one (dynamic symbols of libcacao.so). A name the header does not declare fails, named:
 # an internal cacaoi_ function would collide with an engine's own or be called behind the API's
 # back. A declared function missing from either fails too, as does a declaration without
-# CACAO_API (it would be hidden in the build). Names the sanitizers add (__asan_*, __odr_asan.*,
+# CACAO_API (it would be hidden in the build). Neither library may need a vk* symbol. Names the sanitizers add (__asan_*, __odr_asan.*,
 # __ubsan_*, ...) are not ours and are left out.
 # Run with -DNM=<nm> -DSTATIC_LIB=<libcacao.a> -DSHARED_LIB=<libcacao.so> -DHEADER=<cacao.h>.
 file(STRINGS ${HEADER} header_lines)
@@ -62,6 +62,14 @@ foreach(kind static shared)
   if(exported)
     list(REMOVE_ITEM missing ${exported})
   endif()
+  # Nor does it need the loader: built with VK_NO_PROTOTYPES, it refers to no vk* function (each
+  # context loads its entry points through vkGetInstanceProcAddr / vkGetDeviceProcAddr: cacao.h).
+  execute_process(COMMAND ${NM} ${flags} --undefined-only ${lib} OUTPUT_VARIABLE undefined_listing)
+  string(REGEX MATCHALL "[ \t]vk[A-Z][A-Za-z0-9_]*" loader_refs "${undefined_listing}")
+  if(loader_refs)
+    string(REPLACE ";" "," loader_refs "${loader_refs}")
+    string(APPEND failures "the ${kind} library refers to loader symbols:${loader_refs}\n")
+  endif()
   if(undeclared)
     list(JOIN undeclared ", " undeclared)
     string(APPEND failures "the ${kind} library exports names cacao.h does not declare: ${undeclared}\n")
@@ -74,4 +82,5 @@ endforeach()
 if(failures)
   message(FATAL_ERROR "${failures}")
 endif()
-message("libcacao, static and shared: exactly the ${declared_count} functions cacao.h declares")
+message("libcacao, static and shared: exactly the ${declared_count} functions cacao.h declares, and no vk* "
+        "symbol needed")
