@@ -12,6 +12,7 @@
  * failing, on a fresh context. Under the sanitizer build LeakSanitizer checks the rest (memory
  * cacao might take from malloc behind the callbacks' back). */
 #define _POSIX_C_SOURCE 200809L /* posix_memalign */
+#include <dlfcn.h>
 #include <malloc.h>
 #include <string.h>
 
@@ -70,6 +71,7 @@ typedef struct device_faults {
 } device_faults;
 
 static device_faults faults; /* the entry points have no user pointer: one instance, this test's */
+static PFN_vkGetInstanceProcAddr loader_get_instance_proc_addr;
 
 static VkResult VKAPI_PTR faulty_allocate(VkDevice device, const VkMemoryAllocateInfo *info,
                                           const VkAllocationCallbacks *alloc, VkDeviceMemory *memory) {
@@ -146,7 +148,7 @@ static cacao_result run_step(sequence *s, cacao_context **ctx, int step, uint32_
                                          .device = s->dev->device,
                                          .allocation_callbacks = &s->callbacks,
                                          .instance = s->dev->instance,
-                                         .get_instance_proc_addr = vkGetInstanceProcAddr,
+                                         .get_instance_proc_addr = loader_get_instance_proc_addr,
                                          .get_device_proc_addr = faulty_get_device_proc_addr,
                                          .error = message,
                                          .error_size = message_size};
@@ -232,11 +234,19 @@ int main(void) {
                                           .pfnAllocation = counted_allocation,
                                           .pfnReallocation = counted_reallocation,
                                           .pfnFree = counted_free};
-    faults.real_get_device_proc_addr = vkGetDeviceProcAddr;
-    faults.real_allocate = (PFN_vkAllocateMemory)vkGetDeviceProcAddr(dev.device, "vkAllocateMemory");
-    faults.real_free = (PFN_vkFreeMemory)vkGetDeviceProcAddr(dev.device, "vkFreeMemory");
+    /* The loader's own entry points, asked from the loader library itself: the sanitizer build
+     * preloads the validation layer, whose exported vkGet*ProcAddr would otherwise answer. */
+    void *loader = dlopen("libvulkan.so.1", RTLD_NOW | RTLD_LOCAL);
+    void *symbol = loader ? dlsym(loader, "vkGetInstanceProcAddr") : NULL;
+    if (!symbol) return fprintf(stderr, "cannot open the Vulkan loader: %s\n", dlerror()), 1;
+    memcpy(&loader_get_instance_proc_addr, &symbol, sizeof symbol);
+    PFN_vkGetDeviceProcAddr get_device_proc_addr =
+        (PFN_vkGetDeviceProcAddr)loader_get_instance_proc_addr(dev.instance, "vkGetDeviceProcAddr");
+    faults.real_get_device_proc_addr = get_device_proc_addr;
+    faults.real_allocate = (PFN_vkAllocateMemory)get_device_proc_addr(dev.device, "vkAllocateMemory");
+    faults.real_free = (PFN_vkFreeMemory)get_device_proc_addr(dev.device, "vkFreeMemory");
     faults.real_create_pipelines =
-        (PFN_vkCreateComputePipelines)vkGetDeviceProcAddr(dev.device, "vkCreateComputePipelines");
+        (PFN_vkCreateComputePipelines)get_device_proc_addr(dev.device, "vkCreateComputePipelines");
     scene_buffers scenes[CONFIGURATIONS];
     for (uint32_t c = 0; c < CONFIGURATIONS; ++c)
         scene_buffers_default(configurations[c].width, configurations[c].height, &scenes[c]);
@@ -293,5 +303,6 @@ int main(void) {
     }
     free(ao);
     vkdev_destroy(&dev);
+    dlclose(loader);
     return test_report("test_faults");
 }
