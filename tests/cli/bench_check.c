@@ -68,6 +68,10 @@ static void check_result(const cJSON *r, int warmup, int repeat) {
         check_stats("pass", num(p, "time_ms"), num(p, "min_ms"), num(p, "max_ms"));
     }
     check_stats("total", num(r, "total_ms"), num(r, "total_min_ms"), num(r, "total_max_ms"));
+    /* cacao_memory_info's promise: all intermediates in one VkDeviceMemory per memory type, at
+     * most 2 (lavapipe has one device-local type: 1). */
+    CHECK(num(r, "memory_allocations") >= 1 && num(r, "memory_allocations") <= 2, "%s: %g device allocations", config,
+          num(r, "memory_allocations"));
     CHECK(num(r, "memory_bytes") > 0 && num(r, "pipeline_count") >= 3 && num(r, "pipeline_creation_ms") >= 0,
           "%s: memory %g pipelines %g creation %g", config, num(r, "memory_bytes"), num(r, "pipeline_count"),
           num(r, "pipeline_creation_ms"));

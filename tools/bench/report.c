@@ -106,6 +106,7 @@ static cJSON *result_json(const bench_run *run, const bench_result *r) {
     cJSON_AddItemToObject(o, "settings", cli_settings_to_json(&r->resolved));
     cacao_timings_add_json(o, &r->plan, &r->timings);
     cJSON_AddNumberToObject(o, "memory_bytes", (double)r->timings.memory_bytes);
+    cJSON_AddNumberToObject(o, "memory_allocations", r->timings.memory_allocations);
     cJSON_AddNumberToObject(o, "pipeline_count", r->timings.pipeline_count);
     cJSON_AddNumberToObject(o, "pipeline_creation_ms", r->timings.setup_ms);
     cJSON_AddNumberToObject(o, "nonfinite", (double)r->nonfinite);

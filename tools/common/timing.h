@@ -24,6 +24,7 @@ typedef struct cacao_timings {
     cacao_time_stats step[CACAO_PLAN_MAX_STEPS];
     cacao_time_stats total;  /* per frame, the sum of its steps */
     uint64_t memory_bytes;   /* intermediates the context allocated */
+    uint32_t memory_allocations; /* the VkDeviceMemory objects holding them */
     uint32_t pipeline_count; /* pipelines the context created */
     double setup_ms;         /* wall time of cacao_context_resize (pipelines + intermediates) */
     bool has_tiles;          /* the CACAO estimator: the last frame's tile counts */

@@ -604,6 +604,7 @@ cacao_result vkdev_run_timed(vkdev *dev, const cacao_settings *settings, const v
     if (r == CACAO_SUCCESS && frame->plan_out) *frame->plan_out = *cacao_context_plan(ctx);
     if (r == CACAO_SUCCESS && timings) {
         timings->memory_bytes = memory.total_bytes;
+        timings->memory_allocations = memory.allocation_count;
         timings->pipeline_count = memory.pipeline_count;
         timings->setup_ms = setup_ms;
     }
