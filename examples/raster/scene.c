@@ -9,6 +9,7 @@
 typedef struct mesh {
     raster_vertex *vertices;
     uint32_t count;
+    raster_material material; /* of the vertices added next */
 } mesh;
 
 typedef struct vec3 {
@@ -25,7 +26,8 @@ static vec3 normalize(vec3 a) { return scale(a, 1.0 / sqrt(dot(a, a))); }
 
 static void vertex(mesh *m, vec3 p, vec3 n) {
     if (m->count >= RASTER_SCENE_MAX_VERTICES) return; /* cannot happen with the scene below */
-    m->vertices[m->count++] = (raster_vertex){{(float)p.x, (float)p.y, (float)p.z}, {(float)n.x, (float)n.y, (float)n.z}};
+    m->vertices[m->count++] = (raster_vertex){{(float)p.x, (float)p.y, (float)p.z}, {(float)n.x, (float)n.y, (float)n.z},
+                                               m->material};
 }
 
 /* Two triangles a-b-c, a-c-d with a normal at each corner (culling is off: winding is free). */
@@ -80,10 +82,12 @@ static void sphere(mesh *m, vec3 centre, double radius, int stacks, int slices) 
 }
 
 uint32_t raster_scene_build(raster_vertex *out) {
-    mesh m = {out, 0};
+    mesh m = {out, 0, RASTER_FLOOR};
     box(&m, v3(-8, -0.2, -8), v3(8, 0, 8));           /* floor slab; beyond it, sky */
+    m.material = RASTER_WALL;
     box(&m, v3(-5, 0, -4.2), v3(5, 3, -4));           /* back wall */
     box(&m, v3(-5.2, 0, -4.2), v3(-5, 3, 4));         /* left wall: a corner with the back wall */
+    m.material = RASTER_FURNITURE;
     box(&m, v3(-2, 0, -3.95), v3(-0.8, 0.9, -3.1));   /* a chest 5 cm from the back wall */
     box(&m, v3(-1.8, 0.9, -3.8), v3(-1.2, 1.3, -3.3)); /* a box on top of it */
     box(&m, v3(-5, 0, -4), v3(-4, 1.6, -2.8));        /* a cupboard in the corner */
@@ -92,6 +96,7 @@ uint32_t raster_scene_build(raster_vertex *out) {
     column(&m, 2.8, -2.4, 0.25, 3, 24);
     column(&m, -3.6, 1.2, 0.25, 3, 24);
     column(&m, 3.4, 1.4, 0.2, 2.2, 24);
+    m.material = RASTER_CLAY;
     sphere(&m, v3(-1.3, 0.6, -0.6), 0.6, 16, 24);     /* resting on the floor */
     return m.count;
 }

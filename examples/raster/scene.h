@@ -16,9 +16,14 @@
 /* Room, boxes, columns and a sphere: every triangle 3 vertices, normals facing out of the solid. */
 #define RASTER_SCENE_MAX_VERTICES 8192
 
+/* What a surface is made of: the composite's albedo. Four, as the normals attachment's 2-bit alpha
+ * carries it (cacao reads only rgb). */
+typedef enum raster_material { RASTER_FLOOR, RASTER_WALL, RASTER_FURNITURE, RASTER_CLAY } raster_material;
+
 typedef struct raster_vertex {
     float position[3]; /* world */
     float normal[3];   /* world, unit */
+    uint32_t material; /* raster_material */
 } raster_vertex;
 
 /* Writes the scene's triangles into out (RASTER_SCENE_MAX_VERTICES entries); returns the number
