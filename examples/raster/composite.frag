@@ -11,10 +11,10 @@ layout(push_constant) uniform Frame {
     vec2 size;       // framebuffer size in pixels
 } frame;
 
-const vec3 albedo[4] = vec3[4](vec3(0.66, 0.54, 0.40),  // floor
-                               vec3(0.80, 0.78, 0.74),  // walls
-                               vec3(0.56, 0.63, 0.72),  // furniture
-                               vec3(0.80, 0.46, 0.34)); // clay
+const vec3 albedo[4] = vec3[4](vec3(0.76, 0.64, 0.50),  // floor
+                               vec3(0.88, 0.86, 0.82),  // walls
+                               vec3(0.64, 0.71, 0.80),  // furniture
+                               vec3(0.86, 0.52, 0.40)); // clay
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -27,6 +27,6 @@ void main() {
     vec3 n = normalize(g.rgb * 2.0 - 1.0);
     float visibility = texelFetch(ao, pixel, 0).r;
     float sun = max(dot(n, frame.light_view.xyz), 0.0);
-    vec3 lit = albedo[int(round(g.a * 3.0))] * (0.55 * visibility + 0.65 * sun * mix(0.5, 1.0, visibility));
-    colour = vec4(pow(lit, vec3(1.0 / 2.2)), 1.0);
+    vec3 lit = albedo[int(round(g.a * 3.0))] * (0.8 * visibility + 0.45 * sun * mix(0.4, 1.0, visibility));
+    colour = vec4(lit, 1.0); // written as display values, no tone curve: the AO shows as computed
 }
