@@ -130,20 +130,27 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                            {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL),
                             R(SRC_NORMALS, NORMALS_INPUT, V(CACAO_HORIZON_NORMALS_INPUT)),
                             W(VIEW_DEPTH, VIEW_DEPTH, ALL), W(VIEW_NORMALS, VIEW_NORMALS, ALL)}},
+    /* The estimator and the denoise passes run over the needed tiles (docs/tiles.md: a group is a
+     * tile of 8x8 pixels); the fills give the rest their AO 1. */
     PASS(HORIZON_MAIN) = {"horizon_main", {"gtao", "bitmask", "gtao_direct", "bitmask_direct"}, 4, false, false, false,
-                        WG(HORIZON), CACAOI_GRID_OUTPUT, 5,
+                        WG(HORIZON), CACAOI_GRID_OUTPUT, 6,
                         {CONSTANTS, R(VIEW_DEPTH, VIEW_DEPTH, ALL), R(VIEW_NORMALS, VIEW_NORMALS, ALL),
                          W(HORIZON_AO_OUT, AO_RAW, V(CACAO_HORIZON_GTAO) | V(CACAO_HORIZON_BITMASK)),
-                         W(OUTPUT, OUTPUT, V(CACAO_HORIZON_GTAO_DIRECT) | V(CACAO_HORIZON_BITMASK_DIRECT))}},
+                         W(OUTPUT, OUTPUT, V(CACAO_HORIZON_GTAO_DIRECT) | V(CACAO_HORIZON_BITMASK_DIRECT)),
+                         R(TILES, TILES, ALL)},
+                        .lists = {GEN, GEN, GEN, GEN}},
     PASS(HORIZON_DENOISE) = {"horizon_denoise", {"intermediate", "final"}, 2, false, false, false, WG(HORIZON),
-                           CACAOI_GRID_OUTPUT, 6,
+                           CACAOI_GRID_OUTPUT, 7,
                            {CONSTANTS, R(HORIZON_AO, AO_RAW, ALL), R(VIEW_DEPTH, VIEW_DEPTH, ALL),
                             R(VIEW_NORMALS, VIEW_NORMALS, ALL), W(HORIZON_AO_OUT, AO_PONG, V(CACAO_DENOISE_INTERMEDIATE)),
-                            W(OUTPUT, OUTPUT, V(CACAO_DENOISE_FINAL))}},
-    /* docs/tiles.md: classes from the deinterleaved depths (one invocation per tile), then the lists. */
-    PASS(CLASSIFY) = {"classify", {NULL}, 1, false, false, false, {CACAO_WG_CLASSIFY, CACAO_WG_CLASSIFY},
-                      CACAOI_GRID_TILES, 3,
-                      {CONSTANTS, R(DEPTHS, DEPTHS, ALL), W(TILES, TILES, ALL)}},
+                            W(OUTPUT, OUTPUT, V(CACAO_DENOISE_FINAL)), R(TILES, TILES, ALL)},
+                           .lists = {GEN, GEN}},
+    /* docs/tiles.md: classes (one invocation per tile), then the lists. CACAO classifies its
+     * deinterleaved depths (variant 0 keeps the pass's name), the horizon estimators their view z. */
+    PASS(CLASSIFY) = {"classify", {NULL, "horizon"}, 2, false, false, false, {CACAO_WG_CLASSIFY, CACAO_WG_CLASSIFY},
+                      CACAOI_GRID_TILES, 4,
+                      {CONSTANTS, R(DEPTHS, DEPTHS, V(CACAO_CLASSIFY_SLICES)),
+                       R(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_CLASSIFY_HORIZON)), W(TILES, TILES, ALL)}},
     PASS(COMPACT) = {"compact", {NULL}, 1, false, false, false, {CACAO_WG_COMPACT, 1}, CACAOI_GRID_COMPACT, 2,
                      {CONSTANTS, W(TILES, TILES, ALL)}},
     /* AO 1 into the slices' AO of the tiles generate skips (and, a step rebinding SSAO_IMAGE, into
@@ -164,9 +171,11 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                       .lists = {CACAO_LIST_BLUR}},
     PASS(APPLY_GPU) = {"apply_gpu", {"smart", "nonsmart", "half"}, 3, false, false, true, WG(APPLY), CACAOI_GRID_OUTPUT,
                        3, {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL)}},
-    PASS(FILL) = {"fill", {NULL}, 1, false, false, false, {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE_LAYERS, 3,
-                  {CONSTANTS, R(TILES, TILES, ALL), W(SSAO_IMAGE, SSAO_PING, ALL)},
-                  .lists = {CACAO_LIST_FILL_SLICES}},
+    PASS(FILL) = {"fill", {NULL, "horizon", "output"}, 3, false, false, false, {CACAO_TILE, CACAO_TILE},
+                  CACAOI_GRID_SLICE_LAYERS, 5,
+                  {CONSTANTS, R(TILES, TILES, ALL), W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),
+                   W(HORIZON_AO_OUT, AO_RAW, V(CACAO_FILL_HORIZON)), W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT))},
+                  .lists = {CACAO_LIST_FILL_SLICES, CACAO_LIST_FILL_SLICES, CACAO_LIST_FILL_SLICES}},
 };
 #undef R
 #undef W

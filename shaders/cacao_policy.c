@@ -56,11 +56,15 @@ static void rebind(cacaoi_step *s, unsigned slot, cacao_resource resource) {
 /* The longest sequences: CACAO with the caller's normals at HIGHEST with a blur (prepare twice,
  * classify, compact, Q3 base, importance twice, generate, fill twice, blur, apply), and the
  * horizon estimators with the most denoise passes. */
-_Static_assert(12 <= CACAOI_SEQUENCE_MAX && 2 + CACAO_KEY_MAX_BLUR_PASSES <= CACAOI_SEQUENCE_MAX,
+_Static_assert(12 <= CACAOI_SEQUENCE_MAX && 7 + CACAO_KEY_MAX_BLUR_PASSES <= CACAOI_SEQUENCE_MAX,
                "a plan holds every step of the longest sequence");
+_Static_assert(CACAO_WG_HORIZON_X == CACAO_TILE && CACAO_WG_HORIZON_Y == CACAO_TILE,
+               "a horizon estimator's group is one tile of the list it runs over");
 
-/* Horizon estimators: prepare, the estimator (into the output when no denoise pass runs),
- * then the denoise passes ping-ponging between AO_RAW and AO_PONG, the last into the output. */
+/* Horizon estimators: prepare, classification (docs/tiles.md), the estimator over the needed
+ * tiles (into the output when no denoise pass runs), the fills of the rest with AO 1 (the
+ * intermediates the denoise passes read, and the output), then the denoise passes over the needed
+ * tiles, ping-ponging between AO_RAW and AO_PONG, the last into the output. */
 static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENCE_MAX]) {
     if (c->downsampled) return 0; /* full resolution only */
     size_t n = 0;
@@ -69,7 +73,13 @@ static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI
          0, 0, 0);
     const unsigned main_variant = (c->estimator == CACAO_KEY_ESTIMATOR_GTAO ? CACAO_HORIZON_GTAO : CACAO_HORIZON_BITMASK) +
                                   (blur == 0 ? CACAO_HORIZON_GTAO_DIRECT : 0);
+    push(out, &n, CACAO_PASS_CLASSIFY, CACAO_CLASSIFY_HORIZON, 0, 0, 0);
+    push(out, &n, CACAO_PASS_COMPACT, 0, 0, 0, 0);
     push(out, &n, CACAO_PASS_HORIZON_MAIN, main_variant, 0, 0, 0);
+    if (blur >= 1) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0); /* AO_RAW */
+    if (blur >= 2) rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0), CACAO_BINDING_HORIZON_AO_OUT,
+                          CACAO_RES_AO_PONG);
+    push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT, 0, 0, 0);
     cacao_resource ao = CACAO_RES_AO_RAW;
     for (unsigned pass = 1; pass <= blur; ++pass) {
         const bool last = pass == blur;

@@ -74,6 +74,17 @@
 #define CACAO_DENOISE_INTERMEDIATE 0
 #define CACAO_DENOISE_FINAL 1
 
+/* Classify variants (docs/tiles.md): from CACAO's deinterleaved depths, or from the horizon
+ * estimators' full-resolution view z (their "slice" is the image: a tile is 8x8 pixels). */
+#define CACAO_CLASSIFY_SLICES 0
+#define CACAO_CLASSIFY_HORIZON 1
+
+/* Fill variants: AO 1 into the slices' AO (CACAO), into the horizon estimators' AO intermediate,
+ * or into the caller's output (a horizon estimator's last pass writes it over the needed tiles). */
+#define CACAO_FILL_SLICES 0
+#define CACAO_FILL_HORIZON 1
+#define CACAO_FILL_OUTPUT 2
+
 /* ---- Tiles (docs/tiles.md) ----
  * A tile is CACAO_TILE x CACAO_TILE slice texels (all layers). A texel is quiet when its AO is 1
  * whatever its neighbourhood: it is background (view z at the far plane or invalid) or the

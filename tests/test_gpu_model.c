@@ -25,7 +25,8 @@ static void test_every_key_has_a_stage(void) {
         const bool known = gpu_stage_of_key(name, &stage);
         if (!known) fprintf(stderr, "no stage for %s\n", name);
         CHECK(known);
-        CHECK(!known || (stage == GPU_STAGE_LEFT_OUT) == (strcmp(name, "fill") == 0));
+        /* the fills ("fill", "fill.horizon", "fill.output") dispatch nothing when every tile is active */
+        CHECK(!known || (stage == GPU_STAGE_LEFT_OUT) == (strncmp(name, "fill", 4) == 0));
     }
     gpu_stage stage;
     CHECK(gpu_stage_of_key("generate.q3base", &stage) && stage == GPU_STAGE_BASE);

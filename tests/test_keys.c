@@ -106,6 +106,8 @@ static void test_subset(void) {
                               "horizon_prepare.input", "horizon_main.gtao", "horizon_main.bitmask",
                               "horizon_main.gtao_direct", "horizon_main.bitmask_direct",
                               "horizon_denoise.intermediate", "horizon_denoise.final", "classify", "compact", "fill",
+                              /* the horizon estimators' tiles (docs/tiles.md) */
+                              "classify.horizon", "fill.horizon", "fill.output",
                               /* the GPU forms: a build embeds both, the device chooses */
                               "blur_gpu.1.fp32", "blur_gpu.2.fp32", "blur_gpu.3.fp32", "blur_gpu.4.fp32",
                               "blur_gpu.5.fp32", "blur_gpu.6.fp32", "blur_gpu.7.fp32", "blur_gpu.8.fp32",

@@ -48,7 +48,12 @@ static void test_rows(void) {
             if (row->grids[v] != CACAOI_GRID_ROW) CHECK(row->lists[v] == CACAO_LIST_NONE);
         }
         for (unsigned v = 0; v < row->variants; ++v) {
-            CHECK((row->variants == 1) == (row->variant_names[v] == NULL));
+            /* one unnamed variant, or all named; a pass that gained variants may keep its first
+             * unnamed (its keys keep their names: "classify", "classify.horizon") */
+            CHECK(row->variants == 1 ? row->variant_names[v] == NULL : (v == 0 || row->variant_names[v] != NULL));
+            for (unsigned u = 0; u < v; ++u)
+                CHECK(!row->variant_names[u] || !row->variant_names[v] ||
+                      strcmp(row->variant_names[u], row->variant_names[v]) != 0);
             unsigned seen[CACAO_BINDING_COUNT] = {0};
             for (unsigned i = 0; i < row->binding_count; ++i) {
                 const cacaoi_pass_binding *b = &row->bindings[i];

@@ -16,6 +16,9 @@
  *     generate and no blur group; the reference gives the same 1s with every tile active;
  *   - a frame with no background (the sky replaced by a far wall, fade-out beyond it) classifies
  *     no tile as background and skips nothing, with the same output.
+ *   - the horizon estimators (GTAO, bitmask) likewise: identical to their reference, exactly 1
+ *     with nothing estimated on an all-background frame, more than half the tiles skipped when
+ *     three quarters of the pixels lie beyond the fade-out (test_horizon).
  * The counts come from the runtime (cacao_record_tile_counts) through vkdev's timings. */
 #include <math.h>
 #include <stdlib.h>
@@ -202,6 +205,65 @@ static void test_nan_depth(vkdev *dev, const scene_buffers *sb) {
     free(holes);
 }
 
+/* The horizon estimators classify too: a tile is 8x8 pixels; the estimator and the denoise
+ * passes run over the needed tiles, and the fills give the rest the 1 they compute there. The
+ * reference (compute_all_tiles) runs them over every tile, as before classification existed.
+ * Every case above, for GTAO and the bitmask, their smallest and a middle budget, no denoise, one,
+ * two (both intermediates filled) and eight passes, normals from depth and given. */
+static void test_horizon(vkdev *dev, const scene_buffers *sb, const scene_buffers *faded_sb, float faded_to) {
+    static const cacao_estimator estimators[] = {CACAO_ESTIMATOR_GTAO, CACAO_ESTIMATOR_BITMASK};
+    static const int denoise[] = {CACAO_BLUR_NONE, 1, 2, 8};
+    const size_t n = (size_t)sb->width * sb->height;
+    float *sky = malloc(n * sizeof(float)), *holes = malloc(n * sizeof(float)), *ao = malloc(n * sizeof(float));
+    for (size_t i = 0; i < n; ++i) {
+        sky[i] = 1.0f;
+        holes[i] = (i % 97 == 0 || sb->depth[i] >= 1.0f) ? NAN : sb->depth[i];
+    }
+    for (int e = 0; e < 2; ++e)
+        for (int q = 0; q < 5; q += 3)
+            for (int d = 0; d < 4; ++d)
+                for (int given = 0; given < 2; ++given) {
+                    cacao_settings s = {.estimator = estimators[e], .quality = qualities[q],
+                                        .generate_normals = !given, .blur_pass_count = denoise[d],
+                                        .fade_out_from = 6.0f, .fade_out_to = 12.0f};
+                    cacao_tile_counts c;
+                    vkdev_frame f = scene_frame(sb, d == 2, given != 0); /* reverse Z with two denoise passes */
+                    if (same_as_all_tiles(dev, s, &f, "horizon, embedded scene", &c)) {
+                        CHECK(c.background > 0 && c.faded > 0 && c.active > 0 && c.generate_run < c.tiles);
+                        CHECK(c.blur_total == 0); /* the denoise passes use the estimator's list */
+                    }
+                    /* all background: exactly 1, nothing estimated */
+                    f = scene_frame(sb, false, given != 0);
+                    f.depth = sky;
+                    s.fade_out_from = 1e6f;
+                    s.fade_out_to = 2e6f;
+                    if (run_counts(dev, &s, &f, ao, &c)) {
+                        size_t not_one = 0;
+                        for (size_t i = 0; i < n; ++i) not_one += ao[i] != 1.0f;
+                        CHECK(not_one == 0 && c.background == c.tiles && c.generate_run == 0);
+                    }
+                    same_as_all_tiles(dev, s, &f, "horizon, all background", &c);
+                    /* NaN holes and a NaN sky */
+                    f.depth = holes;
+                    s.fade_out_from = 0.0f;
+                    s.fade_out_to = 0.0f;
+                    if (same_as_all_tiles(dev, s, &f, "horizon, NaN depth", &c)) CHECK(c.background > 0);
+                    /* three quarters beyond the fade-out: more than half the tiles skipped */
+                    f = scene_frame(faded_sb, false, given != 0);
+                    s.fade_out_from = 0.5f * faded_to;
+                    s.fade_out_to = faded_to;
+                    if (same_as_all_tiles(dev, s, &f, "horizon, three quarters faded", &c)) {
+                        if (c.generate_run * 2 >= c.tiles)
+                            fprintf(stderr, "horizon, three quarters faded: %u of %u tiles estimated\n",
+                                    c.generate_run, c.tiles);
+                        CHECK(c.generate_run * 2 < c.tiles);
+                    }
+                }
+    free(sky);
+    free(holes);
+    free(ao);
+}
+
 int main(void) {
     vkdev dev;
     open_device(&dev);
@@ -214,6 +276,7 @@ int main(void) {
     test_mostly_faded(&dev, 256, 144, false);
     test_mostly_faded(&dev, 512, 288, true);
     test_nan_depth(&dev, &sb);
+    test_horizon(&dev, &sb, &sb, first_quartile_z(&sb, &scene.camera));
     scene_buffers_free(&sb);
     vkdev_destroy(&dev);
     CHECK(dev.validation_messages == 0);

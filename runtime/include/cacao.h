@@ -286,7 +286,7 @@ typedef struct cacao_plan {
     uint32_t buffer_count;
     cacao_plan_buffer buffers[CACAO_PLAN_MAX_BUFFERS];
     bool uses_load_counter;
-    bool uses_tiles;            /* CACAO estimator: tile classification (docs/tiles.md) */
+    bool uses_tiles;            /* tile classification (docs/tiles.md): every estimator */
     uint32_t tiles_x, tiles_y;  /* tiles of CACAO_TILE x CACAO_TILE slice texels */
     uint32_t blur_groups_x, blur_groups_y;   /* the blur's full grid (0 without a blur) */
     uint64_t tile_buffer_bytes; /* header, classes and lists */
@@ -461,10 +461,12 @@ typedef struct cacao_inputs {
 CACAO_API cacao_result cacao_record(cacao_context *context, VkCommandBuffer command_buffer, const cacao_inputs *inputs);
 
 /* ---- Tiles skipped (docs/tiles.md) ---------------------------------------------------------
- * The CACAO estimator classifies tiles of 8x8 slice texels (16x16 pixels native, 32x32
- * downsampled) as active, faded (beyond fade_out_to) or background (far plane, invalid depth);
- * generate and blur run only where an active tile is near, and the rest of the AO is 1, as the
- * full computation gives it. The counts live on the device: record a copy after cacao_record, read it once the frame is
+ * Every estimator classifies tiles as active, faded (beyond fade_out_to) or background (far
+ * plane, invalid depth). CACAO: tiles of 8x8 slice texels (16x16 pixels native, 32x32
+ * downsampled); generate and blur run only where an active tile is near. GTAO and BITMASK:
+ * tiles of 8x8 pixels; the estimator and the denoise passes run only where an active tile is
+ * near (generate_* counts them; blur_* is 0 of 0). The rest of the AO is 1, as the full
+ * computation gives it. The counts live on the device: record a copy after cacao_record, read it once the frame is
  * done. */
 typedef struct cacao_tile_counts {
     uint32_t tiles, active, faded, background;   /* the frame's tiles by class */
@@ -477,8 +479,7 @@ typedef struct cacao_tile_counts {
 /* Records, after cacao_record in the same command buffer, a copy of this frame's counts
  * (CACAO_TILE_COUNTS_BYTES bytes) into dst at offset (dst: TRANSFER_DST usage), with the barriers
  * around it (our writes before the copy; the copy before the caller's later host or transfer
- * reads, which the caller orders as usual). CACAO_ERROR_INVALID_ARGUMENT for the GTAO/BITMASK
- * estimators, which have no tiles. */
+ * reads, which the caller orders as usual). */
 CACAO_API cacao_result cacao_record_tile_counts(cacao_context *context, VkCommandBuffer command_buffer, VkBuffer dst,
                                                 VkDeviceSize offset);
 

@@ -159,12 +159,12 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
 
     cacaoi_step steps[CACAOI_SEQUENCE_MAX];
     const size_t count = cacaoi_sequence(&config, steps);
-    if (s.estimator == CACAO_ESTIMATOR_CACAO) { /* tile grids (docs/tiles.md) */
+    { /* tile grids (docs/tiles.md); a horizon estimator's slice is the image, its denoise groups the tiles */
         const unsigned blur = config.blur_passes;
         plan->uses_tiles = true;
         plan->tiles_x = div_up(plan->slice_width, CACAO_TILE);
         plan->tiles_y = div_up(plan->slice_height, CACAO_TILE);
-        if (blur > 0) {
+        if (blur > 0 && s.estimator == CACAO_ESTIMATOR_CACAO) {
             uint32_t blur_out[2];
             cacaoi_blur_out(cacaoi_form_pass(CACAO_PASS_BLUR, config.gpu_forms), blur, blur_out);
             plan->blur_groups_x = div_up(plan->slice_width, blur_out[0]);

@@ -248,8 +248,7 @@ cacao_result cacao_record_tile_counts(cacao_context *ctx, VkCommandBuffer cmd, V
     if (!ctx) return CACAO_ERROR_INVALID_ARGUMENT;
     if (!ctx->ready) return cacaoi_fail(ctx, CACAO_ERROR_NOT_READY, "cacao_context_resize must succeed first");
     if (!ctx->plan.uses_tiles)
-        return cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "tile counts: the %s estimator has no tiles",
-                           ctx->plan.settings.estimator == CACAO_ESTIMATOR_GTAO ? "GTAO" : "BITMASK");
+        return cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "tile counts: the plan has no tiles");
     if (!cmd || !dst)
         return cacaoi_fail(ctx, CACAO_ERROR_INVALID_ARGUMENT, "tile counts: %s is NULL",
                            !cmd ? "command_buffer" : "dst");

@@ -294,9 +294,12 @@ float horizon_visibility(ivec2 p, float z, ivec2 size)
     return 1.0 - (1.0 - vis) * sat(z * CB.effect_fade_out_mul + CB.effect_fade_out_add);
 }
 
+/* Over the needed tiles (docs/tiles.md): a workgroup is one tile of pixels. */
 void main()
 {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 group;
+    if (!group_of(group)) return;
+    ivec2 p = texel_of(group);
     ivec2 size = imageSize(view_depth);
     if (!in_rect(p, size)) return;
     float z = fetch_view_z(p);
@@ -310,7 +313,9 @@ void main()
  * from this pixel's tangent plane (relative to sigma z) and by the agreement of the normals. */
 void main()
 {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 group;
+    if (!group_of(group)) return;
+    ivec2 p = texel_of(group);
     ivec2 size = imageSize(view_depth);
     if (!in_rect(p, size)) return;
     float z = fetch_view_z(p);

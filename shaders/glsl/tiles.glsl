@@ -38,6 +38,28 @@ bool group_of(out ivec2 g)
  * the slice's edge they clamp to texels of the same tile. */
 layout(local_size_x = CACAO_WG_CLASSIFY, local_size_y = CACAO_WG_CLASSIFY) in;
 
+#if CACAO_VARIANT == CACAO_CLASSIFY_HORIZON
+/* The horizon estimators' pixels, by the rules their passes apply: background where the stored view
+ * z is not positive (the estimator and the denoise write 1 there), quiet by fade where the fade
+ * factor of horizon_visibility is 0 (with the margin), so its result is 1 there too. */
+void main()
+{
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    if (!in_rect(t, ivec2(CB.tiles_x, CB.tiles_y))) return;
+    ivec2 size = imageSize(view_depth);
+    uint flags = CB.tiles_all != 0 ? 1u : 0u; /* 1: not quiet, 2: not background */
+    for (int y = 0; y < CACAO_TILE && (flags & 1u) == 0u; ++y) {
+        for (int x = 0; x < CACAO_TILE; ++x) {
+            ivec2 p = t * CACAO_TILE + ivec2(x, y);
+            if (!in_rect(p, size)) continue;
+            float z = imageLoad(view_depth, p).r;
+            bool background = !(z > 0.0);
+            bool faded = z * CB.effect_fade_out_mul + CB.effect_fade_out_add < -CB.quiet_margin;
+            if (!background) flags |= 2u;
+            if (!(background || faded)) flags |= 1u;
+        }
+    }
+#else
 void main()
 {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
@@ -63,6 +85,7 @@ void main()
             }
         }
     }
+#endif
     uint cls = (flags & 1u) != 0u ? CACAO_TILE_CLASS_ACTIVE
              : (flags & 2u) != 0u ? CACAO_TILE_CLASS_FADED : CACAO_TILE_CLASS_BACKGROUND;
     tiles[CACAO_TILE_CLASSES + t.y * CB.tiles_x + t.x] = cls;
@@ -117,7 +140,8 @@ void main()
 /* ---- fill ---- */
 #if CACAO_PASS == CACAO_PASS_FILL
 /* docs/tiles.md: AO 1, the value the full computation gives every texel of a tile that is not
- * needed (edges 1: nothing reads them there). */
+ * needed (edges 1: nothing reads them there): the slices' AO (CACAO), or the horizon estimators'
+ * intermediate or the caller's output. */
 layout(local_size_x = CACAO_TILE, local_size_y = CACAO_TILE) in;
 
 void main()
@@ -125,6 +149,12 @@ void main()
     ivec2 group;
     if (!group_of(group)) return;
     ivec2 p = texel_of(group);
+#if CACAO_VARIANT == CACAO_FILL_HORIZON
+    if (in_rect(p, imageSize(horizon_ao_out))) imageStore(horizon_ao_out, p, vec4(1.0));
+#elif CACAO_VARIANT == CACAO_FILL_OUTPUT
+    if (in_rect(p, imageSize(output_image))) imageStore(output_image, p, vec4(1.0, 0.0, 0.0, 0.0));
+#else
     if (in_rect(p, imageSize(ssao_image).xy)) imageStore(ssao_image, ivec3(p, int(gl_WorkGroupID.z)), vec4(1.0, 1.0, 0.0, 0.0));
+#endif
 }
 #endif /* FILL */

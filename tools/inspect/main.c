@@ -290,9 +290,7 @@ static int plan_on_scene(const cli_options *options) {
             if (timings.has_tiles)
                 print_skipped_work(&plan, &timings.tiles);
             else
-                printf("no tile classification in this plan (%s): every step runs over everything\n",
-                       plan.settings.estimator != CACAO_ESTIMATOR_CACAO ? "a horizon-slice estimator"
-                                                                        : "compute_all_tiles");
+                printf("no tile counts for this plan (compute_all_tiles): every step runs over everything\n");
         }
         vkdev_destroy(&dev);
         if (rc == 0 && dev.validation_messages) {
