@@ -221,6 +221,32 @@ counts, not at the counts a frame measures; so are the horizon-slice estimators'
 loops, whose budget (the depth reads per pixel each quality buys) therefore does not show: GTAO and
 BITMASK cost the same at every quality here. Nothing is reweighed by measured counts.
 
+## The GPU forms
+
+A context on a GPU runs the GPU forms of four passes (`cacao_shader_forms`; `--shader-forms cpu`
+compiles lavapipe's instead): the same arithmetic, so the same output bit for bit on lavapipe in
+fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
+
+- `blur_gpu`: every pass count in shared memory, 2x2 texels per thread (the CPU form's 8x4 register
+  block spills on every family). `apply_gpu`: one pixel per invocation through the sampler.
+- `prepare_gpu` (normals from depth): ACO estimates the fused prepare as VALU-bound, about 125
+  instructions per normal, as AMD's `PrepareNormals` is. The GPU form normalises each direction
+  between two neighbouring depths once, for the two normals that use it (the other takes its
+  negation, exactly the direction the other way): 40 normalisations per 16 normals instead of 64.
+  It computes the centres row by row and the block's rows as they are reached, so that few rows are
+  live: with all of them live it took 192 VGPRs on navi21, where the estimate became latency-bound
+  at the lower occupancy and gained nothing, and gfx1100 spilled. HALF (LOWEST: slices 0 and 3,
+  which share no neighbour) and MIPS downsampled (gfx1100 spilled two VGPRs) keep the shared form's
+  code. Measured alternatives: one full-resolution pixel per invocation with the positions in shared
+  memory costs about as much per normal (the normal's own arithmetic dominates), and so does one
+  slice texel per invocation.
+- `generate_gpu`: the tap's atlas level, extent and place as integers (the CPU form selects among
+  four float vec4s and converts them, 25 instructions of a tap's 110 on navi21); the Q3 base pass
+  takes a quad's four centre depths from one gather and steps the pattern's row from texel to texel.
+  Q3 base on navi21: 12,001 cycles per wave (11,463 instructions) in the CPU form, 10,781 (10,294)
+  in the GPU form, whose 16 texels of 5 taps x 2 samples each are the instructions: no loop is left
+  rolled.
+
 ## Against issue 31's measurement
 
 Issue 31 gave, for navi21 at 1920x1080, cacao/AMD totals of 0.78 0.60 0.50 0.83 0.81 (native,
