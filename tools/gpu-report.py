@@ -61,7 +61,8 @@ def measure(a, family, work):
         result = json.load(f)
     with open(amd) as f:
         result['amd_pipelines'] = [json.loads(line) for line in f if line.strip()]
-    # the CPU forms (lavapipe's shapes of the blur and apply), which a context on a GPU never runs
+    # the CPU forms (lavapipe's shapes of the blur, apply, prepare and generate), which a context
+    # on a GPU never runs
     cpu_out = os.path.join(work, 'gpu-%s-cpu.json' % family)
     run([a.inspect, 'gpu', '--all', '--shader-forms', 'cpu', '--json', cpu_out], env,
         'cacao-inspect gpu --shader-forms cpu (%s)' % family)

@@ -74,8 +74,8 @@ static const char *const help_text =
     "  --normals depth|input  normals of configurations whose name does not say (_gennormals): from\n"
     "                    depth (default, AMD's reference setting) or from an input normal buffer; AMD's\n"
     "                    estimate uses the same\n"
-    "  --shader-forms cpu|gpu  the blur and apply forms to compile (default: those a context\n"
-    "                    on the device runs: cpu on a CPU device, gpu on others)\n"
+    "  --shader-forms cpu|gpu  the blur, apply, prepare and generate forms to compile (default:\n"
+    "                    those a context on the device runs: cpu on a CPU device, gpu on others)\n"
     "  --no-spills       exit 1 naming every permutation with scratch or spilled registers\n";
 
 static bool parse_size(const char *text, uint32_t *w, uint32_t *h) {
