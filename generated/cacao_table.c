@@ -3,7 +3,7 @@
 
 #include "cacao_table.h"
 
-extern const cacao_module cacaoi_generated_modules[85];
+extern const cacao_module cacaoi_generated_modules[93];
 
 static const cacao_permutation permutations[] = {
     {{0, 0, 0, 0, 0}, "prepare_depths.half.native", 0, {8, 8, 1}, 1268, 0, {1, 0, 0, 3, 0, 0, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
@@ -91,9 +91,20 @@ static const cacao_permutation permutations[] = {
     {{16, 1, 0, 0, 1}, "apply_gpu.nonsmart.fp16", 82, {8, 8, 1}, 1268, 0, {1, 0, 0, 0, 0, 0, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, 0, 4}},
     {{16, 2, 0, 0, 0}, "apply_gpu.half.fp32", 83, {8, 8, 1}, 1268, 0, {1, 0, 0, 0, 0, 0, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, 0, 4}},
     {{16, 2, 0, 0, 1}, "apply_gpu.half.fp16", 84, {8, 8, 1}, 1268, 0, {1, 0, 0, 0, 0, 0, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, 0, 4}},
+    {{17, 0, 0, 0, 0}, "prepare_gpu.half.native", 57, {8, 8, 1}, 1268, 0, {1, 0, 0, 3, 0, 0, 4, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
+    {{17, 0, 1, 0, 0}, "prepare_gpu.half.downsampled", 58, {8, 8, 1}, 1268, 0, {1, 0, 0, 3, 0, 0, 4, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
+    {{17, 1, 0, 0, 0}, "prepare_gpu.full.native", 85, {8, 8, 1}, 1268, 0, {1, 0, 0, 3, 0, 0, 4, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
+    {{17, 1, 1, 0, 0}, "prepare_gpu.full.downsampled", 86, {8, 8, 1}, 1268, 0, {1, 0, 0, 3, 0, 0, 4, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
+    {{17, 2, 0, 0, 0}, "prepare_gpu.mips.native", 87, {8, 8, 1}, 1268, 0, {1, 0, 0, 3, 0, 0, 4, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
+    {{17, 2, 1, 0, 0}, "prepare_gpu.mips.downsampled", 62, {8, 8, 1}, 1268, 0, {1, 0, 0, 3, 0, 0, 4, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
+    {{18, 0, 0, 0, 0}, "generate_gpu.q0", 88, {8, 8, 1}, 1268, 0, {1, 0, 2, 0, 0, 3, 4, 4, 0, 0, 4, 0, 0, 0, 0, 0, 0, 0}},
+    {{18, 1, 0, 0, 0}, "generate_gpu.q1", 89, {8, 8, 1}, 1268, 0, {1, 0, 2, 0, 0, 3, 4, 4, 0, 0, 4, 0, 0, 0, 0, 0, 0, 0}},
+    {{18, 2, 0, 0, 0}, "generate_gpu.q2", 90, {8, 8, 1}, 1268, 0, {1, 0, 2, 0, 0, 3, 4, 4, 0, 0, 4, 0, 0, 0, 0, 0, 0, 0}},
+    {{18, 3, 0, 0, 0}, "generate_gpu.q3", 91, {8, 8, 1}, 1268, 0, {1, 2, 2, 0, 0, 3, 4, 4, 0, 3, 4, 3, 0, 0, 0, 0, 0, 0}},
+    {{18, 4, 0, 0, 0}, "generate_gpu.q3base", 92, {8, 8, 1}, 1268, 0, {1, 0, 0, 0, 0, 3, 4, 4, 0, 0, 4, 0, 4, 0, 0, 0, 0, 0}},
 };
 
 const cacao_table cacaoi_embedded_table = {
-    permutations, 85, cacaoi_generated_modules, 85, "main",
+    permutations, 96, cacaoi_generated_modules, 93, "main",
     "glslang 12.0.0", "SPIRV-Tools v2023.1", "all",
 };

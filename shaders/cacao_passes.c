@@ -69,6 +69,25 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
 #define WG(name) {CACAO_WG_##name##_X, CACAO_WG_##name##_Y}
 #define GEN CACAO_LIST_GENERATE
 
+/* The generate row and its GPU form's (the same bindings, lists and grids). */
+#define GENERATE_ROW(name)                                                                         \
+    {name, {"q0", "q1", "q2", "q3", "q3base"}, 5, false, false, false, WG(GENERATE), CACAOI_GRID_SLICE_LAYERS, 11, \
+     {CONSTANTS, R(LOAD_COUNTER, LOAD_COUNTER, V(CACAO_GENERATE_Q3)), R(DEPTHS, DEPTHS, ALL),               \
+      /* the taps' and normals' single texels: imageLoad (cacao.comp) */                            \
+      R(DEPTHS_IMAGE, DEPTHS, ALL), R(NORMALS_IMAGE, NORMALS, ALL), R(SSAO_BASE, SSAO_PONG, V(CACAO_GENERATE_Q3)), \
+      R(IMPORTANCE_MAP, IMPORTANCE, V(CACAO_GENERATE_Q3)), W(SSAO_IMAGE, SSAO_PING, ALL & ~V(CACAO_GENERATE_Q3_BASE)), \
+      W(SSAO_IMAGE, SSAO_PONG, V(CACAO_GENERATE_Q3_BASE)), W(IMPORTANCE_MAP_IMAGE, IMPORTANCE, V(CACAO_GENERATE_Q3_BASE)), \
+      R(TILES, TILES, ALL & ~V(CACAO_GENERATE_Q3_BASE))},                                          \
+     /* the Q3 base pass covers every tile: its values feed the importance map and the load     \
+      * counter, which steer the adaptive pass everywhere */                                    \
+     .lists = {GEN, GEN, GEN, GEN, CACAO_LIST_NONE}, .grids = {[CACAO_GENERATE_Q3_BASE] = CACAOI_GRID_IMPORTANCE}}
+/* The fused prepare (normals from depth) and its GPU form's row. */
+#define PREPARE_ROW(name)                                                                          \
+    {name, {"half", "full", "mips"}, 3, true, false, false, WG(PREPARE), CACAOI_GRID_SLICE, 5,          \
+     {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), W(DEPTHS_IMAGE, DEPTHS, V(CACAO_DEPTHS_HALF) | V(CACAO_DEPTHS_FULL)), \
+      W_LEVELS(DEPTHS_IMAGE, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS)), W(NORMALS_IMAGE, NORMALS, ALL)}, \
+     .quad = {[CACAO_DEPTHS_HALF] = 2, [CACAO_DEPTHS_FULL] = 2, [CACAO_DEPTHS_MIPS] = 2}}
+
 const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     /* spec: prepare.md. HALF = slices 0 and 3 (LOWEST), FULL = four slices, MIPS = + mips 1..3,
      * all levels in one atlas image (cacao_shared.h). Where the caller gives normals; with
@@ -87,21 +106,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * load counter; the Q3 base pass writes the second AO buffer and the importance map
      * (importance.md "GenerateImportanceMap"): an invocation per importance texel computes the
      * 2x2 slice texels of every layer that texel reads. */
-    PASS(GENERATE) = {"generate", {"q0", "q1", "q2", "q3", "q3base"}, 5, false, false, false, WG(GENERATE),
-                      CACAOI_GRID_SLICE_LAYERS, 11,
-                      {CONSTANTS, R(LOAD_COUNTER, LOAD_COUNTER, V(CACAO_GENERATE_Q3)), R(DEPTHS, DEPTHS, ALL),
-                       /* the taps' and normals' single texels: imageLoad (cacao.comp) */
-                       R(DEPTHS_IMAGE, DEPTHS, ALL), R(NORMALS_IMAGE, NORMALS, ALL),
-                       R(SSAO_BASE, SSAO_PONG, V(CACAO_GENERATE_Q3)),
-                       R(IMPORTANCE_MAP, IMPORTANCE, V(CACAO_GENERATE_Q3)),
-                       W(SSAO_IMAGE, SSAO_PING, ALL & ~V(CACAO_GENERATE_Q3_BASE)),
-                       W(SSAO_IMAGE, SSAO_PONG, V(CACAO_GENERATE_Q3_BASE)),
-                       W(IMPORTANCE_MAP_IMAGE, IMPORTANCE, V(CACAO_GENERATE_Q3_BASE)),
-                       R(TILES, TILES, ALL & ~V(CACAO_GENERATE_Q3_BASE))},
-                      /* the Q3 base pass covers every tile: its values feed the importance map and
-                       * the load counter, which steer the adaptive pass everywhere */
-                      .lists = {GEN, GEN, GEN, GEN, CACAO_LIST_NONE},
-                      .grids = {[CACAO_GENERATE_Q3_BASE] = CACAOI_GRID_IMPORTANCE}},
+    PASS(GENERATE) = GENERATE_ROW("generate"),
     /* spec: importance.md: two smoothing passes (ping-pong) of the map the Q3 base pass wrote. */
     PASS(IMPORTANCE_A) = {"importance_a", {NULL}, 1, false, false, false, WG(IMPORTANCE), CACAOI_GRID_IMPORTANCE, 3,
                           {CONSTANTS, R(IMPORTANCE_MAP, IMPORTANCE, ALL), W(IMPORTANCE_MAP_IMAGE, IMPORTANCE_PONG, ALL)}},
@@ -157,12 +162,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * the blur's output there when a blur runs). */
     /* spec: prepare.md, normals from depth: PREPARE_DEPTHS's variants and the normals in one pass,
      * a 2x2 quad of slice texels per invocation sharing one block of depths. */
-    PASS(PREPARE) = {"prepare", {"half", "full", "mips"}, 3, true, false, false, WG(PREPARE), CACAOI_GRID_SLICE, 5,
-                     {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL),
-                      W(DEPTHS_IMAGE, DEPTHS, V(CACAO_DEPTHS_HALF) | V(CACAO_DEPTHS_FULL)),
-                      W_LEVELS(DEPTHS_IMAGE, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS)),
-                      W(NORMALS_IMAGE, NORMALS, ALL)},
-                     .quad = {[CACAO_DEPTHS_HALF] = 2, [CACAO_DEPTHS_FULL] = 2, [CACAO_DEPTHS_MIPS] = 2}},
+    PASS(PREPARE) = PREPARE_ROW("prepare"),
     /* The GPU forms (cacao_shader_forms): the rows above, other shapes. The blur: every n in
      * shared memory, 2x2 texels per thread (CACAO_BLUR_GPU_OUT); apply: one pixel per invocation
      * through the sampler. */
@@ -171,6 +171,10 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                       .lists = {CACAO_LIST_BLUR}},
     PASS(APPLY_GPU) = {"apply_gpu", {"smart", "nonsmart", "half"}, 3, false, false, true, WG(APPLY), CACAOI_GRID_OUTPUT,
                        3, {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL)}},
+    /* prepare: each direction between two neighbouring depths normalised once for the two
+     * normals that use it; generate: the tap's atlas level in integers. */
+    PASS(PREPARE_GPU) = PREPARE_ROW("prepare_gpu"),
+    PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu"),
     PASS(FILL) = {"fill", {NULL, "horizon", "output"}, 3, false, false, false, {CACAO_TILE, CACAO_TILE},
                   CACAOI_GRID_SLICE_LAYERS, 5,
                   {CONSTANTS, R(TILES, TILES, ALL), W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),
@@ -186,6 +190,8 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
 #undef PASS
 #undef WG
 #undef GEN
+#undef GENERATE_ROW
+#undef PREPARE_ROW
 
 static bool binding_active(const cacaoi_pass_binding *b, unsigned variant) {
     return (b->variants >> variant) & 1u;

@@ -21,7 +21,13 @@ const cacaoi_quality_row cacaoi_qualities[CACAO_KEY_QUALITY_COUNT] = {
 
 unsigned cacaoi_form_pass(unsigned pass, bool gpu_forms) {
     if (!gpu_forms) return pass;
-    return pass == CACAO_PASS_BLUR ? CACAO_PASS_BLUR_GPU : pass == CACAO_PASS_APPLY ? CACAO_PASS_APPLY_GPU : pass;
+    switch (pass) {
+    case CACAO_PASS_BLUR: return CACAO_PASS_BLUR_GPU;
+    case CACAO_PASS_APPLY: return CACAO_PASS_APPLY_GPU;
+    case CACAO_PASS_PREPARE: return CACAO_PASS_PREPARE_GPU;
+    case CACAO_PASS_GENERATE: return CACAO_PASS_GENERATE_GPU;
+    default: return pass;
+    }
 }
 
 bool cacaoi_pass_in_forms(unsigned pass, bool gpu_forms) {
@@ -102,16 +108,17 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
         push(out, &n, CACAO_PASS_PREPARE_DEPTHS, depths, ds, 0, 0);
         push(out, &n, CACAO_PASS_PREPARE_NORMALS, 0, ds, 0, 0);
     } else {
-        push(out, &n, CACAO_PASS_PREPARE, depths, ds, 0, 0); /* depths and normals in one pass */
+        push(out, &n, cacaoi_form_pass(CACAO_PASS_PREPARE, c->gpu_forms), depths, ds, 0, 0); /* depths and normals in one pass */
     }
     push(out, &n, CACAO_PASS_CLASSIFY, 0, 0, 0, 0);
     push(out, &n, CACAO_PASS_COMPACT, 0, 0, 0, 0);
     if (c->quality == CACAO_KEY_QUALITY_HIGHEST) {
-        push(out, &n, CACAO_PASS_GENERATE, CACAO_GENERATE_Q3_BASE, 0, 0, 0);
+        push(out, &n, cacaoi_form_pass(CACAO_PASS_GENERATE, c->gpu_forms), CACAO_GENERATE_Q3_BASE, 0, 0, 0);
         push(out, &n, CACAO_PASS_IMPORTANCE_A, 0, 0, 0, 0);
         push(out, &n, CACAO_PASS_IMPORTANCE_B, 0, 0, 0, 0);
     }
-    push(out, &n, CACAO_PASS_GENERATE, cacaoi_qualities[c->quality].generate_variant, 0, 0, 0);
+    push(out, &n, cacaoi_form_pass(CACAO_PASS_GENERATE, c->gpu_forms), cacaoi_qualities[c->quality].generate_variant, 0,
+         0, 0);
     /* The tiles generate skips read as AO 1 in its output and, where a blur runs, in the blur's
      * (the blur and apply groups next to a needed tile read them). */
     push(out, &n, CACAO_PASS_FILL, 0, 0, 0, 0);

@@ -60,15 +60,15 @@ typedef struct cacao_key_config {
     bool normals_from_input;
     unsigned blur_passes;  /* 0..8 (horizon estimators: denoise passes) */
     unsigned estimator;    /* CACAO_KEY_ESTIMATOR_* */
-    bool gpu_forms;        /* the GPU forms of the blur and apply (cacao_shader_forms) */
+    bool gpu_forms;        /* the GPU forms of the blur, apply, prepare and generate (cacao_shader_forms) */
 } cacao_key_config;
 
-/* The pass of the configuration's forms: BLUR, APPLY or their GPU rows (any other pass, the
- * upsample included, is itself). */
+/* The pass of the configuration's forms: BLUR, APPLY, PREPARE, GENERATE or their GPU rows (any
+ * other pass, the upsample included, is itself). */
 unsigned cacaoi_form_pass(unsigned pass, bool gpu_forms);
 
 /* True when configurations with these forms can dispatch the pass (false for the other forms'
- * rows: the CPU blur and apply under GPU forms, their GPU rows under CPU forms). */
+ * rows: the CPU blur, apply, prepare and generate under GPU forms, their GPU rows under CPU forms). */
 bool cacaoi_pass_in_forms(unsigned pass, bool gpu_forms);
 
 /* ---- The sequence ---- */

@@ -39,7 +39,11 @@
  * shared form. */
 #define CACAO_PASS_BLUR_GPU 15
 #define CACAO_PASS_APPLY_GPU 16
-#define CACAO_PASS_COUNT 17
+/* The prepare with normals from depth and the generate, as GPU forms: the same values from less
+ * arithmetic per texel (docs/gpu.md "The GPU forms of prepare and generate"). */
+#define CACAO_PASS_PREPARE_GPU 17
+#define CACAO_PASS_GENERATE_GPU 18
+#define CACAO_PASS_COUNT 19
 
 /* Depth-prepare variants (spec: prepare.md). HALF = slices 0 and 3 only (LOWEST), FULL = four
  * slices, MIPS = four slices plus mips 1..3 (HIGH and HIGHEST; MEDIUM never reads mips). */
@@ -372,7 +376,7 @@ layout(std140, set = 0, binding = CACAO_BINDING_CONSTANTS) uniform cacao_constan
  * pass faster; in the other passes it was not (docs/speed-notes.md), so there CB is the block
  * itself. The arrays are always read from the block (their indices vary
  * per pixel). */
-#if CACAO_PASS == CACAO_PASS_GENERATE
+#if CACAO_PASS == CACAO_PASS_GENERATE || CACAO_PASS == CACAO_PASS_GENERATE_GPU
 #define CACAO_CC_MEMBER(type, name) CACAO_T_##type name;
 #define CACAO_CC_COPY(type, name) cc.name = cb.name;
 #define CACAO_CC_NO_ARRAY(type, name, count)

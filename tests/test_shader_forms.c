@@ -1,5 +1,5 @@
-/* test_shader_forms - the GPU forms of the blur and apply (cacao_shader_forms) compute
- * what the CPU forms compute, on lavapipe with validation:
+/* test_shader_forms - the GPU forms of the blur, apply, prepare and generate (cacao_shader_forms)
+ * compute what the CPU forms compute, on lavapipe with validation:
  *   - fp32: bit-identical output at every quality, native and downsampled, blur none, 1, 3 (the
  *     CPU form's last register blur), 4 (its first shared-memory one) and 8, on the embedded scene
  *     at 131x77 (normals from depth; given normals at HIGH), and at 7x5 and 1x1 with blur none, 2
@@ -8,8 +8,12 @@
  *   - fp16: within a few half ulps (the forms round in a different order where the CPU apply
  *     filters 8-bit texels by hand): mean |GPU - CPU| at most 0.1/255, max at most 2/255;
  *   - the choice: a context on lavapipe (a CPU device) plans the CPU forms by default; with
- *     cacao_context_desc.shader_forms = GPU it plans the GPU passes (blur_gpu, apply_gpu; the
- *     upsample has one form) and no CPU form; the settings' own shader_forms wins over the desc's. */
+ *     cacao_context_desc.shader_forms = GPU it plans the GPU passes (blur_gpu, apply_gpu,
+ *     prepare_gpu with normals from depth, generate_gpu; the upsample has one form) and no CPU
+ *     form; the settings' own shader_forms wins over the desc's.
+ * The prepare's and generate's intermediates (depths, mips, normals, AO and edges, the importance
+ * map and load counter) feed every later pass, so an output identical at every quality, from
+ * depth and from given normals, checks them; the GPU prepare runs only with normals from depth. */
 #include <string.h>
 
 #include "gpu_scene.h"
@@ -60,9 +64,12 @@ static void compare_forms(vkdev *dev, uint32_t w, uint32_t h, unsigned *runs, do
                             !run_forms(dev, CACAO_SHADER_FORMS_GPU, &s, &f, gpu, &pg))
                             continue;
                         ++*runs;
-                        CHECK(!plan_has(&pc, "blur_gpu") && !plan_has(&pc, "apply_gpu"));
+                        CHECK(!plan_has(&pc, "blur_gpu") && !plan_has(&pc, "apply_gpu") &&
+                              !plan_has(&pc, "prepare_gpu") && !plan_has(&pc, "generate_gpu"));
                         CHECK((ds ? plan_has(&pg, "upsample.") : plan_has(&pg, "apply_gpu")) &&
-                              !plan_has(&pg, "apply.") && !plan_has(&pg, "blur."));
+                              !plan_has(&pg, "apply.") && !plan_has(&pg, "blur.") && !plan_has(&pg, "prepare.") &&
+                              !plan_has(&pg, "generate.") && plan_has(&pg, "generate_gpu."));
+                        if (!normals) CHECK(plan_has(&pg, "prepare_gpu.") && plan_has(&pc, "prepare."));
                         if (blurs[b] > 0) CHECK(plan_has(&pg, "blur_gpu"));
                         double sum = 0.0, max = 0.0;
                         for (size_t i = 0; i < n; ++i) {
@@ -99,10 +106,12 @@ static void test_choice(vkdev *dev) {
         CHECK(plan_has(&p, "blur.") && plan_has(&p, "apply.") && !plan_has(&p, "blur_gpu"));
     /* the desc's override, and the settings' over the desc's */
     if (run_forms(dev, CACAO_SHADER_FORMS_GPU, &plain, &f, ao, &p))
-        CHECK(plan_has(&p, "blur_gpu") && plan_has(&p, "apply_gpu"));
+        CHECK(plan_has(&p, "blur_gpu") && plan_has(&p, "apply_gpu") && plan_has(&p, "prepare_gpu") &&
+              plan_has(&p, "generate_gpu"));
     cacao_settings cpu = plain;
     cpu.shader_forms = CACAO_SHADER_FORMS_CPU;
-    if (run_forms(dev, CACAO_SHADER_FORMS_GPU, &cpu, &f, ao, &p)) CHECK(plan_has(&p, "blur.") && !plan_has(&p, "blur_gpu"));
+    if (run_forms(dev, CACAO_SHADER_FORMS_GPU, &cpu, &f, ao, &p))
+        CHECK(plan_has(&p, "blur.") && !plan_has(&p, "blur_gpu") && !plan_has(&p, "generate_gpu"));
     /* what a context reports it runs: the device's (a CPU here), or the desc's */
     cacao_context *ctx = NULL;
     CHECK(vkdev_context_create(dev, &ctx) == CACAO_SUCCESS && cacao_context_shader_forms(ctx) == CACAO_SHADER_FORMS_CPU);

@@ -61,7 +61,8 @@ def measure(a, family, work):
         result = json.load(f)
     with open(amd) as f:
         result['amd_pipelines'] = [json.loads(line) for line in f if line.strip()]
-    # the CPU forms (lavapipe's shapes of the blur and apply), which a context on a GPU never runs
+    # the CPU forms (lavapipe's shapes of the blur, apply, prepare and generate), which a context
+    # on a GPU never runs
     cpu_out = os.path.join(work, 'gpu-%s-cpu.json' % family)
     run([a.inspect, 'gpu', '--all', '--shader-forms', 'cpu', '--json', cpu_out], env,
         'cacao-inspect gpu --shader-forms cpu (%s)' % family)
@@ -201,9 +202,16 @@ by the share of lanes a workgroup leaves idle), so for the wave64 code RADV make
 workgroups of 64 or 256 invocations this is workgroups x waves per workgroup x inverse throughput.
 Stages sum their steps: prepare, classify/compact (cacao's tile classification), base (HIGHEST's
 Q3 base pass), importance, generate, blur, apply/upsample. cacao's indirect steps (generate and blur
-over the tiles that need them) count their largest grid, as if every tile were active: on real
-frames with sky or faded tiles cacao does less. The tile fill steps are left out (with every tile
-active they dispatch nothing).
+over the tiles that need them, and the horizon estimators' main and denoise passes) count their
+largest grid, as if every tile were active: on real frames with sky or faded tiles cacao does less.
+Such a step's shader begins with its group's entry check (the groups past the list's last entry
+return at once), a workgroup-uniform branch, and ACO weighs everything under a uniform branch as
+run half the time (below): its "Inverse Throughput" is half the body's. The estimate therefore
+doubles it for list-dispatched steps (the same horizon_main.gtao code: 7727 cycles per wave as a
+direct dispatch, 3863 from the list). Estimates made before this correction (this report's
+earlier versions, issue 31's table) counted cacao's generate and blur at half their weight. The
+per-permutation tables below print ACO's figure as it reports it. The tile fill steps are left
+out (with every tile active they dispatch nothing).
 
 AMD's steps per configuration follow AMD's own code (`FFX_CACAO_VkDraw` in `ffx_cacao_impl.cpp`,
 `FFX_CACAO_UpdateBufferSizeInfo` in `ffx_cacao.cpp`, `ffx_cacao_defines.h`, the numthreads of
@@ -220,6 +228,32 @@ of a divergent branch 75%% of the time. So HIGHEST's adaptive taps (cacao's `gen
 counts, not at the counts a frame measures; so are the horizon-slice estimators' slice and step
 loops, whose budget (the depth reads per pixel each quality buys) therefore does not show: GTAO and
 BITMASK cost the same at every quality here. Nothing is reweighed by measured counts.
+
+## The GPU forms
+
+A context on a GPU runs the GPU forms of four passes (`cacao_shader_forms`; `--shader-forms cpu`
+compiles lavapipe's instead): the same arithmetic, so the same output bit for bit on lavapipe in
+fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
+
+- `blur_gpu`: every pass count in shared memory, 2x2 texels per thread (the CPU form's 8x4 register
+  block spills on every family). `apply_gpu`: one pixel per invocation through the sampler.
+- `prepare_gpu` (normals from depth): ACO estimates the fused prepare as VALU-bound, about 125
+  instructions per normal, as AMD's `PrepareNormals` is. The GPU form normalises each direction
+  between two neighbouring depths once, for the two normals that use it (the other takes its
+  negation, exactly the direction the other way): 40 normalisations per 16 normals instead of 64.
+  It computes the centres row by row and the block's rows as they are reached, so that few rows are
+  live: with all of them live it took 192 VGPRs on navi21, where the estimate became latency-bound
+  at the lower occupancy and gained nothing, and gfx1100 spilled. HALF (LOWEST: slices 0 and 3,
+  which share no neighbour) and MIPS downsampled (gfx1100 spilled two VGPRs) keep the shared form's
+  code. Measured alternatives: one full-resolution pixel per invocation with the positions in shared
+  memory costs about as much per normal (the normal's own arithmetic dominates), and so does one
+  slice texel per invocation.
+- `generate_gpu`: the tap's atlas level, extent and place as integers (the CPU form selects among
+  four float vec4s and converts them, 25 instructions of a tap's 110 on navi21); the Q3 base pass
+  takes a quad's four centre depths from one gather and steps the pattern's row from texel to texel.
+  Q3 base on navi21: 12,001 cycles per wave (11,463 instructions) in the CPU form, 10,781 (10,294)
+  in the GPU form, whose 16 texels of 5 taps x 2 samples each are the instructions: no loop is left
+  rolled.
 
 ## Against issue 31's measurement
 

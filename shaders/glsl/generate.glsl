@@ -1,10 +1,17 @@
 /* generate.glsl - the AO passes: generate (Q0..Q3 and the Q3 base pass) and the importance map's
  * smoothing passes. */
 
-/* ============================== GENERATE ============================== */
-#if CACAO_PASS == CACAO_PASS_GENERATE
-/* spec: generate.md steps 1-10, adaptive.md (Q3) */
+/* ============================== GENERATE, GENERATE_GPU ============================== */
+#if CACAO_PASS == CACAO_PASS_GENERATE || CACAO_PASS == CACAO_PASS_GENERATE_GPU
+/* spec: generate.md steps 1-10, adaptive.md (Q3). The GPU form (GENERATE_GPU) computes the same
+ * values with fewer instructions where a GPU compiler counts them (GEN_GPU below). */
 layout(local_size_x = CACAO_WG_GENERATE_X, local_size_y = CACAO_WG_GENERATE_Y) in;
+
+#if CACAO_PASS == CACAO_PASS_GENERATE_GPU
+#define GEN_GPU 1
+#else
+#define GEN_GPU 0
+#endif
 
 #if CACAO_VARIANT == CACAO_GENERATE_Q3_BASE
 #define GEN_Q 3
@@ -58,9 +65,24 @@ vec3 load_normal_or_zero(ivec2 p, ivec2 s, int layer)
 vec4 g_level[4];
 float g_top_level;
 vec2 g_inv_d;
+#if GEN_GPU
+/* The Q3 base pass's GPU form: what main gives the texel it computes: the pattern's row
+ * (2 y + x) % 5, and its view z in .y (the texels' depths come four in one gather). */
+int g_pattern_row;
+vec4 g_base;
+/* The GPU form's atlas: the slice's size and the rows where levels 2 and 3 start (level l's
+ * extent and place follow from them in integers, cacao_shared.h). */
+ivec2 g_s0;
+int g_y2, g_y3;
+#endif
 
 void init_atlas(ivec2 s0)
 {
+#if GEN_GPU
+    g_s0 = s0;
+    g_y2 = CACAO_DEPTH_ATLAS_Y(s0.y, 2);
+    g_y3 = CACAO_DEPTH_ATLAS_Y(s0.y, 3);
+#endif
     for (int l = 0; l < 4; ++l) g_level[l] = vec4(depth_atlas_level(s0, l));
     g_top_level = float(CACAO_DEPTH_MIP_LEVELS(max(s0.x, s0.y)) - 1);
     g_inv_d = 1.0 / vec2(textureSize(depths, 0).xy);
@@ -77,17 +99,37 @@ void accumulate_tap(vec4 s, bool use_pattern_weight, vec2 uvd, vec2 inv_s, int l
      * are chosen here as lavapipe's sampler does (the level is the LOD rounded to nearest even, at
      * most the last; the texel is the truncated UV times the level's size, clamped to the level),
      * and the texel is loaded from the atlas. The max maps a -inf LOD (radius 0) and NaN to level 0. */
+#if GEN_GPU
+    /* The same level, extent and place as integers (a GPU compiler selected and converted four
+     * floats per tap): extent max(s0 >> l, 1), place (s0.x, y(l)) above level 0. The mirrored
+     * offset's float is the negated float of the offset (exact). */
+#if GEN_Q >= 2
+    int level = int(min(roundEven(max(s.w + mip_offset, 0.0)), g_top_level));
+    ivec2 extent = max(g_s0 >> level, ivec2(1));
+    ivec2 place = ivec2(level == 0 ? 0 : g_s0.x, level == 3 ? g_y3 : level == 2 ? g_y2 : 0);
+#else
+    ivec2 extent = g_s0, place = ivec2(0);
+#endif
+    vec2 extent_f = vec2(extent), fo = vec2(o);
+#else
 #if GEN_Q >= 2
     float level = min(roundEven(max(s.w + mip_offset, 0.0)), g_top_level);
     vec4 lv = level < 0.5 ? g_level[0] : level < 1.5 ? g_level[1] : level < 2.5 ? g_level[2] : g_level[3];
 #else
     vec4 lv = g_level[0];
 #endif
+#endif
     [[unroll]] for (int side = 0; side < 2; ++side) {
+#if GEN_GPU
+        vec2 uv = uvd + (side == 0 ? fo : -fo) * inv_s;
+        ivec2 t = clamp(ivec2(uv * extent_f), ivec2(0), extent - 1);
+        float z = imageLoad(depths_image, ivec3(t + place, layer)).r;
+#else
         ivec2 os = side == 0 ? o : -o;
         vec2 uv = uvd + vec2(os) * inv_s;
         ivec2 t = clamp(ivec2(uv * lv.xy), ivec2(0), ivec2(lv.xy) - 1);
         float z = imageLoad(depths_image, ivec3(t + ivec2(lv.zw), layer)).r;
+#endif
         vec3 delta = vec3((CB.depth_uv_to_view_mul * uv + CB.depth_uv_to_view_add) * view_xy_scale(z), z) - pc;
         float ob = obscurance(n, delta, falloff, CB.effect_horizon_angle_threshold);
         float w = 1.0;
@@ -116,16 +158,32 @@ float generate_texel(ivec2 xy, int layer)
      * (-1 -> 0, n -> n - 1): the sampler's clamp at the left and top; at the right and bottom the
      * atlas can continue past the slice, so the clamp is done here. Gather order: x = (0,1),
      * y = (1,1), z = (1,0), w = (0,0). */
+#if GEN_GPU && GEN_BASE
+    float zc = g_base.y; /* the base pass reads no neighbour: main gathers the centres of a quad */
+    float zl = zc, zt = zc;
+    vec4 g_br = vec4(zc);
+#elif GEN_GPU
+    vec4 g_ul = textureGather(depths, vec3(vec2(xy) * g_inv_d, float(layer)), 0);
+    vec4 g_br = textureGather(depths, vec3((vec2(xy) + 1.0) * g_inv_d, float(layer)), 0); /* exact: one conversion */
+    float zc = g_ul.y;
+    float zl = g_ul.x;
+    float zt = g_ul.z;
+#else
     vec4 g_ul = textureGather(depths, vec3(vec2(xy) * g_inv_d, float(layer)), 0);
     vec4 g_br = textureGather(depths, vec3(vec2(xy + 1) * g_inv_d, float(layer)), 0);
     float zc = g_ul.y;
     float zl = g_ul.x;
     float zt = g_ul.z;
+#endif
     float zr = xy.x + 1 < size.x ? g_br.z : zc;
     float zb = xy.y + 1 < size.y ? g_br.x : zc;
     vec2 uvs = uvd; /* slice UV used as screen UV ([quirk] SLICE-SUBPIXEL) */
     vec3 pc = view_pos(uvs, zc);
+#if GEN_GPU
+    vec3 n = imageLoad(normals_image, ivec3(xy, layer)).xyz; /* xy is inside the slice (main) */
+#else
     vec3 n = load_normal(xy, layer);
+#endif
     vec2 px_size = view_xy_scale(zc) * CB.ndc_to_view_mul * inv_s; /* .y negative */
 
     /* 2. radius parameters from the unscaled centre */
@@ -135,7 +193,11 @@ float generate_texel(ivec2 xy, int layer)
     float falloff = -1.0 / (r_eff * r_eff);
 
     /* 3. per-pixel rotation/scale of the pattern */
+#if GEN_GPU && GEN_BASE
+    int ri = g_pattern_row; /* main steps it from texel to texel */
+#else
     int ri = (2 * xy.y + xy.x) % 5;
+#endif
     vec4 rot_scale = cb.pattern_rot_scale[slice * 5 + ri] * radius_px;
 
     /* 4. self-occlusion guard for the R16F depths */
@@ -290,11 +352,30 @@ void main()
     if (!in_rect(t, imageSize(importance_map_image))) return;
     init_atlas(size);
     float vmin = 1.0e30, vmax = -1.0e30;
+#if GEN_GPU
+    /* texel 2t + (q & 1, q >> 1) has row (4 t.y + 2 t.x + (q & 1) + 2 (q >> 1)) % 5 */
+    int row0 = (4 * t.y + 2 * t.x) % 5;
+#endif
     [[unroll]] for (int layer = 0; layer < 4; ++layer) {
+#if GEN_GPU
+        /* the quad's texels 2t .. 2t + 1 from one gather at their shared corner (exact, as the
+         * shared form's gathers); order x = (0,1), y = (1,1), z = (1,0), w = (0,0) */
+        vec4 quad_z = textureGather(depths, vec3(vec2(2 * t + 1) * g_inv_d, float(layer)), 0).wzxy;
+#endif
         [[unroll]] for (int q = 0; q < 4; ++q) {
             ivec2 xy = quad_texel(t, q);
             if (!in_rect(xy, size)) continue;
+#if GEN_GPU
+            g_pattern_row = row0 + (q & 1) + 2 * (q >> 1);
+            if (g_pattern_row >= 5) g_pattern_row -= 5;
+            g_base = vec4(quad_z[q]);
+#endif
+#if GEN_GPU
+            /* roundEven's result is already the integer 0..255 the store's conversion makes */
+            float v = roundEven(sat(generate_texel(xy, layer)) * 255.0) * (1.0 / 255.0);
+#else
             float v = float(uint(roundEven(sat(generate_texel(xy, layer)) * 255.0))) * (1.0 / 255.0);
+#endif
             vmin = min(vmin, v);
             vmax = max(vmax, v);
         }
@@ -307,7 +388,7 @@ void main()
     imageStore(importance_map_image, t, vec4(pow(sat(2.0 * (mx - mn)), CACAO_IMPORTANCE_POWER)));
 }
 #endif
-#endif /* GENERATE */
+#endif /* GENERATE, GENERATE_GPU */
 
 /* ============================== IMPORTANCE_A / IMPORTANCE_B ============================== */
 #if CACAO_PASS == CACAO_PASS_IMPORTANCE_A || CACAO_PASS == CACAO_PASS_IMPORTANCE_B

@@ -1,7 +1,7 @@
 /* prepare.glsl - the prepare passes: the deinterleaved depths (and mips) and normals. */
 
-/* ============================== PREPARE_DEPTHS, PREPARE ============================== */
-#if CACAO_PASS == CACAO_PASS_PREPARE_DEPTHS || CACAO_PASS == CACAO_PASS_PREPARE
+/* ============================== PREPARE_DEPTHS, PREPARE, PREPARE_GPU ============================== */
+#if CACAO_PASS == CACAO_PASS_PREPARE_DEPTHS || CACAO_PASS == CACAO_PASS_PREPARE || CACAO_PASS == CACAO_PASS_PREPARE_GPU
 /* spec: prepare.md "Which full-resolution pixels each slice keeps", "Depth mips". PREPARE, the
  * fused pass, writes the depths (and mips) of its variant and the normals from depth. */
 layout(local_size_x = CACAO_WG_PREPARE_X, local_size_y = CACAO_WG_PREPARE_Y) in;
@@ -130,12 +130,61 @@ void main()
 }
 #endif /* PREPARE_DEPTHS main */
 
-#if CACAO_PASS == CACAO_PASS_PREPARE
+#if CACAO_PASS == CACAO_PASS_PREPARE || CACAO_PASS == CACAO_PASS_PREPARE_GPU
 /* Slices the variant keeps: all four, or (HALF, LOWEST) slices 0 and 3 in layers 0 and 1. */
 #if CACAO_VARIANT == CACAO_DEPTHS_HALF
 #define PREP_SLICE_STEP 3
 #else
 #define PREP_SLICE_STEP 1
+#endif
+
+/* The GPU form's own path (PREPARE_GPU): FULL and MIPS native, FULL downsampled. HALF's two slices
+ * (0 and 3) have no neighbours in common, and MIPS downsampled held more registers than gfx11
+ * gives it without spilling: those take the shared form's code (the same module as PREPARE's). */
+#if CACAO_PASS == CACAO_PASS_PREPARE_GPU && CACAO_VARIANT != CACAO_DEPTHS_HALF && \
+    !(CACAO_VARIANT == CACAO_DEPTHS_MIPS && CACAO_DOWNSAMPLED == 1)
+#define PREP_GPU_PATH 1
+#else
+#define PREP_GPU_PATH 0
+#endif
+
+#if PREP_GPU_PATH
+/* The GPU form's entries, two rows at a time (rows 2 gj and 2 gj + 1 of main's block), so that a
+ * row is computed when the raster order first needs it and few rows are live at once (a GPU keeps
+ * them in registers: gfx11 spilled with all 32 live). The same reads and arithmetic as main's
+ * loops below. */
+void prep_rows(ivec2 u, int gj, vec2 inv, ivec2 src_size, float z0, inout vec3 pos[6][6], inout float zc[6][6])
+{
+#if CACAO_DOWNSAMPLED == 0
+    float dz[2][6];
+    [[unroll]] for (int gi = 0; gi < 3; ++gi) {
+        vec4 g4 = textureGather(src_depth, vec2(4 * u + 2 * ivec2(gi, gj)) * inv, 0);
+        dz[0][2 * gi] = g4.w;
+        dz[0][2 * gi + 1] = g4.z;
+        dz[1][2 * gi] = g4.x;
+        dz[1][2 * gi + 1] = g4.y;
+    }
+#endif
+    [[unroll]] for (int r = 0; r < 2; ++r) {
+        int j = 2 * gj + r;
+        [[unroll]] for (int i = 0; i < 6; ++i) {
+            pos[j][i] = vec3(0.0);
+            zc[j][i] = 0.0;
+            if ((i == 0 || i == 5) && (j == 0 || j == 5)) continue;
+            ivec2 o = ivec2(i - 1, j - 1);
+#if CACAO_DOWNSAMPLED == 1
+            ivec2 px = 8 * u + 2 * o;
+            zc[j][i] = view_z(load_src_depth_clamped(px));
+            vec2 uv = (vec2(8 * u) + 0.5 + 2.0 * vec2(o)) * inv;
+            pos[j][i] = view_pos(uv, in_rect(px, src_size) ? zc[j][i] : z0);
+#else
+            zc[j][i] = view_z(dz[r][i]);
+            vec2 uv = (vec2(4 * u) + 0.5 + vec2(o)) * inv;
+            pos[j][i] = view_pos(uv, zc[j][i]);
+#endif
+        }
+    }
+}
 #endif
 
 /* The fused prepare, for normals from depth: the 2x2 quad of slice texels 2u .. 2u + 1 (the pass
@@ -155,6 +204,9 @@ void main()
      * 8u + 2 (i - 1, j - 1) downsampled. zc: view z of the entry read with clamp to edge. */
     vec3 pos[6][6];
     float zc[6][6];
+#if PREP_GPU_PATH
+    prep_rows(u, 0, inv, src_size, z0, pos, zc); /* rows 2 .. 5 as the loop below reaches them */
+#else
 #if CACAO_DOWNSAMPLED == 0
     /* Native: in nine gathers (one sampler operation per 2x2, clamp-to-edge like
      * load_src_depth_clamped), not 32 loads. Each gather is taken at the shared corner of its 2x2
@@ -193,8 +245,43 @@ void main()
 #endif
         }
     }
+#endif
 
     vec4 z[4]; /* z[q][k]: level 0 at quad texel q, slice k (the mips' input) */
+#if PREP_GPU_PATH
+    /* The GPU form: the unit direction between two neighbouring entries is normalised once, for
+     * both normals that use it (40 normalisations instead of 64); the other normal takes its
+     * negation, which is exactly the direction the other way (a - b = -(b - a), and
+     * normalize(-v) = -normalize(v)). The centres go row by row, so that only the directions of
+     * two rows are live (a GPU keeps them in registers: fewer of them, more waves). */
+    [[unroll]] for (int q = 0; q < 4; ++q) z[q] = vec4(0.0);
+    vec3 up[5]; /* up[i]: from entry (i, cj - 1) down to (i, cj) */
+    [[unroll]] for (int i = 1; i < 5; ++i) up[i] = normalize(pos[1][i] - pos[0][i]);
+    [[unroll]] for (int cj = 1; cj < 5; ++cj) {
+        if (cj == 1 || cj == 3) prep_rows(u, (cj + 1) / 2, inv, src_size, z0, pos, zc); /* rows cj + 1 .. cj + 2 */
+        vec3 right[5], down[5]; /* from entry (i, cj) to (i + 1, cj), and to (i, cj + 1) */
+        [[unroll]] for (int i = 0; i < 5; ++i) right[i] = normalize(pos[cj][i + 1] - pos[cj][i]);
+        [[unroll]] for (int i = 1; i < 5; ++i) down[i] = normalize(pos[cj + 1][i] - pos[cj][i]);
+        [[unroll]] for (int ci = 1; ci < 5; ++ci) {
+            int k = ((ci - 1) & 1) + 2 * ((cj - 1) & 1); /* the slice, and the quad texel: */
+            int q = ((ci - 1) >> 1) + 2 * ((cj - 1) >> 1);
+            int layer = k / PREP_SLICE_STEP;
+            ivec2 t = quad_texel(u, q);
+            z[q][k] = zc[cj][ci];
+#if CACAO_VARIANT == CACAO_DEPTHS_HALF
+            if (!in_rect(full_res_pixel(t, k), src_size)) z[q][k] = z0;
+#endif
+            vec3 pc = pos[cj][ci];
+            vec4 e = depth_edges(pc.z, pos[cj][ci - 1].z, pos[cj][ci + 1].z, pos[cj - 1][ci].z, pos[cj + 1][ci].z);
+            vec3 n = normal_from_neighbours(-right[ci - 1], right[ci], -up[ci], down[ci], e);
+            if (in_rect(t, s)) {
+                imageStore(depths_image, ivec3(t, layer), vec4(z[q][k]));
+                imageStore(normals_image, ivec3(t, layer), vec4(n, 1.0));
+            }
+        }
+        [[unroll]] for (int i = 1; i < 5; ++i) up[i] = down[i];
+    }
+#else
     [[unroll]] for (int q = 0; q < 4; ++q) {
         ivec2 t = quad_texel(u, q);
         ivec2 qo = t - 2 * u;
@@ -221,12 +308,13 @@ void main()
             }
         }
     }
+#endif
 #if CACAO_VARIANT == CACAO_DEPTHS_MIPS
     reduce_mips(u, z);
 #endif
 }
-#endif /* PREPARE main */
-#endif /* PREPARE_DEPTHS, PREPARE */
+#endif /* PREPARE, PREPARE_GPU main */
+#endif /* PREPARE_DEPTHS, PREPARE, PREPARE_GPU */
 
 /* ============================== PREPARE_NORMALS ============================== */
 #if CACAO_PASS == CACAO_PASS_PREPARE_NORMALS

@@ -44,8 +44,11 @@ static const struct {
     gpu_stage stage;
 } key_stages[] = {
     {"generate.q3base", GPU_STAGE_BASE}, /* before the other generate keys */
+    {"generate_gpu.q3base", GPU_STAGE_BASE},
     {"generate.", GPU_STAGE_GENERATE},
-    {"prepare", GPU_STAGE_PREPARE}, /* prepare (depths and normals in one), prepare_depths, prepare_normals */
+    {"generate_gpu.", GPU_STAGE_GENERATE}, /* the GPU forms (cacao_shader_forms) */
+    {"prepare", GPU_STAGE_PREPARE}, /* prepare (depths and normals in one), its GPU form prepare_gpu,
+                                       prepare_depths, prepare_normals */
     {"classify", GPU_STAGE_CLASSIFY},
     {"compact", GPU_STAGE_CLASSIFY},
     {"fill", GPU_STAGE_LEFT_OUT},
