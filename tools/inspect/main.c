@@ -290,7 +290,7 @@ static int plan_on_scene(const cli_options *options) {
             if (timings.has_tiles)
                 print_skipped_work(&plan, &timings.tiles);
             else
-                printf("no tile counts for this plan (compute_all_tiles): every step runs over everything\n");
+                printf("no tile counts for this frame: every step runs over everything\n");
         }
         vkdev_destroy(&dev);
         if (rc == 0 && dev.validation_messages) {
