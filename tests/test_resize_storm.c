@@ -31,6 +31,7 @@
 #define STORM_REFERENCE_EVERY 40          /* a fresh-context comparison every so many steps ... */
 #define STORM_REFERENCE_MAX_PIXELS 65536  /* ... at sizes up to this many pixels */
 #define STORM_DEFAULT_SEED 0x32u          /* issue 32 */
+#define STORM_RENDER_MAX 256              /* inputs are ray-cast up to this size a side (see storm_inputs) */
 
 /* ---- A small seeded PRNG (splitmix64): the storm is reproducible from its seed ---- */
 
@@ -187,6 +188,35 @@ static uint64_t plan_device_bytes(vkdev *dev, const cacao_plan *plan) {
 
 /* ---- The storm ---- */
 
+/* The frame's inputs at w x h: the default scene ray-cast at that size, or, above
+ * STORM_RENDER_MAX a side, at 1/k of it (k the smallest integer that brings it there) with each
+ * texel repeated k x k: ray-casting 2048x2048 on the CPU (in the sanitizer build above all) costs
+ * more than the frame it feeds, and the storm is about sizes, not about the picture. */
+static void storm_inputs(uint32_t w, uint32_t h, scene_buffers *out) {
+    const uint32_t side = w > h ? w : h, k = (side + STORM_RENDER_MAX - 1) / STORM_RENDER_MAX;
+    if (k == 1) {
+        scene_buffers_default(w, h, out);
+        return;
+    }
+    scene_buffers low;
+    scene_buffers_default((w + k - 1) / k, (h + k - 1) / k, &low);
+    *out = low; /* the projections */
+    out->width = w;
+    out->height = h;
+    const size_t n = (size_t)w * h;
+    out->depth = malloc(n * sizeof(float));
+    out->depth_reversed = malloc(n * sizeof(float));
+    out->normals = malloc(3 * n * sizeof(float));
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            const size_t i = (size_t)y * w + x, j = (size_t)(y / k) * low.width + x / k;
+            out->depth[i] = low.depth[j];
+            out->depth_reversed[i] = low.depth_reversed[j];
+            memcpy(&out->normals[3 * i], &low.normals[3 * j], 3 * sizeof(float));
+        }
+    scene_buffers_free(&low);
+}
+
 /* A size and settings the storm has run, with what it held after the first frame there. */
 typedef struct storm_config {
     uint32_t width, height, settings;
@@ -198,6 +228,7 @@ typedef struct storm_stats {
     uint32_t resizes, frames, settings_changes, revisits, large_frames, references;
     uint64_t device_min, device_max;
     int64_t host_count_min, host_count_max, host_bytes_min, host_bytes_max;
+    double resize_s, inputs_s, frame_s, reference_s; /* wall time in each part of the steps */
 } storm_stats;
 
 static double now_s(void) {
@@ -282,7 +313,9 @@ int main(int argc, char **argv) {
             st.settings_changes++;
         }
         cacao_memory_info info;
+        double t = now_s();
         const cacao_result r = cacao_context_resize(ctx, w, h, &info);
+        st.resize_s += now_s() - t;
         if (r != CACAO_SUCCESS) {
             fprintf(stderr, "step %u: resize to %ux%u: %s: %s\n", step, w, h, cacao_result_string(r),
                     cacao_context_last_error(ctx));
@@ -303,11 +336,15 @@ int main(int argc, char **argv) {
         }
 
         scene_buffers scene;
-        scene_buffers_default(w, h, &scene);
+        t = now_s();
+        storm_inputs(w, h, &scene);
+        st.inputs_s += now_s() - t;
         const cacao_settings *s = &pool[settings];
         const vkdev_frame f = scene_frame(&scene, false, !s->generate_normals);
         char err[512];
+        t = now_s();
         const cacao_result fr = vkdev_run_context(&dev, ctx, &f, 1, ao, NULL, err, sizeof err);
+        st.frame_s += now_s() - t;
         if (fr != CACAO_SUCCESS) {
             fprintf(stderr, "step %u: frame at %ux%u: %s: %s\n", step, w, h, cacao_result_string(fr), err);
             ++test_failures;
@@ -340,7 +377,9 @@ int main(int argc, char **argv) {
         if (host_bytes > st.host_bytes_max) st.host_bytes_max = host_bytes;
 
         if (step % STORM_REFERENCE_EVERY == 0 && (uint64_t)w * h <= STORM_REFERENCE_MAX_PIXELS) {
+            t = now_s();
             check_against_fresh(&dev, s, &f, ao, reference, step);
+            st.reference_s += now_s() - t;
             st.references++;
         }
         scene_buffers_free(&scene);
@@ -366,7 +405,8 @@ int main(int argc, char **argv) {
     printf("  %-40s %u of %u steps (%u distinct sizes+settings)\n", "returns to an earlier size+settings",
            st.revisits, STORM_RESIZES, config_count);
     printf("  %-40s %u\n", "frames compared with a fresh context", st.references);
-    printf("  %-40s %.1f\n", "seconds", seconds);
+    printf("  %-40s %.1f (resizes %.1f, inputs %.1f, frames %.1f, fresh contexts %.1f)\n", "seconds", seconds,
+           st.resize_s, st.inputs_s, st.frame_s, st.reference_s);
     printf("  %-40s %llu .. %llu\n", "device bytes min .. max", (unsigned long long)st.device_min,
            (unsigned long long)st.device_max);
     printf("  %-40s %lld .. %lld, final %lld (first pass there: %lld)\n", "host live allocations min .. max",
