@@ -28,10 +28,10 @@
 #define STORM_RESIZES 1000
 #define STORM_MAX_SIZE 2048
 #define STORM_SETTINGS_POOL 24
-#define STORM_REFERENCE_EVERY 40          /* a fresh-context comparison every so many steps ... */
-#define STORM_REFERENCE_MAX_PIXELS 65536  /* ... at sizes up to this many pixels */
-#define STORM_DEFAULT_SEED 0x32u          /* issue 32 */
-#define STORM_RENDER_MAX 256              /* inputs are ray-cast up to this size a side (see storm_inputs) */
+#define STORM_REFERENCE_EVERY 40         /* a fresh-context comparison every so many steps ... */
+#define STORM_REFERENCE_MAX_PIXELS 65536 /* ... at sizes up to this many pixels */
+#define STORM_DEFAULT_SEED 0x32u         /* issue 32 */
+#define STORM_RENDER_MAX 256             /* inputs are ray-cast up to this size a side (see storm_inputs) */
 
 /* ---- A small seeded PRNG (splitmix64): the storm is reproducible from its seed ---- */
 
@@ -265,9 +265,10 @@ int main(int argc, char **argv) {
     vkdev dev;
     open_device(&dev);
     host_counter counter = {0};
-    const VkAllocationCallbacks callbacks = {
-        .pUserData = &counter, .pfnAllocation = counted_alloc, .pfnReallocation = counted_realloc,
-        .pfnFree = counted_free};
+    const VkAllocationCallbacks callbacks = {.pUserData = &counter,
+                                             .pfnAllocation = counted_alloc,
+                                             .pfnReallocation = counted_realloc,
+                                             .pfnFree = counted_free};
     dev.allocation_callbacks = &callbacks;
 
     const cacao_scene probe = cacao_default_scene(64, 64);
@@ -279,7 +280,8 @@ int main(int argc, char **argv) {
      * leak they cause shows in the rest). */
     static uint32_t sizes[STORM_RESIZES][2];
     for (int i = 0; i < STORM_RESIZES; ++i) random_size(&rng, &sizes[i][0], &sizes[i][1]);
-    static const uint32_t extremes[4][2] = {{1, 1}, {STORM_MAX_SIZE, STORM_MAX_SIZE}, {1, STORM_MAX_SIZE}, {STORM_MAX_SIZE, 1}};
+    static const uint32_t extremes[4][2] = {
+        {1, 1}, {STORM_MAX_SIZE, STORM_MAX_SIZE}, {1, STORM_MAX_SIZE}, {STORM_MAX_SIZE, 1}};
     for (int e = 0; e < 4; ++e) {
         const uint32_t at = rng_range(&rng, 25 * e, 25 * e + 24);
         sizes[at][0] = extremes[e][0];
@@ -328,8 +330,9 @@ int main(int argc, char **argv) {
         CHECK(info.image_count == plan->image_count);
         const uint64_t needed = plan_device_bytes(&dev, plan);
         if (info.total_bytes != needed || info.total_bytes < plan->total_bytes) {
-            fprintf(stderr, "step %u: %ux%u: the context holds %llu bytes; its plan's images and buffers need %llu "
-                            "(%llu packed)\n",
+            fprintf(stderr,
+                    "step %u: %ux%u: the context holds %llu bytes; its plan's images and buffers need %llu "
+                    "(%llu packed)\n",
                     step, w, h, (unsigned long long)info.total_bytes, (unsigned long long)needed,
                     (unsigned long long)plan->total_bytes);
             ++test_failures;
@@ -362,8 +365,9 @@ int main(int argc, char **argv) {
             configs[config_count++] = (storm_config){w, h, settings, info.total_bytes, host_count, host_bytes};
         } else if (seen->device_bytes != info.total_bytes || seen->host_count != host_count ||
                    seen->host_bytes != host_bytes) {
-            fprintf(stderr, "step %u: back at %ux%u, settings %u: device %llu bytes (was %llu), host %lld live "
-                            "allocations of %lld bytes (were %lld of %lld)\n",
+            fprintf(stderr,
+                    "step %u: back at %ux%u, settings %u: device %llu bytes (was %llu), host %lld live "
+                    "allocations of %lld bytes (were %lld of %lld)\n",
                     step, w, h, settings, (unsigned long long)info.total_bytes, (unsigned long long)seen->device_bytes,
                     (long long)host_count, (long long)host_bytes, (long long)seen->host_count,
                     (long long)seen->host_bytes);
@@ -402,8 +406,8 @@ int main(int argc, char **argv) {
     printf("  %-40s %llu\n", "resizes", (unsigned long long)st.resizes);
     printf("  %-40s %u (%u above 256x256 pixels)\n", "frames", st.frames, st.large_frames);
     printf("  %-40s %u\n", "settings changes", st.settings_changes);
-    printf("  %-40s %u of %u steps (%u distinct sizes+settings)\n", "returns to an earlier size+settings",
-           st.revisits, STORM_RESIZES, config_count);
+    printf("  %-40s %u of %u steps (%u distinct sizes+settings)\n", "returns to an earlier size+settings", st.revisits,
+           STORM_RESIZES, config_count);
     printf("  %-40s %u\n", "frames compared with a fresh context", st.references);
     printf("  %-40s %.1f (resizes %.1f, inputs %.1f, frames %.1f, fresh contexts %.1f)\n", "seconds", seconds,
            st.resize_s, st.inputs_s, st.frame_s, st.reference_s);

@@ -26,14 +26,14 @@
 
 typedef struct worker {
     const char *name;
-    vkdev lane;                        /* its command pool, command buffer and fence */
-    cacao_settings settings[2];        /* for the first half of the frames, then the second */
+    vkdev lane;                             /* its command pool, command buffer and fence */
+    cacao_settings settings[2];             /* for the first half of the frames, then the second */
     scene_buffers scenes[SIZES_PER_THREAD]; /* the sizes it cycles through, one per frame */
     pthread_barrier_t *start;
-    float *ao, *reference;             /* the last frame, and the single-threaded one */
+    float *ao, *reference; /* the last frame, and the single-threaded one */
     uint32_t frames, resizes;
-    double begin_s, end_s;             /* its frames' wall-clock span */
-    char error[600];                   /* the first failure */
+    double begin_s, end_s; /* its frames' wall-clock span */
+    char error[600];       /* the first failure */
 } worker;
 
 static double now_s(void) {
@@ -131,15 +131,18 @@ int main(void) {
     static const uint32_t sizes_a[SIZES_PER_THREAD][2] = {{96, 64}, {128, 72}, {80, 80}};
     static const uint32_t sizes_b[SIZES_PER_THREAD][2] = {{128, 128}, {240, 180}, {200, 104}};
     worker workers[2];
-    worker_init(&workers[0], "A", sizes_a,
-                (cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .precision = CACAO_PRECISION_FP16},
-                (cacao_settings){.quality = CACAO_QUALITY_MEDIUM, .downsample = true, .blur_pass_count = 3,
-                                 .generate_normals = true},
-                &start);
+    worker_init(
+        &workers[0], "A", sizes_a,
+        (cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .precision = CACAO_PRECISION_FP16},
+        (cacao_settings){
+            .quality = CACAO_QUALITY_MEDIUM, .downsample = true, .blur_pass_count = 3, .generate_normals = true},
+        &start);
     worker_init(&workers[1], "B", sizes_b,
                 (cacao_settings){.estimator = CACAO_ESTIMATOR_GTAO, .quality = CACAO_QUALITY_HIGH},
-                (cacao_settings){.estimator = CACAO_ESTIMATOR_BITMASK, .quality = CACAO_QUALITY_MEDIUM,
-                                 .generate_normals = true, .blur_pass_count = CACAO_BLUR_NONE},
+                (cacao_settings){.estimator = CACAO_ESTIMATOR_BITMASK,
+                                 .quality = CACAO_QUALITY_MEDIUM,
+                                 .generate_normals = true,
+                                 .blur_pass_count = CACAO_BLUR_NONE},
                 &start);
     for (int t = 0; t < 2; ++t) CHECK(reference_frame(&dev, &workers[t]));
 
