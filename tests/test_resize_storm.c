@@ -188,6 +188,112 @@ static uint64_t plan_device_bytes(vkdev *dev, const cacao_plan *plan) {
 
 /* ---- The storm ---- */
 
+/* A size and settings the storm has run, with what it held after the first frame there. */
+typedef struct storm_config {
+    uint32_t width, height, settings;
+    uint64_t device_bytes;
+    int64_t host_count, host_bytes;
+} storm_config;
+
+typedef struct storm_stats {
+    uint32_t resizes, frames, settings_changes, revisits, large_frames, references, extremes, packed;
+    uint64_t device_min, device_max;
+    int64_t host_count_min, host_count_max, host_bytes_min, host_bytes_max;
+    double seconds, resize_s, inputs_s, frame_s, reference_s; /* wall time, in all and by part */
+} storm_stats;
+
+typedef struct storm {
+    vkdev dev; /* the validation layer reports into it: the storm stays where it is allocated */
+    host_counter counter;
+    VkAllocationCallbacks callbacks;
+    cacao_context *ctx;
+    uint64_t rng;
+    cacao_settings pool[STORM_SETTINGS_POOL]; /* the settings steps choose from */
+    uint32_t sizes[STORM_RESIZES][2];         /* each step's size, unless it returns to an earlier one */
+    bool extreme[STORM_RESIZES];              /* the step runs one of the four extreme sizes */
+    storm_config configs[STORM_RESIZES];
+    uint32_t config_count, current; /* current: the pool index the context has */
+    float *ao, *reference;
+    storm_stats st;
+} storm;
+
+static double now_s(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+static storm_config *find_config(storm *sm, uint32_t w, uint32_t h, uint32_t settings) {
+    for (uint32_t i = 0; i < sm->config_count; ++i) {
+        storm_config *c = &sm->configs[i];
+        if (c->width == w && c->height == h && c->settings == settings) return c;
+    }
+    return NULL;
+}
+
+/* The settings pool and every step's size, the four extremes at random steps among the first 100
+ * (so that a leak they cause shows in the rest). */
+static void storm_plan(storm *sm) {
+    const cacao_scene scene = cacao_default_scene(64, 64);
+    for (int i = 0; i < STORM_SETTINGS_POOL; ++i) sm->pool[i] = random_settings(&sm->rng, (float)scene.ao_radius_world);
+    for (int i = 0; i < STORM_RESIZES; ++i) random_size(&sm->rng, &sm->sizes[i][0], &sm->sizes[i][1]);
+    static const uint32_t extremes[4][2] = {
+        {1, 1}, {STORM_MAX_SIZE, STORM_MAX_SIZE}, {1, STORM_MAX_SIZE}, {STORM_MAX_SIZE, 1}};
+    for (uint32_t e = 0; e < 4; ++e) {
+        const uint32_t at = rng_range(&sm->rng, 25 * e, 25 * e + 24);
+        sm->sizes[at][0] = extremes[e][0];
+        sm->sizes[at][1] = extremes[e][1];
+        sm->extreme[at] = true;
+    }
+}
+
+/* Step step's size and settings: its own size, or now and then a size and settings run before;
+ * new settings from the pool now and then. */
+static void storm_pick(storm *sm, uint32_t step, uint32_t *w, uint32_t *h, uint32_t *settings) {
+    *w = sm->sizes[step][0], *h = sm->sizes[step][1], *settings = sm->current;
+    if (step > 0 && !sm->extreme[step] && rng_chance(&sm->rng, 25)) {
+        const storm_config *c = &sm->configs[rng_range(&sm->rng, 0, sm->config_count - 1)];
+        *w = c->width, *h = c->height, *settings = c->settings;
+        sm->st.revisits++;
+    } else if (step == 0 || rng_chance(&sm->rng, 20)) {
+        *settings = rng_range(&sm->rng, 0, STORM_SETTINGS_POOL - 1);
+    }
+    sm->st.extremes += sm->extreme[step];
+}
+
+/* Sets the settings if they change and resizes; the context must then hold what the plan's
+ * images and buffers need on this device, no more. */
+static bool storm_resize(storm *sm, uint32_t step, uint32_t w, uint32_t h, uint32_t settings, cacao_memory_info *info) {
+    if (settings != sm->current) {
+        CHECK(cacao_context_set_settings(sm->ctx, &sm->pool[settings]) == CACAO_SUCCESS);
+        sm->current = settings;
+        sm->st.settings_changes++;
+    }
+    const double t = now_s();
+    const cacao_result r = cacao_context_resize(sm->ctx, w, h, info);
+    sm->st.resize_s += now_s() - t;
+    if (r != CACAO_SUCCESS) {
+        fprintf(stderr, "step %u: resize to %ux%u: %s: %s\n", step, w, h, cacao_result_string(r),
+                cacao_context_last_error(sm->ctx));
+        ++test_failures;
+        return false;
+    }
+    sm->st.resizes++;
+    const cacao_plan *plan = cacao_context_plan(sm->ctx);
+    CHECK(plan && plan->width == w && plan->height == h && info->image_count == plan->image_count);
+    const uint64_t needed = plan ? plan_device_bytes(&sm->dev, plan) : 0;
+    if (!plan || info->total_bytes != needed || info->total_bytes < plan->total_bytes) {
+        fprintf(stderr,
+                "step %u: %ux%u: the context holds %llu bytes; its plan's images and buffers need %llu "
+                "(%llu packed)\n",
+                step, w, h, (unsigned long long)info->total_bytes, (unsigned long long)needed,
+                plan ? (unsigned long long)plan->total_bytes : 0ull);
+        ++test_failures;
+    }
+    sm->st.packed += plan && info->total_bytes == plan->total_bytes;
+    return true;
+}
+
 /* The frame's inputs at w x h: the default scene ray-cast at that size, or, above
  * STORM_RENDER_MAX a side, at 1/k of it (k the smallest integer that brings it there) with each
  * texel repeated k x k: ray-casting 2048x2048 on the CPU (in the sanitizer build above all) costs
@@ -217,215 +323,149 @@ static void storm_inputs(uint32_t w, uint32_t h, scene_buffers *out) {
     scene_buffers_free(&low);
 }
 
-/* A size and settings the storm has run, with what it held after the first frame there. */
-typedef struct storm_config {
-    uint32_t width, height, settings;
-    uint64_t device_bytes;
-    int64_t host_count, host_bytes;
-} storm_config;
-
-typedef struct storm_stats {
-    uint32_t resizes, frames, settings_changes, revisits, large_frames, references;
-    uint64_t device_min, device_max;
-    int64_t host_count_min, host_count_max, host_bytes_min, host_bytes_max;
-    double resize_s, inputs_s, frame_s, reference_s; /* wall time in each part of the steps */
-} storm_stats;
-
-static double now_s(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
-
 /* A fresh context's frame at this size and settings equals the storm context's, byte for byte. */
-static void check_against_fresh(vkdev *dev, const cacao_settings *s, const vkdev_frame *f, const float *ao,
-                                float *reference, uint32_t step) {
+static void check_against_fresh(storm *sm, uint32_t step, const vkdev_frame *f) {
     char err[512];
-    const cacao_result r = vkdev_run(dev, s, f, 1, reference, NULL, err, sizeof err);
+    const double t = now_s();
+    const cacao_result r = vkdev_run(&sm->dev, &sm->pool[sm->current], f, 1, sm->reference, NULL, err, sizeof err);
+    sm->st.reference_s += now_s() - t;
+    sm->st.references++;
     CHECK(r == CACAO_SUCCESS);
-    if (r == CACAO_SUCCESS && memcmp(ao, reference, sizeof(float) * f->width * f->height) != 0) {
+    if (r == CACAO_SUCCESS && memcmp(sm->ao, sm->reference, sizeof(float) * f->width * f->height) != 0) {
         fprintf(stderr, "step %u: %ux%u: the storm context's AO differs from a fresh context's\n", step, f->width,
                 f->height);
         ++test_failures;
     }
 }
 
-static storm_config *find_config(storm_config *configs, uint32_t count, uint32_t w, uint32_t h, uint32_t settings) {
-    for (uint32_t i = 0; i < count; ++i)
-        if (configs[i].width == w && configs[i].height == h && configs[i].settings == settings) return &configs[i];
-    return NULL;
+/* One frame at the context's size and settings, recorded, submitted and waited on (vkdev makes
+ * the inputs and the output image for the size); AO in [0,1] everywhere. */
+static bool storm_frame(storm *sm, uint32_t step, uint32_t w, uint32_t h) {
+    scene_buffers scene;
+    double t = now_s();
+    storm_inputs(w, h, &scene);
+    sm->st.inputs_s += now_s() - t;
+    const vkdev_frame f = scene_frame(&scene, false, !sm->pool[sm->current].generate_normals);
+    char err[512];
+    t = now_s();
+    const cacao_result r = vkdev_run_context(&sm->dev, sm->ctx, &f, 1, sm->ao, NULL, err, sizeof err);
+    sm->st.frame_s += now_s() - t;
+    if (r != CACAO_SUCCESS) {
+        fprintf(stderr, "step %u: frame at %ux%u: %s: %s\n", step, w, h, cacao_result_string(r), err);
+        ++test_failures;
+    } else {
+        sm->st.frames++;
+        sm->st.large_frames += (uint64_t)w * h > 256 * 256;
+        CHECK(all_finite_unit(sm->ao, (size_t)w * h));
+        if (step % STORM_REFERENCE_EVERY == 0 && (uint64_t)w * h <= STORM_REFERENCE_MAX_PIXELS)
+            check_against_fresh(sm, step, &f);
+    }
+    scene_buffers_free(&scene);
+    return r == CACAO_SUCCESS;
+}
+
+/* After the frame: the device bytes and live host allocations are those of the first time this
+ * size and settings ran (recorded then). */
+static void storm_memory(storm *sm, uint32_t step, uint32_t w, uint32_t h, uint64_t device_bytes) {
+    const int64_t count = __atomic_load_n(&sm->counter.live_count, __ATOMIC_RELAXED);
+    const int64_t bytes = __atomic_load_n(&sm->counter.live_bytes, __ATOMIC_RELAXED);
+    const storm_config *seen = find_config(sm, w, h, sm->current);
+    if (!seen) {
+        sm->configs[sm->config_count++] = (storm_config){w, h, sm->current, device_bytes, count, bytes};
+    } else if (seen->device_bytes != device_bytes || seen->host_count != count || seen->host_bytes != bytes) {
+        fprintf(stderr,
+                "step %u: back at %ux%u, settings %u: device %llu bytes (was %llu), host %lld live "
+                "allocations of %lld bytes (were %lld of %lld)\n",
+                step, w, h, sm->current, (unsigned long long)device_bytes, (unsigned long long)seen->device_bytes,
+                (long long)count, (long long)bytes, (long long)seen->host_count, (long long)seen->host_bytes);
+        ++test_failures;
+    }
+    storm_stats *st = &sm->st;
+    if (device_bytes < st->device_min) st->device_min = device_bytes;
+    if (device_bytes > st->device_max) st->device_max = device_bytes;
+    if (count < st->host_count_min) st->host_count_min = count;
+    if (count > st->host_count_max) st->host_count_max = count;
+    if (bytes < st->host_bytes_min) st->host_bytes_min = bytes;
+    if (bytes > st->host_bytes_max) st->host_bytes_max = bytes;
+}
+
+static void storm_run(storm *sm) {
+    const double start = now_s();
+    for (uint32_t step = 0; step < STORM_RESIZES && test_failures < 10; ++step) {
+        uint32_t w, h, settings;
+        storm_pick(sm, step, &w, &h, &settings);
+        cacao_memory_info info;
+        if (storm_resize(sm, step, w, h, settings, &info) && storm_frame(sm, step, w, h))
+            storm_memory(sm, step, w, h, info.total_bytes);
+    }
+    sm->st.seconds = now_s() - start;
+}
+
+static void storm_print(const storm *sm, uint64_t seed, int64_t final_count, int64_t final_bytes,
+                        const storm_config *first, int64_t after_destroy) {
+    const storm_stats *st = &sm->st;
+    printf("resize storm summary (seed 0x%llx)\n", (unsigned long long)seed);
+    printf("  %-38s %u (the 4 extreme sizes: %u)\n", "resizes", st->resizes, st->extremes);
+    printf("  %-38s %u (%u above 256x256 pixels)\n", "frames", st->frames, st->large_frames);
+    printf("  %-38s %u\n", "settings changes", st->settings_changes);
+    printf("  %-38s %u (%u distinct sizes+settings)\n", "returns to an earlier size+settings", st->revisits,
+           sm->config_count);
+    printf("  %-38s %u\n", "frames compared with a fresh context", st->references);
+    printf("  %-38s %.1f (resizes %.1f, inputs %.1f, frames %.1f, fresh contexts %.1f)\n", "seconds", st->seconds,
+           st->resize_s, st->inputs_s, st->frame_s, st->reference_s);
+    printf("  %-38s %llu .. %llu (= the plan's packed bytes at %u resizes)\n", "device bytes min .. max",
+           (unsigned long long)st->device_min, (unsigned long long)st->device_max, st->packed);
+    printf("  %-38s %lld .. %lld, final %lld (first pass there: %lld)\n", "host live allocations min .. max",
+           (long long)st->host_count_min, (long long)st->host_count_max, (long long)final_count,
+           first ? (long long)first->host_count : -1LL);
+    printf("  %-38s %lld .. %lld, final %lld (first pass there: %lld)\n", "host live bytes min .. max",
+           (long long)st->host_bytes_min, (long long)st->host_bytes_max, (long long)final_bytes,
+           first ? (long long)first->host_bytes : -1LL);
+    printf("  %-38s %lld (%lld allocations in all)\n", "host live after destroy", (long long)after_destroy,
+           (long long)sm->counter.total_count);
+    printf("  %-38s %u\n", "validation messages", sm->dev.validation_messages);
+    char label[128];
+    settings_label(&sm->pool[sm->current], label, sizeof label);
+    printf("  last settings: %s\n", label);
 }
 
 int main(int argc, char **argv) {
     const uint64_t seed = argc > 1 ? strtoull(argv[1], NULL, 0) : STORM_DEFAULT_SEED;
     printf("resize storm: seed 0x%llx (rerun: test_resize_storm 0x%llx)\n", (unsigned long long)seed,
            (unsigned long long)seed);
-    uint64_t rng = seed;
-
-    vkdev dev;
-    open_device(&dev);
-    host_counter counter = {0};
-    const VkAllocationCallbacks callbacks = {.pUserData = &counter,
-                                             .pfnAllocation = counted_alloc,
-                                             .pfnReallocation = counted_realloc,
-                                             .pfnFree = counted_free};
-    dev.allocation_callbacks = &callbacks;
-
-    const cacao_scene probe = cacao_default_scene(64, 64);
-    const float radius = (float)probe.ao_radius_world;
-    cacao_settings pool[STORM_SETTINGS_POOL];
-    for (int i = 0; i < STORM_SETTINGS_POOL; ++i) pool[i] = random_settings(&rng, radius);
-
-    /* The sizes of every step, the four extremes at random steps among the first 100 (so that a
-     * leak they cause shows in the rest). */
-    static uint32_t sizes[STORM_RESIZES][2];
-    for (int i = 0; i < STORM_RESIZES; ++i) random_size(&rng, &sizes[i][0], &sizes[i][1]);
-    static const uint32_t extremes[4][2] = {
-        {1, 1}, {STORM_MAX_SIZE, STORM_MAX_SIZE}, {1, STORM_MAX_SIZE}, {STORM_MAX_SIZE, 1}};
-    for (int e = 0; e < 4; ++e) {
-        const uint32_t at = rng_range(&rng, 25 * e, 25 * e + 24);
-        sizes[at][0] = extremes[e][0];
-        sizes[at][1] = extremes[e][1];
-    }
-
-    cacao_context *ctx = NULL;
-    if (vkdev_context_create(&dev, &ctx) != CACAO_SUCCESS) {
+    storm *sm = calloc(1, sizeof *sm);
+    sm->rng = seed;
+    sm->current = UINT32_MAX;
+    sm->st = (storm_stats){.device_min = UINT64_MAX, .host_count_min = INT64_MAX, .host_bytes_min = INT64_MAX};
+    sm->ao = malloc(sizeof(float) * STORM_MAX_SIZE * STORM_MAX_SIZE);
+    sm->reference = malloc(sizeof(float) * STORM_REFERENCE_MAX_PIXELS);
+    storm_plan(sm);
+    open_device(&sm->dev);
+    sm->callbacks = (VkAllocationCallbacks){.pUserData = &sm->counter,
+                                            .pfnAllocation = counted_alloc,
+                                            .pfnReallocation = counted_realloc,
+                                            .pfnFree = counted_free};
+    sm->dev.allocation_callbacks = &sm->callbacks; /* for the storm's context and the fresh ones */
+    if (vkdev_context_create(&sm->dev, &sm->ctx) != CACAO_SUCCESS) {
         fprintf(stderr, "cannot create the context\n");
         return 1;
     }
-    float *ao = malloc(sizeof(float) * STORM_MAX_SIZE * STORM_MAX_SIZE);
-    float *reference = malloc(sizeof(float) * STORM_REFERENCE_MAX_PIXELS);
-    static storm_config configs[STORM_RESIZES];
-    uint32_t config_count = 0, current = UINT32_MAX;
-    storm_stats st = {.device_min = UINT64_MAX, .host_count_min = INT64_MAX, .host_bytes_min = INT64_MAX};
-    const double start = now_s();
-    for (uint32_t step = 0; step < STORM_RESIZES && test_failures < 10; ++step) {
-        uint32_t w = sizes[step][0], h = sizes[step][1], settings = current;
-        const bool revisit = step > 0 && rng_chance(&rng, 25);
-        if (revisit) { /* a size and settings run before, the settings set again when they differ */
-            const storm_config *c = &configs[rng_range(&rng, 0, config_count - 1)];
-            w = c->width, h = c->height, settings = c->settings;
-            st.revisits++;
-        } else if (step == 0 || rng_chance(&rng, 20)) {
-            settings = rng_range(&rng, 0, STORM_SETTINGS_POOL - 1);
-        }
-        if (settings != current) {
-            CHECK(cacao_context_set_settings(ctx, &pool[settings]) == CACAO_SUCCESS);
-            current = settings;
-            st.settings_changes++;
-        }
-        cacao_memory_info info;
-        double t = now_s();
-        const cacao_result r = cacao_context_resize(ctx, w, h, &info);
-        st.resize_s += now_s() - t;
-        if (r != CACAO_SUCCESS) {
-            fprintf(stderr, "step %u: resize to %ux%u: %s: %s\n", step, w, h, cacao_result_string(r),
-                    cacao_context_last_error(ctx));
-            ++test_failures;
-            continue;
-        }
-        st.resizes++;
-        const cacao_plan *plan = cacao_context_plan(ctx);
-        CHECK(plan && plan->width == w && plan->height == h);
-        CHECK(info.image_count == plan->image_count);
-        const uint64_t needed = plan_device_bytes(&dev, plan);
-        if (info.total_bytes != needed || info.total_bytes < plan->total_bytes) {
-            fprintf(stderr,
-                    "step %u: %ux%u: the context holds %llu bytes; its plan's images and buffers need %llu "
-                    "(%llu packed)\n",
-                    step, w, h, (unsigned long long)info.total_bytes, (unsigned long long)needed,
-                    (unsigned long long)plan->total_bytes);
-            ++test_failures;
-        }
+    storm_run(sm);
 
-        scene_buffers scene;
-        t = now_s();
-        storm_inputs(w, h, &scene);
-        st.inputs_s += now_s() - t;
-        const cacao_settings *s = &pool[settings];
-        const vkdev_frame f = scene_frame(&scene, false, !s->generate_normals);
-        char err[512];
-        t = now_s();
-        const cacao_result fr = vkdev_run_context(&dev, ctx, &f, 1, ao, NULL, err, sizeof err);
-        st.frame_s += now_s() - t;
-        if (fr != CACAO_SUCCESS) {
-            fprintf(stderr, "step %u: frame at %ux%u: %s: %s\n", step, w, h, cacao_result_string(fr), err);
-            ++test_failures;
-            scene_buffers_free(&scene);
-            continue;
-        }
-        st.frames++;
-        if ((uint64_t)w * h > 256 * 256) st.large_frames++;
-        CHECK(all_finite_unit(ao, (size_t)w * h));
-
-        const int64_t host_count = __atomic_load_n(&counter.live_count, __ATOMIC_RELAXED);
-        const int64_t host_bytes = __atomic_load_n(&counter.live_bytes, __ATOMIC_RELAXED);
-        storm_config *seen = find_config(configs, config_count, w, h, settings);
-        if (!seen) {
-            configs[config_count++] = (storm_config){w, h, settings, info.total_bytes, host_count, host_bytes};
-        } else if (seen->device_bytes != info.total_bytes || seen->host_count != host_count ||
-                   seen->host_bytes != host_bytes) {
-            fprintf(stderr,
-                    "step %u: back at %ux%u, settings %u: device %llu bytes (was %llu), host %lld live "
-                    "allocations of %lld bytes (were %lld of %lld)\n",
-                    step, w, h, settings, (unsigned long long)info.total_bytes, (unsigned long long)seen->device_bytes,
-                    (long long)host_count, (long long)host_bytes, (long long)seen->host_count,
-                    (long long)seen->host_bytes);
-            ++test_failures;
-        }
-        if (info.total_bytes < st.device_min) st.device_min = info.total_bytes;
-        if (info.total_bytes > st.device_max) st.device_max = info.total_bytes;
-        if (host_count < st.host_count_min) st.host_count_min = host_count;
-        if (host_count > st.host_count_max) st.host_count_max = host_count;
-        if (host_bytes < st.host_bytes_min) st.host_bytes_min = host_bytes;
-        if (host_bytes > st.host_bytes_max) st.host_bytes_max = host_bytes;
-
-        if (step % STORM_REFERENCE_EVERY == 0 && (uint64_t)w * h <= STORM_REFERENCE_MAX_PIXELS) {
-            t = now_s();
-            check_against_fresh(&dev, s, &f, ao, reference, step);
-            st.reference_s += now_s() - t;
-            st.references++;
-        }
-        scene_buffers_free(&scene);
-    }
-    const double seconds = now_s() - start;
-
-    /* The end state is that of the first pass through its size and settings. */
-    const int64_t final_count = counter.live_count, final_bytes = counter.live_bytes;
-    const cacao_plan *last = cacao_context_plan(ctx);
-    const storm_config *first = last ? find_config(configs, config_count, last->width, last->height, current) : NULL;
+    /* The end state is that of the first pass through its size and settings; destroyed, nothing. */
+    const int64_t final_count = sm->counter.live_count, final_bytes = sm->counter.live_bytes;
+    const cacao_plan *last = cacao_context_plan(sm->ctx);
+    const storm_config *first = last ? find_config(sm, last->width, last->height, sm->current) : NULL;
     CHECK(first && first->host_count == final_count && first->host_bytes == final_bytes);
-    cacao_context_destroy(ctx);
-    const int64_t after_destroy = counter.live_count;
+    cacao_context_destroy(sm->ctx);
+    const int64_t after_destroy = sm->counter.live_count;
     CHECK(after_destroy == 0);
-    vkdev_destroy(&dev);
-    CHECK(dev.validation_messages == 0);
-    CHECK(st.resizes == STORM_RESIZES && st.frames == STORM_RESIZES);
-
-    printf("resize storm summary (seed 0x%llx)\n", (unsigned long long)seed);
-    printf("  %-40s %llu\n", "resizes", (unsigned long long)st.resizes);
-    printf("  %-40s %u (%u above 256x256 pixels)\n", "frames", st.frames, st.large_frames);
-    printf("  %-40s %u\n", "settings changes", st.settings_changes);
-    printf("  %-40s %u of %u steps (%u distinct sizes+settings)\n", "returns to an earlier size+settings", st.revisits,
-           STORM_RESIZES, config_count);
-    printf("  %-40s %u\n", "frames compared with a fresh context", st.references);
-    printf("  %-40s %.1f (resizes %.1f, inputs %.1f, frames %.1f, fresh contexts %.1f)\n", "seconds", seconds,
-           st.resize_s, st.inputs_s, st.frame_s, st.reference_s);
-    printf("  %-40s %llu .. %llu\n", "device bytes min .. max", (unsigned long long)st.device_min,
-           (unsigned long long)st.device_max);
-    printf("  %-40s %lld .. %lld, final %lld (first pass there: %lld)\n", "host live allocations min .. max",
-           (long long)st.host_count_min, (long long)st.host_count_max, (long long)final_count,
-           first ? (long long)first->host_count : -1LL);
-    printf("  %-40s %lld .. %lld, final %lld (first pass there: %lld)\n", "host live bytes min .. max",
-           (long long)st.host_bytes_min, (long long)st.host_bytes_max, (long long)final_bytes,
-           first ? (long long)first->host_bytes : -1LL);
-    printf("  %-40s %lld (%lld allocations in all)\n", "host live after destroy", (long long)after_destroy,
-           (long long)counter.total_count);
-    printf("  %-40s %u\n", "validation messages", dev.validation_messages);
-    char label[128];
-    settings_label(&pool[current], label, sizeof label);
-    printf("  last settings: %s\n", label);
-    free(ao);
-    free(reference);
+    vkdev_destroy(&sm->dev);
+    CHECK(sm->dev.validation_messages == 0);
+    CHECK(sm->st.resizes == STORM_RESIZES && sm->st.frames == STORM_RESIZES && sm->st.extremes == 4);
+    storm_print(sm, seed, final_count, final_bytes, first, after_destroy);
+    free(sm->ao);
+    free(sm->reference);
+    free(sm);
     return test_report("test_resize_storm");
 }
