@@ -105,8 +105,7 @@ static void *VKAPI_CALL counted_realloc(void *user, void *old, size_t size, size
 
 /* Random settings; radius is the scene's. */
 static cacao_settings random_settings(uint64_t *rng, float radius) {
-    cacao_settings s;
-    memset(&s, 0, sizeof s); /* padding too: settings are compared with memcmp */
+    cacao_settings s = {0};
     const uint32_t pick = rng_range(rng, 0, 9);
     s.estimator = pick < 6 ? CACAO_ESTIMATOR_CACAO : pick < 8 ? CACAO_ESTIMATOR_GTAO : CACAO_ESTIMATOR_BITMASK;
     s.quality = (cacao_quality)rng_range(rng, CACAO_QUALITY_LOWEST, CACAO_QUALITY_HIGHEST);
@@ -124,9 +123,10 @@ static cacao_settings random_settings(uint64_t *rng, float radius) {
     return s;
 }
 
-/* One settings row of the summary: "cacao q5 ds blur2 fp16 gen all". */
+/* Settings in a few words for the summary: "cacao highest ds blur 2 fp16 gen all" (blur 0: the
+ * default, -1: none). */
 static void settings_label(const cacao_settings *s, char *out, size_t n) {
-    snprintf(out, n, "%s %s%s blur%d %s%s%s", cacao_estimator_name(s->estimator), cacao_quality_name(s->quality),
+    snprintf(out, n, "%s %s%s blur %d %s%s%s", cacao_estimator_name(s->estimator), cacao_quality_name(s->quality),
              s->downsample ? " ds" : "", s->blur_pass_count, cacao_precision_name(s->precision),
              s->generate_normals ? " gen" : "", s->compute_all_tiles ? " all" : "");
 }
