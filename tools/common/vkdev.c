@@ -23,7 +23,7 @@ static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlag
          strcmp(data->pMessage, "VK_ERROR_OUT_OF_DEVICE_MEMORY") == 0)) {
         dev->out_of_memory_reports++;
     } else {
-        dev->validation_messages++;
+        __atomic_fetch_add(&dev->validation_messages, 1, __ATOMIC_RELAXED); /* lanes' threads report too */
         fprintf(stderr, "validation: %s\n", data->pMessage);
     }
     return VK_FALSE;
@@ -269,7 +269,35 @@ bool vkdev_create(const vkdev_options *options, vkdev *dev, char *err, size_t n)
     return true;
 }
 
+bool vkdev_lane_create(vkdev *dev, pthread_mutex_t *queue_lock, vkdev *lane, char *err, size_t n) {
+    *lane = *dev;
+    lane->messenger = VK_NULL_HANDLE;
+    lane->pool = VK_NULL_HANDLE;
+    lane->cmd = VK_NULL_HANDLE;
+    lane->fence = VK_NULL_HANDLE;
+    lane->timestamps = VK_NULL_HANDLE;
+    lane->validation_messages = 0;
+    lane->lane = true;
+    lane->queue_lock = queue_lock;
+    if (dev->statistics_only) return cacao_set_err(err, n, "a pipeline-statistics device records nothing: no lanes");
+    if (create_frame_objects(lane, err, n)) return true;
+    vkdev_destroy(lane);
+    return false;
+}
+
+/* A lane's own objects; the device's owner waits for the device and destroys it. */
+static void destroy_lane(vkdev *lane) {
+    if (lane->timestamps) vkDestroyQueryPool(lane->device, lane->timestamps, NULL);
+    if (lane->fence) vkDestroyFence(lane->device, lane->fence, NULL);
+    if (lane->pool) vkDestroyCommandPool(lane->device, lane->pool, NULL);
+    memset(lane, 0, sizeof *lane);
+}
+
 void vkdev_destroy(vkdev *dev) {
+    if (dev->lane) {
+        destroy_lane(dev);
+        return;
+    }
     if (dev->device) {
         if (!dev->statistics_only) vkDeviceWaitIdle(dev->device); /* a compiler's null device runs nothing */
         if (dev->timestamps) vkDestroyQueryPool(dev->device, dev->timestamps, NULL);
@@ -439,10 +467,30 @@ static void transition(VkCommandBuffer cmd, VkImage image, VkImageLayout from, V
     vkCmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, NULL, 0, NULL, 1, &b);
 }
 
+/* vkQueueSubmit, holding a lane's queue lock. */
+static VkResult queue_submit(vkdev *dev, const VkSubmitInfo *submit) {
+    if (dev->queue_lock) pthread_mutex_lock(dev->queue_lock);
+    const VkResult vr = vkQueueSubmit(dev->queue, 1, submit, dev->fence);
+    if (dev->queue_lock) pthread_mutex_unlock(dev->queue_lock);
+    return vr;
+}
+
+/* Waits until the device is idle; a lane waits for the queue it shares instead (vkDeviceWaitIdle
+ * would touch the queue without the lock). */
+static void wait_idle(vkdev *dev) {
+    if (!dev->lane) {
+        vkDeviceWaitIdle(dev->device);
+        return;
+    }
+    pthread_mutex_lock(dev->queue_lock);
+    vkQueueWaitIdle(dev->queue);
+    pthread_mutex_unlock(dev->queue_lock);
+}
+
 static bool submit_and_wait(vkdev *dev) {
     const VkSubmitInfo submit = {
         .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &dev->cmd};
-    if (vkEndCommandBuffer(dev->cmd) != VK_SUCCESS || vkQueueSubmit(dev->queue, 1, &submit, dev->fence) != VK_SUCCESS ||
+    if (vkEndCommandBuffer(dev->cmd) != VK_SUCCESS || queue_submit(dev, &submit) != VK_SUCCESS ||
         vkWaitForFences(dev->device, 1, &dev->fence, VK_TRUE, UINT64_MAX) != VK_SUCCESS)
         return false;
     vkResetFences(dev->device, 1, &dev->fence);
@@ -485,6 +533,7 @@ cacao_result vkdev_context_create_on_cache(vkdev *dev, VkPipelineCache cache, ca
                                      .shader_float16_enabled = dev->fp16,
                                      .required_subgroup_size = dev->required_subgroup_size,
                                      .shader_forms = dev->shader_forms,
+                                     .allocation_callbacks = dev->allocation_callbacks,
                                      .pipeline_cache = cache};
     return cacao_context_create(&desc, ctx);
 }
@@ -744,7 +793,7 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
 vk_failed:
     r = vk_error(err, n, "a Vulkan submission");
 done:
-    vkDeviceWaitIdle(dev->device);
+    wait_idle(dev);
     free_image(dev, &depth);
     free_image(dev, &normals);
     free_image(dev, &output);

@@ -5,6 +5,7 @@
 #ifndef CACAO_VKDEV_H
 #define CACAO_VKDEV_H
 
+#include <pthread.h>
 #include <stdbool.h>
 #include <stdint.h>
 
@@ -34,7 +35,10 @@ typedef struct vkdev {
     uint32_t required_subgroup_size; /* passed to cacao_context_desc by vkdev_context_create; 0: default */
     cacao_shader_forms shader_forms; /* passed to cacao_context_desc likewise; 0: the device's choice */
     char context_error[256];         /* the message of vkdev_context_create's last failure */
+    const VkAllocationCallbacks *allocation_callbacks; /* passed to cacao_context_desc likewise; NULL: none */
     bool statistics_only;            /* vkdev_options.pipeline_statistics: no pool, fence, queries or command buffer */
+    bool lane;                       /* made by vkdev_lane_create: the device belongs to another vkdev */
+    pthread_mutex_t *queue_lock;     /* a lane's: held around every use of the shared queue */
 } vkdev;
 
 typedef struct vkdev_options {
@@ -53,6 +57,14 @@ typedef struct vkdev_options {
  * layer reports into *dev, so dev must not move while it is alive. */
 bool vkdev_create(const vkdev_options *options, vkdev *dev, char *err, size_t err_size);
 void vkdev_destroy(vkdev *dev);
+
+/* A lane: the device, queue and validation of dev, with a command pool, command buffer, fence and
+ * query pool of its own, for one more thread. Every vkdev function works on it as on dev; its
+ * submissions and queue waits hold queue_lock (Vulkan makes the caller synchronise a queue's
+ * use), which every lane on the device shares (dev itself then may not submit while lanes run).
+ * Validation messages count in dev. vkdev_destroy(lane) frees the lane's own objects only, after
+ * its work is done, and must precede vkdev_destroy(dev). */
+bool vkdev_lane_create(vkdev *dev, pthread_mutex_t *queue_lock, vkdev *lane, char *err, size_t err_size);
 
 /* The device's driver in words: its name and version, and the Vulkan version it offers. */
 void vkdev_driver(const vkdev *dev, char *out, size_t out_size);
