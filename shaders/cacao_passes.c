@@ -130,11 +130,14 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                       {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), R(DEPTHS, DEPTHS, ALL), R(SSAO, SSAO_PING, ALL),
                        W(OUTPUT, OUTPUT, ALL)}},
     /* spec: estimators.md. Full-resolution intermediates, read and written as storage images. */
+    /* Over the tiles classification found not all background (the fill of the background list
+     * stores there what it would). */
     PASS(HORIZON_PREPARE) = {"horizon_prepare", {"depth", "input"}, 2, false, false, false, WG(HORIZON), CACAOI_GRID_OUTPUT,
-                           5,
+                           6,
                            {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL),
                             R(SRC_NORMALS, NORMALS_INPUT, V(CACAO_HORIZON_NORMALS_INPUT)),
-                            W(VIEW_DEPTH, VIEW_DEPTH, ALL), W(VIEW_NORMALS, VIEW_NORMALS, ALL)}},
+                            W(VIEW_DEPTH, VIEW_DEPTH, ALL), W(VIEW_NORMALS, VIEW_NORMALS, ALL), R(TILES, TILES, ALL)},
+                           .lists = {CACAO_LIST_PREPARE, CACAO_LIST_PREPARE}},
     /* The estimator and the denoise passes run over the needed tiles (docs/tiles.md: a group is a
      * tile of 8x8 pixels); the fills give the rest their AO 1. */
     PASS(HORIZON_MAIN) = {"horizon_main", {"gtao", "bitmask", "gtao_direct", "bitmask_direct"}, 4, false, false, false,
@@ -151,12 +154,13 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                             W(OUTPUT, OUTPUT, V(CACAO_DENOISE_FINAL)), R(TILES, TILES, ALL)},
                            .lists = {GEN, GEN}},
     /* docs/tiles.md: classes (one invocation per tile), then the lists. CACAO classifies its
-     * deinterleaved depths (variant 0 keeps the pass's name), the horizon estimators their view z. */
+     * deinterleaved depths (variant 0 keeps the pass's name), the horizon estimators the caller's
+     * depth before their prepare. */
     PASS(CLASSIFY) = {"classify", {NULL, "horizon"}, 2, false, false, false, {CACAO_WG_CLASSIFY, CACAO_WG_CLASSIFY},
                       CACAOI_GRID_TILES, 4,
                       {CONSTANTS, R(DEPTHS, DEPTHS, V(CACAO_CLASSIFY_SLICES)),
-                       R(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_CLASSIFY_HORIZON)), W(TILES, TILES, ALL)}},
-    PASS(COMPACT) = {"compact", {NULL}, 1, false, false, false, {CACAO_WG_COMPACT, 1}, CACAOI_GRID_COMPACT, 2,
+                       R(SRC_DEPTH, DEPTH_INPUT, V(CACAO_CLASSIFY_HORIZON)), W(TILES, TILES, ALL)}},
+    PASS(COMPACT) = {"compact", {NULL, "horizon"}, 2, false, false, false, {CACAO_WG_COMPACT, 1}, CACAOI_GRID_COMPACT, 2,
                      {CONSTANTS, W(TILES, TILES, ALL)}},
     /* AO 1 into the slices' AO of the tiles generate skips (and, a step rebinding SSAO_IMAGE, into
      * the blur's output there when a blur runs). */
@@ -175,11 +179,13 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * normals that use it; generate: the tap's atlas level in integers. */
     PASS(PREPARE_GPU) = PREPARE_ROW("prepare_gpu"),
     PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu"),
-    PASS(FILL) = {"fill", {NULL, "horizon", "output"}, 3, false, false, false, {CACAO_TILE, CACAO_TILE},
-                  CACAOI_GRID_SLICE_LAYERS, 5,
+    PASS(FILL) = {"fill", {NULL, "horizon", "output", "view"}, 4, false, false, false, {CACAO_TILE, CACAO_TILE},
+                  CACAOI_GRID_SLICE_LAYERS, 7,
                   {CONSTANTS, R(TILES, TILES, ALL), W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),
-                   W(HORIZON_AO_OUT, AO_RAW, V(CACAO_FILL_HORIZON)), W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT))},
-                  .lists = {CACAO_LIST_FILL_SLICES, CACAO_LIST_FILL_SLICES, CACAO_LIST_FILL_SLICES}},
+                   W(HORIZON_AO_OUT, AO_RAW, V(CACAO_FILL_HORIZON)), W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT)),
+                   W(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_FILL_VIEW)), W(VIEW_NORMALS, VIEW_NORMALS, V(CACAO_FILL_VIEW))},
+                  .lists = {CACAO_LIST_FILL_SLICES, CACAO_LIST_FILL_SLICES, CACAO_LIST_FILL_SLICES,
+                            CACAO_LIST_BACKGROUND}},
 };
 #undef R
 #undef W

@@ -62,25 +62,27 @@ static void rebind(cacaoi_step *s, unsigned slot, cacao_resource resource) {
 /* The longest sequences: CACAO with the caller's normals at HIGHEST with a blur (prepare twice,
  * classify, compact, Q3 base, importance twice, generate, fill twice, blur, apply), and the
  * horizon estimators with the most denoise passes. */
-_Static_assert(12 <= CACAOI_SEQUENCE_MAX && 7 + CACAO_KEY_MAX_BLUR_PASSES <= CACAOI_SEQUENCE_MAX,
+_Static_assert(12 <= CACAOI_SEQUENCE_MAX && 8 + CACAO_KEY_MAX_BLUR_PASSES <= CACAOI_SEQUENCE_MAX,
                "a plan holds every step of the longest sequence");
 _Static_assert(CACAO_WG_HORIZON_X == CACAO_TILE && CACAO_WG_HORIZON_Y == CACAO_TILE,
                "a horizon estimator's group is one tile of the list it runs over");
 
-/* Horizon estimators: prepare, classification (docs/tiles.md), the estimator over the needed
- * tiles (into the output when no denoise pass runs), the fills of the rest with AO 1 (the
+/* Horizon estimators: classification from the caller's depth (docs/tiles.md), prepare over the
+ * tiles that are not all background (the fill of the others stores their view z and normal), the
+ * estimator over the needed tiles (into the output when no denoise pass runs), the fills of the rest with AO 1 (the
  * intermediates the denoise passes read, and the output), then the denoise passes over the needed
  * tiles, ping-ponging between AO_RAW and AO_PONG, the last into the output. */
 static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENCE_MAX]) {
     if (c->downsampled) return 0; /* full resolution only */
     size_t n = 0;
     const unsigned blur = c->blur_passes;
+    push(out, &n, CACAO_PASS_CLASSIFY, CACAO_CLASSIFY_HORIZON, 0, 0, 0);
+    push(out, &n, CACAO_PASS_COMPACT, CACAO_COMPACT_HORIZON, 0, 0, 0);
     push(out, &n, CACAO_PASS_HORIZON_PREPARE, c->normals_from_input ? CACAO_HORIZON_NORMALS_INPUT : CACAO_HORIZON_NORMALS_DEPTH,
          0, 0, 0);
+    push(out, &n, CACAO_PASS_FILL, CACAO_FILL_VIEW, 0, 0, 0);
     const unsigned main_variant = (c->estimator == CACAO_KEY_ESTIMATOR_GTAO ? CACAO_HORIZON_GTAO : CACAO_HORIZON_BITMASK) +
                                   (blur == 0 ? CACAO_HORIZON_GTAO_DIRECT : 0);
-    push(out, &n, CACAO_PASS_CLASSIFY, CACAO_CLASSIFY_HORIZON, 0, 0, 0);
-    push(out, &n, CACAO_PASS_COMPACT, 0, 0, 0, 0);
     push(out, &n, CACAO_PASS_HORIZON_MAIN, main_variant, 0, 0, 0);
     if (blur >= 1) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0); /* AO_RAW */
     if (blur >= 2) rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0), CACAO_BINDING_HORIZON_AO_OUT,

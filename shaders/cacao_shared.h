@@ -84,10 +84,16 @@
 #define CACAO_CLASSIFY_HORIZON 1
 
 /* Fill variants: AO 1 into the slices' AO (CACAO), into the horizon estimators' AO intermediate,
- * or into the caller's output (a horizon estimator's last pass writes it over the needed tiles). */
+ * or into the caller's output (a horizon estimator's last pass writes it over the needed tiles);
+ * or, over the background list, the view z (-1) and normal the horizon prepare stores there. */
 #define CACAO_FILL_SLICES 0
 #define CACAO_FILL_HORIZON 1
 #define CACAO_FILL_OUTPUT 2
+#define CACAO_FILL_VIEW 3
+
+/* Compact variants: CACAO's lists, or the horizon estimators' (also prepare and background). */
+#define CACAO_COMPACT_SLICES 0
+#define CACAO_COMPACT_HORIZON 1
 
 /* ---- Tiles (docs/tiles.md) ----
  * A tile is CACAO_TILE x CACAO_TILE slice texels (all layers). A texel is quiet when its AO is 1
@@ -102,8 +108,8 @@
  *            CACAO_TILE_COMMAND(l)), the tile counts per class (CACAO_TILE_COUNT_*), and the
  *            entries per list (list l at CACAO_TILE_LIST_ENTRIES(l));
  *   classes  one uint per tile, from CACAO_TILE_CLASSES;
- *   lists    the generate and fill lists hold up to one entry per tile, the blur list one per blur
- *            group; list l starts at CACAO_TILE_LIST_BASE(l, tiles).
+ *   lists    the generate, fill, prepare and background lists hold up to one entry per tile, the
+ *            blur list (the last) one per blur group; list l starts at CACAO_TILE_LIST_BASE(l, tiles).
  * A list is dispatched as a grid x wide (tiles_x, or blur_groups_x for the blur) and as many rows
  * as its entries fill (lavapipe runs a 1D grid of the same groups slower); group (x, y)
  * takes entry y width + x, and a group past the last entry finds CACAO_TILE_NO_ENTRY (the host
@@ -112,8 +118,10 @@
 #define CACAO_LIST_NONE 0                /* a direct dispatch */
 #define CACAO_LIST_GENERATE 1            /* needed tiles (one generate group each, z = layers) */
 #define CACAO_LIST_FILL_SLICES 2         /* tiles that are not needed (z = layers) */
-#define CACAO_LIST_BLUR 3                /* blur groups touching a needed tile (z = layers) */
-#define CACAO_LIST_COUNT 3
+#define CACAO_LIST_PREPARE 3             /* horizon estimators: tiles not all background (their prepare) */
+#define CACAO_LIST_BACKGROUND 4          /* horizon estimators: tiles all background (view z -1 filled) */
+#define CACAO_LIST_BLUR 5                /* blur groups touching a needed tile (z = layers) */
+#define CACAO_LIST_COUNT 5
 #define CACAO_TILE_HEADER 32
 #define CACAO_TILE_COMMAND(list) (3 * ((list) - 1)) /* header: list's indirect command (x, y, z) */
 #define CACAO_TILE_COUNT_ACTIVE 15       /* header: tiles per class */
@@ -121,7 +129,7 @@
 #define CACAO_TILE_COUNT_BACKGROUND 17
 #define CACAO_TILE_LIST_ENTRIES(list) (CACAO_TILE_COUNT_BACKGROUND + (list)) /* header: entries in list */
 #define CACAO_TILE_CLASSES CACAO_TILE_HEADER /* first tile class */
-/* First entry of list 1..3 (tiles: tiles_x tiles_y); the uints of the whole buffer. */
+/* First entry of list 1..5 (tiles: tiles_x tiles_y); the uints of the whole buffer. */
 #define CACAO_TILE_LIST_BASE(list, tiles) (CACAO_TILE_CLASSES + (tiles) * (list))
 #define CACAO_TILE_BUFFER_UINTS(tiles, blur_groups) (CACAO_TILE_LIST_BASE(CACAO_LIST_BLUR, tiles) + (blur_groups))
 #define CACAO_TILE_NO_ENTRY 0xffffffffu  /* list slots past the last entry (the host fills them) */

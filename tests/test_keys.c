@@ -107,7 +107,7 @@ static void test_subset(void) {
                               "horizon_main.gtao_direct", "horizon_main.bitmask_direct",
                               "horizon_denoise.intermediate", "horizon_denoise.final", "classify", "compact", "fill",
                               /* the horizon estimators' tiles (docs/tiles.md) */
-                              "classify.horizon", "fill.horizon", "fill.output",
+                              "classify.horizon", "compact.horizon", "fill.horizon", "fill.output", "fill.view",
                               /* the GPU forms: a build embeds both, the device chooses (in key order) */
                               "blur_gpu.1.fp32", "blur_gpu.2.fp32", "blur_gpu.3.fp32", "blur_gpu.4.fp32",
                               "blur_gpu.5.fp32", "blur_gpu.6.fp32", "blur_gpu.7.fp32", "blur_gpu.8.fp32",

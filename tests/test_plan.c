@@ -91,7 +91,9 @@ static void test_only_needed_resources(void) {
     /* 1920x1080: slices 960x540, tiles of 8x8 texels 120x68; a blur group of 2 passes outputs
      * 64x32 texels (8x8 threads of 8x4 each, from their footprints). */
     CHECK(lowest.tiles_x == 120 && lowest.tiles_y == 68 && lowest.blur_groups_x == 15 && lowest.blur_groups_y == 17);
-    CHECK(lowest.tile_buffer_bytes == 4u * (32u + 3u * 120u * 68u + 15u * 17u));
+    /* header, classes, four lists of a tile each (generate, fill, and the horizon estimators'
+     * prepare and background lists), the blur list */
+    CHECK(lowest.tile_buffer_bytes == 4u * (32u + 5u * 120u * 68u + 15u * 17u));
     cacao_plan highest =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
     const cacao_plan_image *depths = find_image(&highest, CACAO_RES_DEPTHS);

@@ -267,7 +267,13 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
                 if (s->barrier_resources & (1u << r)) fprintf(out, " %s", cacaoi_resources[r].name);
             fprintf(out, "\n");
         }
-        static const char *const list_names[] = {"", "needed tiles", "unneeded tiles", "blur groups at needed tiles"};
+        static const char *const list_names[] = {"",
+                                                 "needed tiles",
+                                                 "unneeded tiles",
+                                                 "tiles not all background",
+                                                 "background tiles",
+                                                 "blur groups at needed tiles"};
+        _Static_assert(sizeof list_names / sizeof list_names[0] == CACAO_LIST_COUNT + 1, "a name per list");
         fprintf(out, "  %2u %-34s dispatch %4u x %4u x %u%s%s  reads", i, s->key_name, s->dispatch[0], s->dispatch[1],
                 s->dispatch[2], s->list ? " at most, indirect over " : "", list_names[s->list]);
         print_resources(out, s, false);

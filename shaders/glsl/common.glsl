@@ -146,6 +146,19 @@ ivec2 full_res_pixel(ivec2 t, int slice)
 #endif
 }
 
+#if CACAO_PASS == CACAO_PASS_HORIZON_PREPARE || (CACAO_PASS == CACAO_PASS_CLASSIFY && CACAO_VARIANT == CACAO_CLASSIFY_HORIZON)
+/* Horizon estimators: raw depth -> view z, -1 for background (estimators.md section 1: the
+ * denominator keeps 1 - d exact where d is near 1). Their prepare stores it; their classification
+ * reads it from the caller's depth before that. */
+float horizon_view_z(float d)
+{
+    if (d == CB.horizon_far_depth) return -1.0;
+    float z = (CB.depth_unpack.x + CB.depth_unpack_d.x * d) /
+              (CB.horizon_depth_den_a + CB.horizon_depth_den_b * d + CB.horizon_depth_den_c * (1.0 - d));
+    return (z > 0.0 && z < 3.0e38) ? z : -1.0; /* NaN fails z > 0 */
+}
+#endif
+
 #ifdef CACAO_BIND_SRC_DEPTH
 /* The caller's depth at pixel p with clamp-to-edge (what AMD's gathers/samples read): the
  * nearest clamp-to-edge sampler at the pixel centre, LOD 0 (the view's base level, as a fetch).

@@ -27,16 +27,6 @@ vec3 horizon_normal(vec3 stored, vec3 to_camera)
 
 #if CACAO_PASS == CACAO_PASS_HORIZON_PREPARE
 
-/* Raw depth -> view z, -1 for background (estimators.md section 1: the denominator keeps 1 - d
- * exact where d is near 1). */
-float horizon_view_z(float d)
-{
-    if (d == CB.horizon_far_depth) return -1.0;
-    float z = (CB.depth_unpack.x + CB.depth_unpack_d.x * d) /
-              (CB.horizon_depth_den_a + CB.horizon_depth_den_b * d + CB.horizon_depth_den_c * (1.0 - d));
-    return (z > 0.0 && z < 3.0e38) ? z : -1.0; /* NaN fails z > 0 */
-}
-
 float load_view_z(ivec2 p, ivec2 size) { return in_rect(p, size) ? horizon_view_z(texelFetch(src_depth, p, 0).r) : -1.0; }
 
 #if CACAO_VARIANT == CACAO_HORIZON_NORMALS_DEPTH
@@ -51,9 +41,12 @@ vec3 neighbour_dir(vec3 pc, ivec2 q, float zq)
 }
 #endif
 
+/* Over the tiles that are not all background (docs/tiles.md): a workgroup is one tile. */
 void main()
 {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 group;
+    if (!group_of(group)) return;
+    ivec2 p = texel_of(group);
     ivec2 size = textureSize(src_depth, 0);
     if (!in_rect(p, size)) return;
     float z = load_view_z(p, size);

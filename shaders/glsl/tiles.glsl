@@ -39,22 +39,27 @@ bool group_of(out ivec2 g)
 layout(local_size_x = CACAO_WG_CLASSIFY, local_size_y = CACAO_WG_CLASSIFY) in;
 
 #if CACAO_VARIANT == CACAO_CLASSIFY_HORIZON
-/* The horizon estimators' pixels, by the rules their passes apply: background where the stored view
- * z is not positive (the estimator and the denoise write 1 there), quiet by fade where the fade
- * factor of horizon_visibility is 0 (with the margin), so its result is 1 there too. */
+/* The horizon estimators' pixels, from the caller's depth, before their prepare: background where
+ * the depth is the far plane's or NaN (their prepare stores view z -1 there by the same exact
+ * tests, and the estimator and the denoise write 1); quiet by fade where the view z the prepare
+ * computes is positive and the fade factor of horizon_visibility is 0 with the margin (the margin
+ * covers the ulps by which two passes may evaluate z differently). A depth whose z is invalid in
+ * another way is neither: the passes compute it (and write 1). A background tile is left to the
+ * fill of the background list, which stores what the prepare would. */
 void main()
 {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
     if (!in_rect(t, ivec2(CB.tiles_x, CB.tiles_y))) return;
-    ivec2 size = imageSize(view_depth);
-    uint flags = CB.tiles_all != 0 ? 1u : 0u; /* 1: not quiet, 2: not background */
-    for (int y = 0; y < CACAO_TILE && (flags & 1u) == 0u; ++y) {
+    ivec2 size = textureSize(src_depth, 0);
+    uint flags = CB.tiles_all != 0 ? 3u : 0u; /* 1: not quiet, 2: not background */
+    for (int y = 0; y < CACAO_TILE && flags != 3u; ++y) {
         for (int x = 0; x < CACAO_TILE; ++x) {
             ivec2 p = t * CACAO_TILE + ivec2(x, y);
             if (!in_rect(p, size)) continue;
-            float z = imageLoad(view_depth, p).r;
-            bool background = !(z > 0.0);
-            bool faded = z * CB.effect_fade_out_mul + CB.effect_fade_out_add < -CB.quiet_margin;
+            float d = texelFetch(src_depth, p, 0).r;
+            bool background = d == CB.horizon_far_depth || isnan(d);
+            float z = background ? -1.0 : horizon_view_z(d);
+            bool faded = z > 0.0 && z * CB.effect_fade_out_mul + CB.effect_fade_out_add < -CB.quiet_margin;
             if (!background) flags |= 2u;
             if (!(background || faded)) flags |= 1u;
         }
@@ -127,6 +132,10 @@ void main()
     if (i < t) {
         ivec2 g = ivec2(i % CB.tiles_x, i / CB.tiles_x);
         append(touches_needed(g, g) ? CACAO_LIST_GENERATE : CACAO_LIST_FILL_SLICES, g);
+#if CACAO_VARIANT == CACAO_COMPACT_HORIZON
+        bool background = tiles[CACAO_TILE_CLASSES + i] == CACAO_TILE_CLASS_BACKGROUND;
+        append(background ? CACAO_LIST_BACKGROUND : CACAO_LIST_PREPARE, g);
+#endif
     } else if (i < t + b) {
         i -= t;
         ivec2 g = ivec2(i % CB.blur_groups_x, i / CB.blur_groups_x);
@@ -149,7 +158,12 @@ void main()
     ivec2 group;
     if (!group_of(group)) return;
     ivec2 p = texel_of(group);
-#if CACAO_VARIANT == CACAO_FILL_HORIZON
+#if CACAO_VARIANT == CACAO_FILL_VIEW
+    if (in_rect(p, imageSize(view_depth))) { /* what the horizon prepare stores for background */
+        imageStore(view_depth, p, vec4(-1.0));
+        imageStore(view_normals, p, vec4(0.0, 0.0, -1.0, 0.0));
+    }
+#elif CACAO_VARIANT == CACAO_FILL_HORIZON
     if (in_rect(p, imageSize(horizon_ao_out))) imageStore(horizon_ao_out, p, vec4(1.0));
 #elif CACAO_VARIANT == CACAO_FILL_OUTPUT
     if (in_rect(p, imageSize(output_image))) imageStore(output_image, p, vec4(1.0, 0.0, 0.0, 0.0));
