@@ -148,6 +148,30 @@ void main()
 #define PREP_GPU_PATH 0
 #endif
 
+/* Entry (i, j) = o + 1 of the block: its view z (read with clamp to edge) and view position. d:
+ * its raw depth, gathered (native); downsampled, the entry loads its own (d unused). */
+void prep_entry(ivec2 u, ivec2 o, float d, vec2 inv, ivec2 src_size, float z0, out float zc, out vec3 pos)
+{
+#if CACAO_DOWNSAMPLED == 1
+    /* the normals' loads are integer loads: OOB -> raw 0 ([quirk] DOWNSAMPLED-NORMAL-OOB kept); the
+     * depths' are clamped */
+    ivec2 px = 8 * u + 2 * o;
+    zc = view_z(load_src_depth_clamped(px));
+    vec2 uv = (vec2(8 * u) + 0.5 + 2.0 * vec2(o)) * inv;
+    pos = view_pos(uv, in_rect(px, src_size) ? zc : z0);
+#else
+    zc = view_z(d);
+    vec2 uv = (vec2(4 * u) + 0.5 + vec2(o)) * inv;
+    pos = view_pos(uv, zc);
+#endif
+}
+
+#if CACAO_DOWNSAMPLED == 1
+#define PREP_DEPTH(dz, row, col) 0.0 /* prep_entry loads it */
+#else
+#define PREP_DEPTH(dz, row, col) dz[row][col]
+#endif
+
 #if PREP_GPU_PATH
 /* The GPU form's entries, two rows at a time (rows 2 gj and 2 gj + 1 of main's block), so that a
  * row is computed when the raster order first needs it and few rows are live at once (a GPU keeps
@@ -171,17 +195,7 @@ void prep_rows(ivec2 u, int gj, vec2 inv, ivec2 src_size, float z0, inout vec3 p
             pos[j][i] = vec3(0.0);
             zc[j][i] = 0.0;
             if ((i == 0 || i == 5) && (j == 0 || j == 5)) continue;
-            ivec2 o = ivec2(i - 1, j - 1);
-#if CACAO_DOWNSAMPLED == 1
-            ivec2 px = 8 * u + 2 * o;
-            zc[j][i] = view_z(load_src_depth_clamped(px));
-            vec2 uv = (vec2(8 * u) + 0.5 + 2.0 * vec2(o)) * inv;
-            pos[j][i] = view_pos(uv, in_rect(px, src_size) ? zc[j][i] : z0);
-#else
-            zc[j][i] = view_z(dz[r][i]);
-            vec2 uv = (vec2(4 * u) + 0.5 + vec2(o)) * inv;
-            pos[j][i] = view_pos(uv, zc[j][i]);
-#endif
+            prep_entry(u, ivec2(i - 1, j - 1), PREP_DEPTH(dz, r, i), inv, src_size, z0, zc[j][i], pos[j][i]);
         }
     }
 }
@@ -230,19 +244,7 @@ void main()
             pos[j][i] = vec3(0.0);
             zc[j][i] = 0.0;
             if ((i == 0 || i == 5) && (j == 0 || j == 5)) continue;
-            ivec2 o = ivec2(i - 1, j - 1);
-#if CACAO_DOWNSAMPLED == 1
-            /* the normals' loads are integer loads: OOB -> raw 0 ([quirk] DOWNSAMPLED-NORMAL-OOB
-             * kept); the depths' are clamped */
-            ivec2 px = 8 * u + 2 * o;
-            zc[j][i] = view_z(load_src_depth_clamped(px));
-            vec2 uv = (vec2(8 * u) + 0.5 + 2.0 * vec2(o)) * inv;
-            pos[j][i] = view_pos(uv, in_rect(px, src_size) ? zc[j][i] : z0);
-#else
-            zc[j][i] = view_z(dz[j][i]);
-            vec2 uv = (vec2(4 * u) + 0.5 + vec2(o)) * inv;
-            pos[j][i] = view_pos(uv, zc[j][i]);
-#endif
+            prep_entry(u, ivec2(i - 1, j - 1), PREP_DEPTH(dz, j, i), inv, src_size, z0, zc[j][i], pos[j][i]);
         }
     }
 #endif
