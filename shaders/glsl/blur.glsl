@@ -143,8 +143,18 @@ void main()
     }
 }
 #else
-/* 2 x 2048 values: 16 KiB (fp32), 8 KiB (fp16); the GPU form 2 x 1024. */
+/* 2 x 2048 values: 16 KiB (fp32), 8 KiB (fp16); the GPU form 2 x 3072. */
 shared rfloat blur_values[2][BLUR_PY][BLUR_PX];
+#if CACAO_PASS == CACAO_PASS_BLUR_GPU
+/* The GPU form's edge weights and their sum for each 8-bit edge code, one entry per invocation,
+ * written before the first iteration's barrier: a texel then reads its weights (two shared loads)
+ * instead of unpacking them (18 instructions on navi21, a quarter of the shader). */
+#if CACAO_WG_BLUR_GPU_X * CACAO_WG_BLUR_GPU_Y != 256
+#error "the GPU blur's invocations write its 256 edge codes' weights"
+#endif
+shared rvec4 blur_edge_weights[256];
+shared rfloat blur_edge_sums[256];
+#endif
 
 void main()
 {
@@ -166,14 +176,20 @@ void main()
             vec2 ae = texelFetch(ssao, ivec3(c, layer), 0).rg;
             v[y][x] = blur_store_value(ae.r);
             packed[y][x] = ae.g;
-#if CACAO_PASS == CACAO_PASS_BLUR_GPU
-            e[y][x] = unpack_edges_bfe(ae.g);
-#else
+#if CACAO_PASS != CACAO_PASS_BLUR_GPU
             e[y][x] = unpack_edges(ae.g);
-#endif
             wsum[y][x] = blur_weight_sum(e[y][x]);
+#endif
         }
     }
+#if CACAO_PASS == CACAO_PASS_BLUR_GPU
+    {
+        uint code = gl_LocalInvocationIndex;
+        rvec4 w = unpack_edge_bits(code);
+        blur_edge_weights[code] = w;
+        blur_edge_sums[code] = blur_weight_sum(w);
+    }
+#endif
 
     /* neighbours outside the block; reads past the padded tile clamp to it */
     int xl = max(b0.x - 1, 0), xr = min(b0.x + BX, BLUR_PX - 1);
@@ -192,6 +208,17 @@ void main()
         [[unroll]] for (int y = 0; y < BY; ++y)
             [[unroll]] for (int x = 0; x < BX; ++x) blur_values[buf][b0.y + y][b0.x + x] = v[y][x];
         barrier();
+#if CACAO_PASS == CACAO_PASS_BLUR_GPU
+        if (it == 0) {
+            [[unroll]] for (int y = 0; y < BY; ++y) {
+                [[unroll]] for (int x = 0; x < BX; ++x) {
+                    uint code = edges_bits(packed[y][x]);
+                    e[y][x] = blur_edge_weights[code];
+                    wsum[y][x] = blur_edge_sums[code];
+                }
+            }
+        }
+#endif
         rfloat left[BY], right[BY], top[BX], bottom[BX];
         [[unroll]] for (int y = 0; y < BY; ++y) {
             left[y] = BLUR_NEIGHBOUR(xl == b0.x, v[y][0], blur_values[buf][b0.y + y][xl]);

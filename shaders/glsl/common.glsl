@@ -102,22 +102,13 @@ float pack_edges(vec4 e)
 /* Packed UNORM8 edges -> the 8-bit integer (exact for k/255 inputs). */
 uint edges_bits(float packed_value) { return uint(packed_value * 255.5); }
 
-/* The 2-bit LRTB fields of the edge bits -> their weights plus InvSharpness (spec: generate.md
- * "UnpackEdges"). */
-rvec4 edge_weights(uvec4 fields)
+/* Integer edge bits -> LRTB weights plus InvSharpness (spec: generate.md "UnpackEdges"). */
+rvec4 unpack_edge_bits(uint v)
 {
-    rvec4 e = rvec4(fields) / rfloat(3.0);
+    rvec4 e = rvec4(uvec4(v >> 6u, v >> 4u, v >> 2u, v) & uvec4(3u)) / rfloat(3.0);
     return clamp(e + rfloat(CB.inv_sharpness), rvec4(0.0), rvec4(1.0));
 }
-rvec4 unpack_edge_bits(uint v) { return edge_weights(uvec4(v >> 6u, v >> 4u, v >> 2u, v) & uvec4(3u)); }
 rvec4 unpack_edges(float packed_value) { return unpack_edge_bits(edges_bits(packed_value)); }
-/* The same fields by bitfieldExtract: one instruction each on a GPU, where shift and mask are two
- * (ACO does not merge them). v < 256, so the top field needs no mask. */
-rvec4 unpack_edges_bfe(float packed_value)
-{
-    uint v = edges_bits(packed_value);
-    return edge_weights(uvec4(v >> 6u, bitfieldExtract(v, 4, 2), bitfieldExtract(v, 2, 2), v & 3u));
-}
 
 bool in_rect(ivec2 p, ivec2 size) { return all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, size)); }
 
