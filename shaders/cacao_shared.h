@@ -173,7 +173,7 @@
 /* Output texels of a blur group of n passes: all its blocks, or its padded tile less n each side. */
 #define CACAO_BLUR_OUT_X(n) (CACAO_WG_BLUR_X * CACAO_BLUR_BLOCK_X - ((n) <= CACAO_BLUR_REGISTER_PASSES ? 0 : 2 * (n)))
 #define CACAO_BLUR_OUT_Y(n) (CACAO_WG_BLUR_Y * CACAO_BLUR_BLOCK_Y - ((n) <= CACAO_BLUR_REGISTER_PASSES ? 0 : 2 * (n)))
-/* The GPU form: 16x16 threads of 4x4 texels, a 64x64 padded tile in shared memory for every n. */
+/* The GPU form: 16x16 threads of 4x3 texels, a 64x48 padded tile in shared memory for every n. */
 #define CACAO_WG_BLUR_GPU_X 16
 #define CACAO_WG_BLUR_GPU_Y 16
 #define CACAO_BLUR_GPU_BLOCK_X 4

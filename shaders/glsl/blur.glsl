@@ -16,10 +16,13 @@
  *   neighbours need (one barrier per iteration, double-buffered). The inner
  *   (WG BX - 2N) x (WG BY - 2N) texels are exact: values at distance d from the padded border
  *   are wrong after d iterations at most, and the inner region is N away from it. */
-/* The GPU form (CACAO_PASS_BLUR_GPU) is the shared-memory way for every N, with 2x2-texel blocks
- * of 16x16 threads (a 32x32 padded tile): a GPU keeps the few registers a small block needs
- * (a large block spills), and its shared memory and barriers are cheap. Both forms compute every
- * texel from the same neighbourhood with the same arithmetic: the same output. */
+/* The GPU form (CACAO_PASS_BLUR_GPU) is the shared-memory way for every N, with 4x3-texel blocks
+ * of 16x16 threads (a 64x48 padded tile, AMD's): a GPU keeps the registers such a block needs
+ * (the 8x4 register block spills), and its shared memory and barriers are cheap. It reads every
+ * neighbour from shared memory, takes its edge weights from a shared table of the 256 edge codes
+ * and tests the stores per row and column (docs/gpu.md, "The GPU forms", has what each saved).
+ * Both forms compute every texel from the same neighbourhood with the same arithmetic: the same
+ * output. */
 #define BLUR_N CACAO_BLUR_PASSES
 #if CACAO_PASS == CACAO_PASS_BLUR_GPU
 layout(local_size_x = CACAO_WG_BLUR_GPU_X, local_size_y = CACAO_WG_BLUR_GPU_Y) in;
