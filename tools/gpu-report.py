@@ -271,9 +271,9 @@ fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
 ## Against issue 31's measurement
 
 Issue 31 gave, for navi21 at 1920x1080, cacao/AMD totals of 0.78 0.60 0.50 0.83 0.81 (native,
-LOWEST..HIGHEST) and 0.55 0.52 0.47 0.60 0.61 (downsampled). This estimate agrees at LOWEST and
-HIGHEST and differs at LOW, MEDIUM and HIGH, by one cause: the issue's model of AMD ran the generate
-shader one level too high there (Q1 at LOW, Q2 at MEDIUM, Q3 at HIGH). AMD's `FFX_CACAO_VkDraw`
+LOWEST..HIGHEST) and 0.55 0.52 0.47 0.60 0.61 (downsampled). The code has changed since (the GPU
+forms), and so has the estimate (list-dispatched steps weighed in full, above); besides, at LOW,
+MEDIUM and HIGH the issue's model of AMD ran the generate shader one level too high (Q1 at LOW, Q2 at MEDIUM, Q3 at HIGH). AMD's `FFX_CACAO_VkDraw`
 picks `CS_GENERATE_Q0 + max(0, quality - 1)` with LOWEST = 0, i.e. Q0 at LOWEST *and* LOW, Q1 at
 MEDIUM, Q2 at HIGH (the levels whose taps cacao's LOW, MEDIUM and HIGH reproduce, which is why
 cacao's output matches AMD's at every level). When this report was written, this tool run with the
