@@ -168,7 +168,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * a 2x2 quad of slice texels per invocation sharing one block of depths. */
     PASS(PREPARE) = PREPARE_ROW("prepare"),
     /* The GPU forms (cacao_shader_forms): the rows above, other shapes. The blur: every n in
-     * shared memory, 2x2 texels per thread (CACAO_BLUR_GPU_OUT); apply: one pixel per invocation
+     * shared memory, 4x3 texels per thread (CACAO_BLUR_GPU_OUT_X, _Y); apply: one pixel per invocation
      * through the sampler. */
     PASS(BLUR_GPU) = {"blur_gpu", {NULL}, 1, false, true, true, WG(BLUR_GPU), CACAOI_GRID_BLUR, 4,
                       {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(SSAO_IMAGE, SSAO_PONG, ALL), R(TILES, TILES, ALL)},

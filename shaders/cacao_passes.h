@@ -130,8 +130,8 @@ extern const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT];
 /* Output texels (x, y) of one group of the blur pass `pass` (BLUR or BLUR_GPU) of n iterations:
  * the dispatch grid, the blur list's groups and the shader's tile all follow it. */
 static inline void cacaoi_blur_out(unsigned pass, unsigned n, uint32_t out[2]) {
-    out[0] = pass == CACAO_PASS_BLUR_GPU ? CACAO_BLUR_GPU_OUT(n) : CACAO_BLUR_OUT_X(n);
-    out[1] = pass == CACAO_PASS_BLUR_GPU ? CACAO_BLUR_GPU_OUT(n) : CACAO_BLUR_OUT_Y(n);
+    out[0] = pass == CACAO_PASS_BLUR_GPU ? CACAO_BLUR_GPU_OUT_X(n) : CACAO_BLUR_OUT_X(n);
+    out[1] = pass == CACAO_PASS_BLUR_GPU ? CACAO_BLUR_GPU_OUT_Y(n) : CACAO_BLUR_OUT_Y(n);
 }
 
 /* What a compiled module of this pass variant must declare: per slot, its descriptor kind (or

@@ -181,11 +181,13 @@
 /* Output texels of a blur group of n passes: all its blocks, or its padded tile less n each side. */
 #define CACAO_BLUR_OUT_X(n) (CACAO_WG_BLUR_X * CACAO_BLUR_BLOCK_X - ((n) <= CACAO_BLUR_REGISTER_PASSES ? 0 : 2 * (n)))
 #define CACAO_BLUR_OUT_Y(n) (CACAO_WG_BLUR_Y * CACAO_BLUR_BLOCK_Y - ((n) <= CACAO_BLUR_REGISTER_PASSES ? 0 : 2 * (n)))
-/* The GPU form: 16x16 threads of 2x2 texels, a 32x32 padded tile in shared memory for every n. */
+/* The GPU form: 16x16 threads of 4x3 texels, a 64x48 padded tile in shared memory for every n. */
 #define CACAO_WG_BLUR_GPU_X 16
 #define CACAO_WG_BLUR_GPU_Y 16
-#define CACAO_BLUR_GPU_BLOCK 2
-#define CACAO_BLUR_GPU_OUT(n) (CACAO_WG_BLUR_GPU_X * CACAO_BLUR_GPU_BLOCK - 2 * (n))
+#define CACAO_BLUR_GPU_BLOCK_X 4
+#define CACAO_BLUR_GPU_BLOCK_Y 3
+#define CACAO_BLUR_GPU_OUT_X(n) (CACAO_WG_BLUR_GPU_X * CACAO_BLUR_GPU_BLOCK_X - 2 * (n))
+#define CACAO_BLUR_GPU_OUT_Y(n) (CACAO_WG_BLUR_GPU_Y * CACAO_BLUR_GPU_BLOCK_Y - 2 * (n))
 #define CACAO_WG_APPLY_X 8
 #define CACAO_WG_APPLY_Y 8
 #define CACAO_WG_UPSAMPLE_X 8

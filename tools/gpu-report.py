@@ -235,8 +235,21 @@ A context on a GPU runs the GPU forms of four passes (`cacao_shader_forms`; `--s
 compiles lavapipe's instead): the same arithmetic, so the same output bit for bit on lavapipe in
 fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
 
-- `blur_gpu`: every pass count in shared memory, 2x2 texels per thread (the CPU form's 8x4 register
-  block spills on every family). `apply_gpu`: one pixel per invocation through the sampler.
+- `blur_gpu`: every pass count in shared memory (the CPU form's 8x4 register block spills on every
+  family), 16x16 threads of 4x3 texels: a 64x48 padded tile whose inner (64 - 2N) x (48 - 2N)
+  texels a group writes, AMD's tile. With 2x2 texels per thread (a 32x32 tile) the blur was 1.75x
+  AMD's estimate at blur 2 on navi21: the halo was 1.31x the texels written (1.16x at 64x48) and a
+  texel cost 118 instructions (AMD's: 62). Per wave at blur 2 (ACO's figure doubled for the
+  list), 4 waves a group: 566 cycles with 2x2 texels (2.89 per texel written); 4x3 texels with each
+  neighbour read from shared memory without a branch, the block's own texels included, where the
+  CPU form takes those from registers (a branch per read; lavapipe's shared loads run lane by
+  lane): 1,318; each store's test made per row and column: 1,234; the edge weights and their sum
+  read from a 256-entry shared table of the edge codes, which the group's 256 invocations write
+  before the first iteration's barrier, instead of unpacked per texel (18 instructions a texel on
+  navi21, a quarter of the shader): 988 (1.50 per texel written), 0.91 of AMD's
+  `EdgeSensitiveBlur2` (1,090 on the same grid), and 0.89 to 0.94 of AMD's at every pass count.
+  Measured before the table and not kept: 4x2 texels (1.17x AMD's) and 4x4 (1.09x; 168 VGPRs,
+  6 waves per SIMD). `apply_gpu`: one pixel per invocation through the sampler.
 - `prepare_gpu` (normals from depth): ACO estimates the fused prepare as VALU-bound, about 125
   instructions per normal, as AMD's `PrepareNormals` is. The GPU form normalises each direction
   between two neighbouring depths once, for the two normals that use it (the other takes its
@@ -258,9 +271,9 @@ fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
 ## Against issue 31's measurement
 
 Issue 31 gave, for navi21 at 1920x1080, cacao/AMD totals of 0.78 0.60 0.50 0.83 0.81 (native,
-LOWEST..HIGHEST) and 0.55 0.52 0.47 0.60 0.61 (downsampled). This estimate agrees at LOWEST and
-HIGHEST and differs at LOW, MEDIUM and HIGH, by one cause: the issue's model of AMD ran the generate
-shader one level too high there (Q1 at LOW, Q2 at MEDIUM, Q3 at HIGH). AMD's `FFX_CACAO_VkDraw`
+LOWEST..HIGHEST) and 0.55 0.52 0.47 0.60 0.61 (downsampled). The code has changed since (the GPU
+forms), and so has the estimate (list-dispatched steps weighed in full, above); besides, at LOW,
+MEDIUM and HIGH the issue's model of AMD ran the generate shader one level too high (Q1 at LOW, Q2 at MEDIUM, Q3 at HIGH). AMD's `FFX_CACAO_VkDraw`
 picks `CS_GENERATE_Q0 + max(0, quality - 1)` with LOWEST = 0, i.e. Q0 at LOWEST *and* LOW, Q1 at
 MEDIUM, Q2 at HIGH (the levels whose taps cacao's LOW, MEDIUM and HIGH reproduce, which is why
 cacao's output matches AMD's at every level). When this report was written, this tool run with the

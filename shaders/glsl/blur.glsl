@@ -16,16 +16,19 @@
  *   neighbours need (one barrier per iteration, double-buffered). The inner
  *   (WG BX - 2N) x (WG BY - 2N) texels are exact: values at distance d from the padded border
  *   are wrong after d iterations at most, and the inner region is N away from it. */
-/* The GPU form (CACAO_PASS_BLUR_GPU) is the shared-memory way for every N, with 2x2-texel blocks
- * of 16x16 threads (a 32x32 padded tile): a GPU keeps the few registers a small block needs
- * (a large block spills), and its shared memory and barriers are cheap. Both forms compute every
- * texel from the same neighbourhood with the same arithmetic: the same output. */
+/* The GPU form (CACAO_PASS_BLUR_GPU) is the shared-memory way for every N, with 4x3-texel blocks
+ * of 16x16 threads (a 64x48 padded tile, AMD's): a GPU keeps the registers such a block needs
+ * (the 8x4 register block spills), and its shared memory and barriers are cheap. It reads every
+ * neighbour from shared memory, takes its edge weights from a shared table of the 256 edge codes
+ * and tests the stores per row and column (docs/gpu.md, "The GPU forms", has what each saved).
+ * Both forms compute every texel from the same neighbourhood with the same arithmetic: the same
+ * output. */
 #define BLUR_N CACAO_BLUR_PASSES
 #if CACAO_PASS == CACAO_PASS_BLUR_GPU
 layout(local_size_x = CACAO_WG_BLUR_GPU_X, local_size_y = CACAO_WG_BLUR_GPU_Y) in;
-#define BX CACAO_BLUR_GPU_BLOCK
-#define BY CACAO_BLUR_GPU_BLOCK
-#define BLUR_OUT ivec2(CACAO_BLUR_GPU_OUT(BLUR_N), CACAO_BLUR_GPU_OUT(BLUR_N))
+#define BX CACAO_BLUR_GPU_BLOCK_X
+#define BY CACAO_BLUR_GPU_BLOCK_Y
+#define BLUR_OUT ivec2(CACAO_BLUR_GPU_OUT_X(BLUR_N), CACAO_BLUR_GPU_OUT_Y(BLUR_N))
 #define BLUR_PX (CACAO_WG_BLUR_GPU_X * BX) /* padded tile width */
 #define BLUR_PY (CACAO_WG_BLUR_GPU_Y * BY) /* padded tile height */
 #else
@@ -143,8 +146,18 @@ void main()
     }
 }
 #else
-/* 2 x 2048 values: 16 KiB (fp32), 8 KiB (fp16); the GPU form 2 x 1024. */
+/* 2 x 2048 values: 16 KiB (fp32), 8 KiB (fp16); the GPU form 2 x 3072. */
 shared rfloat blur_values[2][BLUR_PY][BLUR_PX];
+#if CACAO_PASS == CACAO_PASS_BLUR_GPU
+/* The GPU form's edge weights and their sum for each 8-bit edge code, one entry per invocation,
+ * written before the first iteration's barrier: a texel then reads its weights (two shared loads)
+ * instead of unpacking them (18 instructions on navi21, a quarter of the shader). */
+#if CACAO_WG_BLUR_GPU_X * CACAO_WG_BLUR_GPU_Y != 256
+#error "the GPU blur's invocations write its 256 edge codes' weights"
+#endif
+shared rvec4 blur_edge_weights[256];
+shared rfloat blur_edge_sums[256];
+#endif
 
 void main()
 {
@@ -166,28 +179,57 @@ void main()
             vec2 ae = texelFetch(ssao, ivec3(c, layer), 0).rg;
             v[y][x] = blur_store_value(ae.r);
             packed[y][x] = ae.g;
+#if CACAO_PASS != CACAO_PASS_BLUR_GPU
             e[y][x] = unpack_edges(ae.g);
             wsum[y][x] = blur_weight_sum(e[y][x]);
+#endif
         }
     }
+#if CACAO_PASS == CACAO_PASS_BLUR_GPU
+    {
+        uint code = gl_LocalInvocationIndex;
+        rvec4 w = unpack_edge_bits(code);
+        blur_edge_weights[code] = w;
+        blur_edge_sums[code] = blur_weight_sum(w);
+    }
+#endif
 
     /* neighbours outside the block; reads past the padded tile clamp to it */
     int xl = max(b0.x - 1, 0), xr = min(b0.x + BX, BLUR_PX - 1);
     int yt = max(b0.y - 1, 0), yb = min(b0.y + BY, BLUR_PY - 1);
+    /* A neighbour clamped to the block is the block's own texel, which shared memory holds too:
+     * lavapipe takes it from the register (its shared loads run lane by lane), a GPU reads shared
+     * memory unconditionally (a branch per read costs it more than the read). */
+#if CACAO_PASS == CACAO_PASS_BLUR_GPU
+#define BLUR_NEIGHBOUR(own_cond, own, shared_value) (shared_value)
+#else
+#define BLUR_NEIGHBOUR(own_cond, own, shared_value) ((own_cond) ? (own) : (shared_value))
+#endif
 
     [[unroll]] for (int it = 0; it < BLUR_N; ++it) {
         int buf = it & 1;
         [[unroll]] for (int y = 0; y < BY; ++y)
             [[unroll]] for (int x = 0; x < BX; ++x) blur_values[buf][b0.y + y][b0.x + x] = v[y][x];
         barrier();
+#if CACAO_PASS == CACAO_PASS_BLUR_GPU
+        if (it == 0) {
+            [[unroll]] for (int y = 0; y < BY; ++y) {
+                [[unroll]] for (int x = 0; x < BX; ++x) {
+                    uint code = edges_bits(packed[y][x]);
+                    e[y][x] = blur_edge_weights[code];
+                    wsum[y][x] = blur_edge_sums[code];
+                }
+            }
+        }
+#endif
         rfloat left[BY], right[BY], top[BX], bottom[BX];
         [[unroll]] for (int y = 0; y < BY; ++y) {
-            left[y] = xl == b0.x ? v[y][0] : blur_values[buf][b0.y + y][xl];
-            right[y] = xr == b0.x + BX - 1 ? v[y][BX - 1] : blur_values[buf][b0.y + y][xr];
+            left[y] = BLUR_NEIGHBOUR(xl == b0.x, v[y][0], blur_values[buf][b0.y + y][xl]);
+            right[y] = BLUR_NEIGHBOUR(xr == b0.x + BX - 1, v[y][BX - 1], blur_values[buf][b0.y + y][xr]);
         }
         [[unroll]] for (int x = 0; x < BX; ++x) {
-            top[x] = yt == b0.y ? v[0][x] : blur_values[buf][yt][b0.x + x];
-            bottom[x] = yb == b0.y + BY - 1 ? v[BY - 1][x] : blur_values[buf][yb][b0.x + x];
+            top[x] = BLUR_NEIGHBOUR(yt == b0.y, v[0][x], blur_values[buf][yt][b0.x + x]);
+            bottom[x] = BLUR_NEIGHBOUR(yb == b0.y + BY - 1, v[BY - 1][x], blur_values[buf][yb][b0.x + x]);
         }
         rfloat nv[BY][BX];
         [[unroll]] for (int y = 0; y < BY; ++y) {
@@ -205,11 +247,26 @@ void main()
     }
 
     /* inner texels: (blurred AO, original packed edges) */
+#if CACAO_PASS == CACAO_PASS_BLUR_GPU
+    /* the same test per column and per row, each once (p >= 0 as tile_origin, o >= 0) */
+    bool column_in[BX], row_in[BY];
+    [[unroll]] for (int x = 0; x < BX; ++x) {
+        int o = b0.x + x - BLUR_N;
+        column_in[x] = o >= 0 && o < BLUR_OUT.x && tile_origin.x + o < s.x;
+    }
+    [[unroll]] for (int y = 0; y < BY; ++y) {
+        int o = b0.y + y - BLUR_N;
+        row_in[y] = o >= 0 && o < BLUR_OUT.y && tile_origin.y + o < s.y;
+    }
+#define BLUR_STORES(o, p, x, y) (row_in[y] && column_in[x])
+#else
+#define BLUR_STORES(o, p, x, y) (in_rect(o, BLUR_OUT) && in_rect(p, s))
+#endif
     [[unroll]] for (int y = 0; y < BY; ++y) {
         [[unroll]] for (int x = 0; x < BX; ++x) {
             ivec2 o = b0 + ivec2(x, y) - BLUR_N;
             ivec2 p = tile_origin + o;
-            if (in_rect(o, BLUR_OUT) && in_rect(p, s))
+            if (BLUR_STORES(o, p, x, y))
                 imageStore(ssao_image, ivec3(p, layer), vec4(float(v[y][x]), packed[y][x], 0.0, 0.0));
         }
     }
