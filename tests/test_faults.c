@@ -13,50 +13,12 @@
  * cacao might take from malloc behind the callbacks' back). */
 #define _POSIX_C_SOURCE 200809L /* posix_memalign */
 #include <dlfcn.h>
-#include <malloc.h>
 #include <string.h>
 
+#include "counting_allocator.h"
 #include "gpu_scene.h"
 
-/* ---- The caller's host allocator: counts, fails on request, tracks what is live ------------- */
-
-typedef struct counting_allocator {
-    uint64_t calls;   /* allocations and reallocations so far */
-    uint64_t fail_at; /* the call that fails (1-based); 0: none */
-    int64_t live;     /* blocks allocated and not freed */
-} counting_allocator;
-
-static void *VKAPI_PTR counted_allocation(void *user, size_t size, size_t alignment, VkSystemAllocationScope scope) {
-    (void)scope;
-    counting_allocator *a = user;
-    if (++a->calls == a->fail_at) return NULL;
-    void *p = NULL;
-    if (posix_memalign(&p, alignment < sizeof(void *) ? sizeof(void *) : alignment, size ? size : 1) != 0) return NULL;
-    a->live++;
-    return p;
-}
-
-static void VKAPI_PTR counted_free(void *user, void *p) {
-    counting_allocator *a = user;
-    if (!p) return;
-    a->live--;
-    free(p);
-}
-
-static void *VKAPI_PTR counted_reallocation(void *user, void *old, size_t size, size_t alignment,
-                                            VkSystemAllocationScope scope) {
-    if (!old) return counted_allocation(user, size, alignment, scope);
-    if (size == 0) {
-        counted_free(user, old);
-        return NULL;
-    }
-    void *p = counted_allocation(user, size, alignment, scope);
-    if (!p) return NULL; /* the old block stays valid, as Vulkan requires */
-    const size_t old_size = malloc_usable_size(old);
-    memcpy(p, old, old_size < size ? old_size : size);
-    counted_free(user, old);
-    return p;
-}
+/* ---- The caller's host allocator: counting_allocator.h (counts, fails on request) ---- */
 
 /* ---- The caller's entry points: vkAllocateMemory and vkCreateComputePipelines fail on request -- */
 
@@ -122,7 +84,7 @@ static const configuration configurations[] = {
 
 typedef struct sequence {
     vkdev *dev;
-    counting_allocator *host;
+    host_counter *host;
     VkAllocationCallbacks callbacks;
     const scene_buffers *scenes; /* one per configuration */
     float *reference[CONFIGURATIONS]; /* AO of a run without failures */
@@ -211,13 +173,13 @@ static bool check_fault(sequence *s, const char *kind, uint64_t n, const char *e
     run_sequence(s, &o, ao);
     if (o.first_failure == CACAO_SUCCESS) return false;
     const bool named = strstr(o.message, expect_in_message) != NULL;
-    const bool leaked = s->host->live != 0 || faults.live_memory != 0;
+    const bool leaked = s->host->live_count != 0 || faults.live_memory != 0;
     if (o.first_failure != CACAO_ERROR_OUT_OF_MEMORY || !named || !o.recovered || leaked) {
         fprintf(stderr, "%s failure %llu: %s (%s), message \"%s\", recovered %d, live host blocks %lld, live device "
                         "allocations %lld\n",
                 kind, (unsigned long long)n, cacao_result_string(o.first_failure),
                 o.first_failure == CACAO_ERROR_OUT_OF_MEMORY ? "expected" : "expected out of memory", o.message,
-                (int)o.recovered, (long long)s->host->live, (long long)faults.live_memory);
+                (int)o.recovered, (long long)s->host->live_count, (long long)faults.live_memory);
         ++test_failures;
     }
     *leaks += leaked;
@@ -228,12 +190,9 @@ int main(void) {
     vkdev dev;
     open_device(&dev);
     dev.expect_out_of_memory = true; /* the layer names each call the injected failures make fail */
-    counting_allocator host = {0};
+    host_counter host = {0};
     sequence s = {.dev = &dev, .host = &host, .configuration_count = CONFIGURATIONS};
-    s.callbacks = (VkAllocationCallbacks){.pUserData = &host,
-                                          .pfnAllocation = counted_allocation,
-                                          .pfnReallocation = counted_reallocation,
-                                          .pfnFree = counted_free};
+    s.callbacks = counting_callbacks(&host);
     /* The loader's own entry points, asked from the loader library itself: the sanitizer build
      * preloads the validation layer, whose exported vkGet*ProcAddr would otherwise answer. */
     void *loader = dlopen("libvulkan.so.1", RTLD_NOW | RTLD_LOCAL);
@@ -256,7 +215,7 @@ int main(void) {
     /* The run without failures: the reference images and the number of calls of each kind. */
     outcome clean;
     run_sequence(&s, &clean, ao);
-    CHECK(clean.first_failure == CACAO_SUCCESS && host.live == 0 && faults.live_memory == 0);
+    CHECK(clean.first_failure == CACAO_SUCCESS && host.live_count == 0 && faults.live_memory == 0);
     const uint64_t host_calls = host.calls, allocate_calls = faults.allocate_calls,
                    pipeline_calls = faults.pipeline_calls;
     CHECK(allocate_calls == CONFIGURATIONS); /* one block per resize: cacao_memory_info's promise */

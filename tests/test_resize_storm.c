@@ -25,6 +25,7 @@
 #include <stdint.h>
 #include <time.h>
 
+#include "counting_allocator.h"
 #include "gpu_scene.h"
 
 #define STORM_RESIZES 1000
@@ -51,57 +52,6 @@ static uint32_t rng_range(uint64_t *state, uint32_t lo, uint32_t hi) {
 
 /* True with probability percent / 100. */
 static bool rng_chance(uint64_t *state, uint32_t percent) { return rng_next(state) % 100 < percent; }
-
-/* ---- Counting allocation callbacks: the context's live host allocations ---- */
-
-typedef struct host_counter {
-    int64_t live_count, live_bytes; /* updated atomically: drivers may call from any thread */
-    int64_t total_count;
-} host_counter;
-
-/* Every block carries its size and its offset from the malloc'd start just before the pointer. */
-typedef struct block_header {
-    size_t size, offset;
-} block_header;
-
-static void *VKAPI_CALL counted_alloc(void *user, size_t size, size_t alignment, VkSystemAllocationScope scope) {
-    (void)scope;
-    host_counter *c = user;
-    if (alignment < sizeof(block_header)) alignment = sizeof(block_header); /* both powers of two */
-    const size_t offset = (sizeof(block_header) + alignment - 1) / alignment * alignment;
-    void *base = NULL;
-    if (posix_memalign(&base, alignment, offset + size) != 0) return NULL;
-    char *p = (char *)base + offset;
-    ((block_header *)p)[-1] = (block_header){size, offset};
-    __atomic_add_fetch(&c->live_count, 1, __ATOMIC_RELAXED);
-    __atomic_add_fetch(&c->live_bytes, (int64_t)size, __ATOMIC_RELAXED);
-    __atomic_add_fetch(&c->total_count, 1, __ATOMIC_RELAXED);
-    return p;
-}
-
-static void VKAPI_CALL counted_free(void *user, void *p) {
-    if (!p) return;
-    host_counter *c = user;
-    const block_header h = ((block_header *)p)[-1];
-    __atomic_sub_fetch(&c->live_count, 1, __ATOMIC_RELAXED);
-    __atomic_sub_fetch(&c->live_bytes, (int64_t)h.size, __ATOMIC_RELAXED);
-    free((char *)p - h.offset);
-}
-
-static void *VKAPI_CALL counted_realloc(void *user, void *old, size_t size, size_t alignment,
-                                        VkSystemAllocationScope scope) {
-    if (!old) return counted_alloc(user, size, alignment, scope);
-    if (size == 0) {
-        counted_free(user, old);
-        return NULL;
-    }
-    void *p = counted_alloc(user, size, alignment, scope);
-    if (!p) return NULL; /* the old block stays valid, as the spec asks */
-    const size_t old_size = ((block_header *)old)[-1].size;
-    memcpy(p, old, old_size < size ? old_size : size);
-    counted_free(user, old);
-    return p;
-}
 
 /* ---- Settings and sizes ---- */
 
@@ -455,10 +405,7 @@ int main(int argc, char **argv) {
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(sm->dev.physical_device, &props);
     sm->granularity = props.limits.bufferImageGranularity;
-    sm->callbacks = (VkAllocationCallbacks){.pUserData = &sm->counter,
-                                            .pfnAllocation = counted_alloc,
-                                            .pfnReallocation = counted_realloc,
-                                            .pfnFree = counted_free};
+    sm->callbacks = counting_callbacks(&sm->counter);
     sm->dev.allocation_callbacks = &sm->callbacks; /* for the storm's context and the fresh ones */
     if (vkdev_context_create(&sm->dev, &sm->ctx) != CACAO_SUCCESS) {
         fprintf(stderr, "cannot create the context\n");
