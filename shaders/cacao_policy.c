@@ -6,17 +6,17 @@
 /* spec: README "Quality levels", constants.md (radius and near limit), estimators.md section 6
  * (budgets: 2 depth reads per step). */
 const cacaoi_quality_row cacaoi_qualities[CACAO_KEY_QUALITY_COUNT] = {
-    /*                          depths             generate            apply              upsample      slices radius near_limit  horizon */
+    /*                          depths             generate            apply              upsample      slices radius near_limit  horizon {gtao, bitmask} */
     [CACAO_KEY_QUALITY_LOWEST] = {CACAO_DEPTHS_HALF, CACAO_GENERATE_Q0, CACAO_OUTPUT_HALF, CACAO_OUTPUT_HALF, 2,
-                                  (float)CACAO_LOWEST_RADIUS_FACTOR, (float)CACAO_LOW_NEAR_LIMIT_FACTOR, 2, 2},
+                                  (float)CACAO_LOWEST_RADIUS_FACTOR, (float)CACAO_LOW_NEAR_LIMIT_FACTOR, {{1, 4}, {1, 4}}},
     [CACAO_KEY_QUALITY_LOW] = {CACAO_DEPTHS_FULL, CACAO_GENERATE_Q0, CACAO_OUTPUT_NON_SMART, CACAO_OUTPUT_NON_SMART, 4,
-                               1.0f, (float)CACAO_LOW_NEAR_LIMIT_FACTOR, 3, 2},
+                               1.0f, (float)CACAO_LOW_NEAR_LIMIT_FACTOR, {{2, 4}, {1, 6}}},
     [CACAO_KEY_QUALITY_MEDIUM] = {CACAO_DEPTHS_FULL, CACAO_GENERATE_Q1, CACAO_OUTPUT_SMART, CACAO_OUTPUT_NON_SMART, 4,
-                                  1.0f, 1.0f, 3, 3},
+                                  1.0f, 1.0f, {{2, 6}, {2, 8}}},
     [CACAO_KEY_QUALITY_HIGH] = {CACAO_DEPTHS_MIPS, CACAO_GENERATE_Q2, CACAO_OUTPUT_SMART, CACAO_OUTPUT_SMART, 4, 1.0f,
-                                1.0f, 3, 6},
+                                1.0f, {{3, 8}, {2, 12}}},
     [CACAO_KEY_QUALITY_HIGHEST] = {CACAO_DEPTHS_MIPS, CACAO_GENERATE_Q3, CACAO_OUTPUT_SMART, CACAO_OUTPUT_SMART, 4,
-                                   1.0f, 1.0f, 4, 8},
+                                   1.0f, 1.0f, {{6, 8}, {2, 16}}},
 };
 
 unsigned cacaoi_form_pass(unsigned pass, bool gpu_forms) {

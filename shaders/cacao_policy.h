@@ -40,9 +40,19 @@ typedef struct cacaoi_quality_row {
     uint8_t slice_count;        /* deinterleaved layers: 2 at LOWEST (slices 0 and 3), else 4 */
     float radius_scale;         /* of the effect radius (spec: constants.md: LOWEST 0.8) */
     float near_limit_scale;     /* of the sampling radius near limit (LOW and LOWEST 1.5) */
-    uint8_t horizon_slices;     /* GTAO/bitmask budget: slices per pixel ... */
-    uint8_t horizon_steps;      /* ... and steps per side (2 depth reads per step) */
+    /* The horizon estimators' budget, [0] GTAO, [1] bitmask: slices per pixel and steps per side
+     * (2 depth reads per step). Chosen from the measured error/time front (docs/estimators.md):
+     * steps buy more than slices (a missed occluder between two steps is a bias no denoise
+     * removes; the slice rotation varies per pixel, so the denoise averages slices), so each
+     * estimator adds steps first and keeps 2 slices once it has them. */
+    uint8_t horizon_budget[2][2];
 } cacaoi_quality_row;
+
+/* A quality level's horizon budget for an estimator (CACAO_KEY_ESTIMATOR_GTAO or _BITMASK). */
+#define CACAOI_HORIZON_SLICES(quality, estimator) \
+    (cacaoi_qualities[quality].horizon_budget[(estimator) == CACAO_KEY_ESTIMATOR_BITMASK][0])
+#define CACAOI_HORIZON_STEPS(quality, estimator) \
+    (cacaoi_qualities[quality].horizon_budget[(estimator) == CACAO_KEY_ESTIMATOR_BITMASK][1])
 
 extern const cacaoi_quality_row cacaoi_qualities[CACAO_KEY_QUALITY_COUNT];
 

@@ -9,8 +9,8 @@
  *  - invariances any correct implementation has: standard vs reverse-Z depth, world scale, NaN and
  *    Inf depth treated exactly as background, a 64-frame noise period, and frame accumulation
  *    converging towards a 4x larger budget.
- * With the shared scenes (argv[1]): RMSE against the ray-traced truths, bounded by issue 13's
- * targets (what the spec's prototype reached). */
+ * With the shared scenes (argv[1]): RMSE against the ray-traced truths at every quality level
+ * (test_shared_scenes says what is bounded and why). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -129,9 +129,17 @@ static cacao_settings slice_settings(cacao_estimator e, cacao_visibility v, int 
                             .fade_out_to = 2e6f};
 }
 
-/* The prototype's row means within 0.01 (a few thousandths of fp32-vs-double and depth-buffer
- * rounding; measured worst below), and bitmask-f 8x16 floor rows within 0.015 of V_fall, which
- * the spec reports for its prototype ("floor rows within 0.01 at 8x16"). */
+/* Against the spec's prototype and the closed forms, per configuration:
+ *  - wall rows (396-418) within 0.01 of the prototype's row means (a few thousandths of
+ *    fp32-vs-double and depth-buffer rounding);
+ *  - over all rows, the mean |row mean - closed form| at most the prototype's, plus 0.001 for the
+ *    rounding the wall rows show (measured up to 0.0010; the mean errors differ by -0.0014 to
+ *    +0.0005). The floor rows
+ *    differ from the prototype's by design: cacao keeps a snapped sample's height above the
+ *    tangent plane where the prototype drops its offset from the slice plane (horizon.glsl,
+ *    make_horizon_frame; the prototype's open floor, row 440, is 0.986 at GTAO 8x16 where the truth
+ *    is 1), so they move, on the whole, towards the truth;
+ *  - bitmask-f 8x16 floor rows within 0.01 of V_fall, what the spec reports for its prototype. */
 static void test_crease(vkdev *dev) {
     const cacao_scene scene = crease_scene(2, crease_prims);
     scene_buffers b;
@@ -142,30 +150,34 @@ static void test_crease(vkdev *dev) {
         const cacao_settings s = slice_settings(cc->estimator, cc->visibility, cc->slices, cc->steps, 0.5f);
         vkdev_frame f = scene_frame(&b, false, true);
         if (!run(dev, &s, &f, ao)) continue;
-        double worst = 0, worst_analytic = 0;
+        double worst = 0, worst_analytic = 0, error = 0, prototype_error = 0;
         for (int r = 0; r < CREASE_ROWS; ++r) {
             const int row = crease_rows[r];
             const double m = row_mean(ao, CREASE_W, row, 400 - CREASE_X0, 559 - CREASE_X0);
             const double c = crease_c(row);
             const double truth = cc->visibility == CACAO_VISIBILITY_BINARY ? v_bin(c) : v_fall(c);
-            worst = fmax(worst, fabs(m - cc->prototype[r]));
             const bool floor_row = row >= 420;
+            if (!floor_row && row != 209) worst = fmax(worst, fabs(m - cc->prototype[r]));
             if (floor_row) worst_analytic = fmax(worst_analytic, fabs(m - truth));
+            error += fabs(m - truth) / CREASE_ROWS;
+            prototype_error += fabs(cc->prototype[r] - truth) / CREASE_ROWS;
             printf("crease %-14s row %d c %.3f: %.4f (prototype %.4f, closed form %.4f)\n", cc->name, row, c, m,
                    cc->prototype[r], truth);
         }
-        printf("crease %-14s: worst |row mean - prototype| %.4f, floor rows vs closed form %.4f\n", cc->name, worst,
-               worst_analytic);
+        printf("crease %-14s: wall rows vs prototype worst %.4f; mean |row - closed form| %.4f (prototype %.4f); "
+               "floor rows vs closed form worst %.4f\n",
+               cc->name, worst, error, prototype_error, worst_analytic);
         CHECK(worst <= 0.01);
-        if (strcmp(cc->name, "bitmask-f 8x16") == 0) CHECK(worst_analytic <= 0.015);
+        CHECK(error <= prototype_error + 0.001);
+        if (strcmp(cc->name, "bitmask-f 8x16") == 0) CHECK(worst_analytic <= 0.01);
     }
     free(ao);
     scene_buffers_free(&b);
 }
 
 /* Unoccluded surfaces give 1 at every budget: a wall facing the camera, and a floor alone seen at
- * grazing angles (pixel snapping darkens them slightly, GTAO most: spec pitfall 6 reports row
- * means 0.991 at 4x8 and 0.986 at 8x16 for GTAO, 0.999 / 0.998 for the bitmask). */
+ * grazing angles (the spec's prototype darkens them by pixel snapping, GTAO most: its pitfall 6
+ * reports row means 0.991 at 4x8 and 0.986 at 8x16 for GTAO, 0.999 / 0.998 for the bitmask). */
 static void test_unoccluded(vkdev *dev) {
     const cacao_prim wall[] = {crease_prims[1]}, floor_only[] = {crease_prims[0]};
     const struct {
@@ -205,17 +217,23 @@ static void test_unoccluded(vkdev *dev) {
                 printf("unoccluded %-5s %-12s %-7s quality %d: mean %.5f, lowest %.5f\n", cases[c].name,
                        ortho ? "orthographic" : "perspective", cacao_estimator_name(e), q, mean, lowest);
                 CHECK(all_finite_unit(ao, (size_t)CREASE_W * CREASE_H));
-                /* Means over the image (measured: wall bitmask 0.99999-1.0, GTAO 0.9988-0.9997;
-                 * floor to the horizon bitmask 0.9954-0.9983, GTAO 0.9861-0.9945). Single pixels dip
-                 * (lowest printed) where snapped samples leave the slice plane, most at grazing rows. */
+                /* Means over the image. A snapped sample keeps its height above the tangent plane
+                 * (horizon.glsl, make_horizon_frame), so a plane occludes nothing of itself: the
+                 * wall is 1 (measured 1.00000 at every level, both cameras; the spec's prototype,
+                 * which drops the offset instead, has 0.9996-0.9999 for GTAO). What remains on the
+                 * perspective floor is depth-buffer precision towards the horizon, where the view
+                 * z of neighbouring rows steps (lowest printed; measured means GTAO 0.9885-0.9964,
+                 * bitmask 0.9934-0.9978, LOWEST's one slice the darkest). */
                 const bool bitmask = e == CACAO_ESTIMATOR_BITMASK;
-                if (!ortho) {
-                    CHECK(mean >= (c == 0 ? (bitmask ? 0.9999 : 0.998) : (bitmask ? 0.99 : 0.98)));
+                if (c == 0) {
+                    CHECK(mean >= 0.99999);
+                } else if (!ortho) {
+                    CHECK(mean >= (bitmask ? 0.99 : 0.98));
                 } else {
-                    /* orthographic, both planes seen from 30 degrees above: the lowest mean of
-                     * either plane over the qualities (GTAO 0.99210, bitmask 0.99886) with the
-                     * BOUND() margin of test_amd_reference on 1 - mean */
-                    const double measured = bitmask ? 0.99886 : 0.99210;
+                    /* orthographic floor, seen from 30 degrees above: measured GTAO 0.99994,
+                     * bitmask 1.00000 at every level, with the BOUND() margin of
+                     * test_amd_reference on 1 - mean */
+                    const double measured = bitmask ? 1.0 : 0.99994;
                     CHECK(1.0 - mean <= 1.25 * (1.0 - measured) + 0.02 / 255.0);
                 }
             }
@@ -399,77 +417,117 @@ static void test_frames(vkdev *dev) {
     scene_buffers_free(&b);
 }
 
-/* Issue 13's targets on the shared scenes (the spec prototype's figures): native, fp32, the
- * scenes' normals, one parameter set, RMSE over non-background pixels. */
+/* RMSE of ao against truth over the scene's foreground (depth < 1, finite truth). */
+static double scene_rmse(const float *ao, const float *truth, const float *depth, size_t n) {
+    double se = 0;
+    size_t counted = 0;
+    for (size_t i = 0; i < n; ++i) {
+        if (depth[i] >= 1.0f || !isfinite(truth[i])) continue;
+        const double d = (double)ao[i] - truth[i];
+        se += d * d;
+        ++counted;
+    }
+    return counted ? sqrt(se / (double)counted) : INFINITY;
+}
+
+/* The shared scenes: native, fp32, the scenes' normals, one parameter set, default denoise, RMSE
+ * over non-background pixels. Bounds: the figures measured at the budgets of docs/estimators.md
+ * (issue 34), 3e-4 above them; and three properties of the quality levels that do not depend
+ * on those figures (issue 34's targets):
+ *  - no quality level of an estimator is less accurate than a lower one, on any scene;
+ *  - each estimator's LOWEST is more accurate than AMD CACAO's LOWEST (its own output,
+ *    reference-amd/<scene>/LOWEST_native.png) on every scene;
+ *  - the bitmask's HIGHEST has a mean RMSE over the three scenes <= 0.048. */
 static void test_shared_scenes(vkdev *dev, const char *shared) {
     static const char *const scenes[] = {"interior_fzkhaus", "statues_scanned", "street_track"};
-    static const struct {
-        const char *what;
-        cacao_estimator estimator;
-        cacao_visibility visibility;
-        cacao_quality quality;
-        const char *truth;
-        double bound[3];
-    } cases[] = {
-        {"bitmask falloff, 64 reads",
-         CACAO_ESTIMATOR_BITMASK,
-         CACAO_VISIBILITY_FALLOFF,
-         CACAO_QUALITY_HIGHEST,
-         "ao_gt_falloff",
-         {0.076, 0.024, 0.056}},
-        {"bitmask binary, 64 reads",
-         CACAO_ESTIMATOR_BITMASK,
-         CACAO_VISIBILITY_BINARY,
-         CACAO_QUALITY_HIGHEST,
-         "ao_gt",
-         {0.097, 0.031, 0.072}},
-        {"gtao falloff, 18 reads",
-         CACAO_ESTIMATOR_GTAO,
-         CACAO_VISIBILITY_FALLOFF,
-         CACAO_QUALITY_MEDIUM,
-         "ao_gt_falloff",
-         {0.090, 0.035, 0.070}},
+    static const cacao_estimator estimators[] = {CACAO_ESTIMATOR_GTAO, CACAO_ESTIMATOR_BITMASK};
+    /* measured (lavapipe), per level LOWEST..HIGHEST, interior/statues/street:
+     * gtao .0904/.0522/.0695, .0860/.0326/.0656, .0788/.0285/.0553, .0771/.0265/.0485, .0764/.0258/.0481;
+     * bitmask .1017/.0436/.0761, .0885/.0389/.0663, .0768/.0237/.0564, .0730/.0219/.0531, .0703/.0207/.0494 */
+    static const double bound[2][5][3] = {
+        {{0.0907, 0.0525, 0.0698},
+         {0.0863, 0.0329, 0.0659},
+         {0.0791, 0.0288, 0.0556},
+         {0.0774, 0.0268, 0.0488},
+         {0.0767, 0.0261, 0.0484}},
+        {{0.1020, 0.0439, 0.0764},
+         {0.0888, 0.0392, 0.0666},
+         {0.0771, 0.0240, 0.0567},
+         {0.0733, 0.0222, 0.0534},
+         {0.0706, 0.0210, 0.0497}},
     };
+    /* binary visibility against ao_gt, bitmask HIGHEST: measured .0890/.0279/.0636 */
+    static const double binary_bound[3] = {0.0893, 0.0282, 0.0639};
+    double highest_sum = 0;
+    int highest_scenes = 0;
     for (int k = 0; k < 3; ++k) {
         char path[4096], err[512];
-        cacao_img depth = {0}, normals = {0}, gt = {0}, gt_falloff = {0};
+        cacao_img depth = {0}, normals = {0}, gt = {0}, gt_falloff = {0}, amd = {0};
         cacao_camera_file cam;
+        bool amd16 = false;
         if (!load_shared_scene(shared, scenes[k], &depth, &gt_falloff, &cam)) continue;
         snprintf(path, sizeof path, "%s/scenes/%s/normals.pfm", shared, scenes[k]);
         bool ok = cacao_pfm_read(path, &normals, err, sizeof err);
         snprintf(path, sizeof path, "%s/scenes/%s/ao_gt.pfm", shared, scenes[k]);
         ok = ok && cacao_pfm_read(path, &gt, err, sizeof err);
+        snprintf(path, sizeof path, "%s/reference-amd/%s/LOWEST_native.png", shared, scenes[k]);
+        ok = ok && cacao_png_read(path, &amd, &amd16, err, sizeof err) && amd.channels == 1 &&
+             amd.width == depth.width && amd.height == depth.height;
+        if (!ok) fprintf(stderr, "%s: %s\n", scenes[k], err);
         CHECK(ok);
         const size_t n = (size_t)depth.width * depth.height;
         float *ao = malloc(sizeof(float) * n);
-        for (size_t c = 0; ok && c < sizeof cases / sizeof cases[0]; ++c) {
-            cacao_settings s =
-                slice_settings(cases[c].estimator, cases[c].visibility, 0, 0, (float)cam.ao_radius_world);
-            s.quality = cases[c].quality;
-            s.blur_pass_count = 0; /* default: one denoise pass */
-            vkdev_frame f = {.width = depth.width, .height = depth.height, .depth = depth.data};
-            memcpy(f.projection, cam.projection, sizeof f.projection);
-            vkdev_frame_set_view_normals(&f, normals.data);
-            if (!run(dev, &s, &f, ao)) continue;
-            const float *truth = strcmp(cases[c].truth, "ao_gt") == 0 ? gt.data : gt_falloff.data;
-            double se = 0;
-            size_t counted = 0;
-            for (size_t i = 0; i < n; ++i) {
-                if (depth.data[i] >= 1.0f || !isfinite(truth[i])) continue;
-                const double d = (double)ao[i] - truth[i];
-                se += d * d;
-                ++counted;
+        const double amd_lowest = ok ? scene_rmse(amd.data, gt_falloff.data, depth.data, n) : 0;
+        if (ok) printf("%-17s AMD CACAO LOWEST (reference output) vs ao_gt_falloff RMSE %.4f\n", scenes[k], amd_lowest);
+        vkdev_frame f = {.width = depth.width, .height = depth.height, .depth = depth.data};
+        memcpy(f.projection, cam.projection, sizeof f.projection);
+        vkdev_frame_set_view_normals(&f, normals.data);
+        for (int e = 0; ok && e < 2; ++e) {
+            double previous = INFINITY;
+            for (int q = 0; q < 5; ++q) {
+                cacao_settings s =
+                    slice_settings(estimators[e], CACAO_VISIBILITY_FALLOFF, 0, 0, (float)cam.ao_radius_world);
+                s.quality = (cacao_quality)(CACAO_QUALITY_LOWEST + q);
+                s.blur_pass_count = 0; /* default: one denoise pass */
+                if (!run(dev, &s, &f, ao)) continue;
+                const double rmse = scene_rmse(ao, gt_falloff.data, depth.data, n);
+                printf("%-17s %-7s %-7s vs ao_gt_falloff RMSE %.4f (bound %.4f)\n", scenes[k],
+                       cacao_estimator_name(estimators[e]), cacao_quality_name(s.quality), rmse, bound[e][q][k]);
+                CHECK(rmse <= bound[e][q][k]);
+                if (!(rmse <= previous))
+                    fprintf(stderr, "%s %s %s: RMSE %.4f above the level below's %.4f\n", scenes[k],
+                            cacao_estimator_name(estimators[e]), cacao_quality_name(s.quality), rmse, previous);
+                CHECK(rmse <= previous);
+                if (q == 0) CHECK(rmse < amd_lowest);
+                if (q == 4 && estimators[e] == CACAO_ESTIMATOR_BITMASK) {
+                    highest_sum += rmse;
+                    ++highest_scenes;
+                }
+                previous = rmse;
             }
-            const double rmse = sqrt(se / (double)counted);
-            printf("%-17s %-26s vs %-13s RMSE %.4f (target <= %.3f)\n", scenes[k], cases[c].what, cases[c].truth, rmse,
-                   cases[c].bound[k]);
-            CHECK(rmse <= cases[c].bound[k]);
+        }
+        if (ok) {
+            cacao_settings s =
+                slice_settings(CACAO_ESTIMATOR_BITMASK, CACAO_VISIBILITY_BINARY, 0, 0, (float)cam.ao_radius_world);
+            s.quality = CACAO_QUALITY_HIGHEST;
+            s.blur_pass_count = 0;
+            if (run(dev, &s, &f, ao)) {
+                const double rmse = scene_rmse(ao, gt.data, depth.data, n);
+                printf("%-17s bitmask highest, binary vs ao_gt RMSE %.4f (bound %.4f)\n", scenes[k], rmse,
+                       binary_bound[k]);
+                CHECK(rmse <= binary_bound[k]);
+            }
         }
         free(ao);
+        cacao_img_free(&amd);
         free(depth.data);
         free(normals.data);
         free(gt.data);
         free(gt_falloff.data);
+    }
+    if (highest_scenes == 3) {
+        printf("bitmask highest: mean RMSE over the three scenes %.4f (target <= 0.048)\n", highest_sum / 3);
+        CHECK(highest_sum / 3 <= 0.048);
     }
 }
 

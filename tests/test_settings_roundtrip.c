@@ -93,10 +93,12 @@ static void check_one(const cacao_settings *in, uint32_t w, uint32_t h) {
                                                                       : (unsigned)in->blur_pass_count;
     CHECK(blur_steps(&p2) == (slice ? want_blur : want_blur > 0));
     if (slice) { /* the budget: the quality level's unless given */
-        static const int budget[5][2] = {{2, 2}, {3, 2}, {3, 3}, {3, 6}, {4, 8}};
-        const int q = in->quality ? (int)in->quality - 1 : 4;
-        CHECK(p2.settings.horizon_slices == (in->horizon_slices ? in->horizon_slices : budget[q][0]));
-        CHECK(p2.settings.horizon_steps == (in->horizon_steps ? in->horizon_steps : budget[q][1]));
+        /* docs/estimators.md: {slices, steps} per quality, GTAO then bitmask */
+        static const int budget[2][5][2] = {{{1, 4}, {2, 4}, {2, 6}, {3, 8}, {6, 8}},
+                                            {{1, 4}, {1, 6}, {2, 8}, {2, 12}, {2, 16}}};
+        const int q = in->quality ? (int)in->quality - 1 : 4, e = in->estimator == CACAO_ESTIMATOR_BITMASK;
+        CHECK(p2.settings.horizon_slices == (in->horizon_slices ? in->horizon_slices : budget[e][q][0]));
+        CHECK(p2.settings.horizon_steps == (in->horizon_steps ? in->horizon_steps : budget[e][q][1]));
         CHECK(p2.settings.precision == CACAO_PRECISION_FP32);
     }
     for (uint32_t i = 0; i < p2.step_count; ++i)

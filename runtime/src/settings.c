@@ -188,8 +188,9 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
     if (slice && s.precision == CACAO_PRECISION_FP16) s.precision = CACAO_PRECISION_FP32; /* documented */
     if (slice) {
         const unsigned q = cacaoi_key_quality(s.quality);
-        if (s.horizon_slices == 0) s.horizon_slices = cacaoi_qualities[q].horizon_slices; /* by quality */
-        if (s.horizon_steps == 0) s.horizon_steps = cacaoi_qualities[q].horizon_steps;
+        const unsigned e = s.estimator == CACAO_ESTIMATOR_BITMASK ? CACAO_KEY_ESTIMATOR_BITMASK : CACAO_KEY_ESTIMATOR_GTAO;
+        if (s.horizon_slices == 0) s.horizon_slices = CACAOI_HORIZON_SLICES(q, e); /* by quality and estimator */
+        if (s.horizon_steps == 0) s.horizon_steps = CACAOI_HORIZON_STEPS(q, e);
     }
     if ((int)s.precision != CACAO_PRECISION_FP32 && (int)s.precision != CACAO_PRECISION_FP16) {
         cacaoi_set_error(error, error_size, "settings.precision = %d is not a cacao_precision", (int)in->precision);

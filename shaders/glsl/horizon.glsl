@@ -138,6 +138,8 @@ float fast_atan2(float y, float x)
 struct horizon_frame {
     vec3 t;
     float n, cos_n, sin_n, pl, full;
+    vec3 a;         /* the slice plane's normal */
+    float snap_v, snap_t; /* a sample's offset along a moves it by -(that) * (snap_v, snap_t) in (v, t) */
 };
 
 horizon_frame make_horizon_frame(vec2 dir, vec3 v, vec3 nrm)
@@ -153,6 +155,19 @@ horizon_frame make_horizon_frame(vec2 dir, vec3 v, vec3 nrm)
     f.sin_n = nt * inv_pl;
     f.n = fast_atan2(nt, nv);
     f.full = f.cos_n + f.n * f.sin_n;
+    /* Snapped samples (estimators.md pitfall 6): a sample pixel lies off the slice plane, and
+     * dropping that offset along a lifts half of the samples of a flat surface above its tangent
+     * line (a grazing floor darkens, more with more steps). Instead the offset is removed along
+     * u, a's part in the centre's tangent plane: a sample keeps its height above that plane, so a
+     * plane through the centre occludes nothing at any budget. Where u is nearly orthogonal to
+     * the slice (a close to the normal: the slice weighs pl ~ 0) the offset is dropped as before. */
+    f.a = cross(f.t, v);
+    float an = dot(f.a, nrm);
+    vec3 u = f.a - an * nrm;
+    float ua = 1.0 - an * an; /* u . a */
+    float k = ua > 0.05 ? 1.0 / ua : 0.0;
+    f.snap_v = k * dot(u, v);
+    f.snap_t = k * dot(u, f.t);
     return f;
 }
 
@@ -229,7 +244,8 @@ float horizon_visibility(ivec2 p, float z, ivec2 size)
                 vec3 sample_pos = horizon_pos(q, zq);
                 vec3 delta3 = sample_pos - pos;
                 float dist2 = dot(delta3, delta3);
-                float x = dot(delta3, v), y = dot(delta3, f.t);
+                float off = dot(delta3, f.a);
+                float x = dot(delta3, v) - off * f.snap_v, y = dot(delta3, f.t) - off * f.snap_t;
 #if HORIZON_BITMASK
                 float w = CB.horizon_binary != 0 ? (dist2 <= radius2 ? 1.0 : 0.0) : max(0.0, 1.0 - dist2 * inv_radius2);
                 if (!(w > 0.0)) continue;
@@ -242,7 +258,7 @@ float horizon_visibility(ivec2 p, float z, ivec2 size)
                 } else {
                     float along = CB.horizon_thickness * inversesqrt(dot(sample_pos, sample_pos));
                     xb += along * dot(sample_pos, v);
-                    yb += along * y;
+                    yb += along * dot(sample_pos, f.t);
                 }
                 float u_front = sector_fraction(x, y, f, c_low4, inv_full4);
                 float u_back = sector_fraction(xb, yb, f, c_low4, inv_full4);
@@ -255,7 +271,7 @@ float horizon_visibility(ivec2 p, float z, ivec2 size)
 #else
                 float inv_dist = inversesqrt(dist2);
                 float w = sat((radius - dist2 * inv_dist) * CB.horizon_falloff_mul);
-                float cs = x * inv_dist;
+                float cs = x * inversesqrt(max(x * x + y * y, 1e-30)); /* in the slice plane */
                 if (positive) c_pos = max(c_pos, low_pos + (cs - low_pos) * w);
                 else c_neg = max(c_neg, low_neg + (cs - low_neg) * w);
 #endif
