@@ -161,25 +161,25 @@ def plan_mb(b, *args):
     return '%.1f' % (total / 1e6)
 
 
-def horizon_line(b, quality):
+def horizon_line(b, estimator, quality):
     m = re.search(r'horizon slices: (\d+) x (\d+) steps per side = (\d+) depth reads',
-                  b.plan(('--estimator', 'gtao', '--quality', quality)))
+                  b.plan(('--estimator', estimator, '--quality', quality)))
     if not m:
         raise DocError('no horizon budget in the plan at quality %s' % quality)
     return m
 
 
 @fact
-def horizon_budget(b, quality):
-    """a quality level's slices x steps per side for GTAO/bitmask"""
-    m = horizon_line(b, quality)
+def horizon_budget(b, estimator, quality):
+    """an estimator's (gtao, bitmask) slices x steps per side at a quality level"""
+    m = horizon_line(b, estimator, quality)
     return '%sx%s' % (m.group(1), m.group(2))
 
 
 @fact
-def horizon_reads(b, quality):
-    """a quality level's depth reads per pixel for GTAO/bitmask"""
-    return horizon_line(b, quality).group(3)
+def horizon_reads(b, estimator, quality):
+    """an estimator's (gtao, bitmask) depth reads per pixel at a quality level"""
+    return horizon_line(b, estimator, quality).group(3)
 
 
 @fact
