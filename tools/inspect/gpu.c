@@ -413,6 +413,15 @@ static bool estimate_cacao(const gpu_session *s, gpu_config_cost *cc) {
          * the body's full weight is twice what ACO reports (horizon_main.gtao measured 7727
          * cycles per wave as a direct dispatch and 3863 from the list, the same code otherwise). */
         if (st->indirect && st->inverse_throughput > 0) st->inverse_throughput *= 2.0;
+        /* The horizon estimators' slice loop and its step loop run to the frame's budget, a
+         * runtime value ACO cannot see: it weighs a loop body as run 8 times and a body nested
+         * in it 32 times, i.e. 8 slices x 4 steps per side. Weighed here by the real count:
+         * x (slices x steps) / 32. This scales the per-pixel and per-slice setup with the step
+         * body, which dominates the figure (the step body is 2 depth reads and the sector or
+         * horizon update); at LOWEST's 4 iterations the setup's share makes the weighed figure
+         * an underestimate. */
+        if (stage == GPU_STAGE_HORIZON_MAIN && st->inverse_throughput > 0)
+            st->inverse_throughput *= (double)(cc->plan.settings.horizon_slices * cc->plan.settings.horizon_steps) / 32.0;
         st->cycles = gpu_step_cost(st->groups, 1, st->threads, st->inverse_throughput);
     }
     sum_stages(e);
@@ -616,6 +625,10 @@ static cJSON *config_json(const gpu_config_cost *cc) {
     cJSON_AddStringToObject(o, "precision", cacao_precision_name(cc->settings.precision));
     cJSON_AddBoolToObject(o, "fp16_fell_back", cc->fell_back);
     cJSON_AddStringToObject(o, "normals", cc->settings.generate_normals ? "depth" : "input");
+    if (cc->plan.settings.estimator != CACAO_ESTIMATOR_CACAO) { /* the budget the main pass is weighed by */
+        cJSON_AddNumberToObject(o, "horizon_slices", cc->plan.settings.horizon_slices);
+        cJSON_AddNumberToObject(o, "horizon_steps", cc->plan.settings.horizon_steps);
+    }
     cJSON_AddItemToObject(o, "cacao", estimate_json(&cc->cacao));
     if (cc->has_amd) cJSON_AddItemToObject(o, "amd", estimate_json(&cc->amd));
     return o;
