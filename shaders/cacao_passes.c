@@ -139,20 +139,27 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                             W(VIEW_DEPTH, VIEW_DEPTH, ALL), W(VIEW_NORMALS, VIEW_NORMALS, ALL), R(TILES, TILES, ALL)},
                            .lists = {CACAO_LIST_PREPARE, CACAO_LIST_PREPARE}},
     /* The estimator and the denoise passes run over the needed tiles (docs/tiles.md: a group is a
-     * tile of 8x8 pixels); the fills give the rest their AO 1. */
-    PASS(HORIZON_MAIN) = {"horizon_main", {"gtao", "bitmask", "gtao_direct", "bitmask_direct"}, 4, false, false, false,
-                        WG(HORIZON), CACAOI_GRID_OUTPUT, 6,
+     * tile of 8x8 pixels); the fills give the rest their AO 1. Downsampled, the estimator runs on
+     * a direct grid of half the size (background pixels return at once) and the upsample over the
+     * needed tiles. */
+    PASS(HORIZON_MAIN) = {"horizon_main", {"gtao", "bitmask", "gtao_direct", "bitmask_direct", "gtao_half", "bitmask_half"},
+                        6, false, false, false, WG(HORIZON), CACAOI_GRID_OUTPUT, 6,
                         {CONSTANTS, R(VIEW_DEPTH, VIEW_DEPTH, ALL), R(VIEW_NORMALS, VIEW_NORMALS, ALL),
-                         W(HORIZON_AO_OUT, AO_RAW, V(CACAO_HORIZON_GTAO) | V(CACAO_HORIZON_BITMASK)),
+                         W(HORIZON_AO_OUT, AO_RAW,
+                           V(CACAO_HORIZON_GTAO) | V(CACAO_HORIZON_BITMASK) | V(CACAO_HORIZON_GTAO_HALF) |
+                               V(CACAO_HORIZON_BITMASK_HALF)),
                          W(OUTPUT, OUTPUT, V(CACAO_HORIZON_GTAO_DIRECT) | V(CACAO_HORIZON_BITMASK_DIRECT)),
-                         R(TILES, TILES, ALL)},
-                        .lists = {GEN, GEN, GEN, GEN}},
-    PASS(HORIZON_DENOISE) = {"horizon_denoise", {"intermediate", "final"}, 2, false, false, false, WG(HORIZON),
-                           CACAOI_GRID_OUTPUT, 7,
+                         R(TILES, TILES, V(CACAO_HORIZON_GTAO) | V(CACAO_HORIZON_BITMASK) | V(CACAO_HORIZON_GTAO_DIRECT) |
+                                             V(CACAO_HORIZON_BITMASK_DIRECT))},
+                        .lists = {GEN, GEN, GEN, GEN, CACAO_LIST_NONE, CACAO_LIST_NONE},
+                        .grids = {[CACAO_HORIZON_GTAO_HALF] = CACAOI_GRID_HALF, [CACAO_HORIZON_BITMASK_HALF] = CACAOI_GRID_HALF}},
+    PASS(HORIZON_DENOISE) = {"horizon_denoise", {"intermediate", "final", "upsample", "upsample_final"}, 4, false, false,
+                           false, WG(HORIZON), CACAOI_GRID_OUTPUT, 7,
                            {CONSTANTS, R(HORIZON_AO, AO_RAW, ALL), R(VIEW_DEPTH, VIEW_DEPTH, ALL),
-                            R(VIEW_NORMALS, VIEW_NORMALS, ALL), W(HORIZON_AO_OUT, AO_PONG, V(CACAO_DENOISE_INTERMEDIATE)),
-                            W(OUTPUT, OUTPUT, V(CACAO_DENOISE_FINAL)), R(TILES, TILES, ALL)},
-                           .lists = {GEN, GEN}},
+                            R(VIEW_NORMALS, VIEW_NORMALS, ALL),
+                            W(HORIZON_AO_OUT, AO_PONG, V(CACAO_DENOISE_INTERMEDIATE) | V(CACAO_DENOISE_UPSAMPLE)),
+                            W(OUTPUT, OUTPUT, V(CACAO_DENOISE_FINAL) | V(CACAO_DENOISE_UPSAMPLE_FINAL)), R(TILES, TILES, ALL)},
+                           .lists = {GEN, GEN, GEN, GEN}},
     /* docs/tiles.md: classes (one invocation per tile), then the lists. CACAO classifies its
      * deinterleaved depths (variant 0 keeps the pass's name), the horizon estimators the caller's
      * depth before their prepare. */

@@ -90,6 +90,7 @@ extern const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT];
 #define CACAOI_GRID_UPSAMPLE 6     /* output size / (2 CACAO_UPSAMPLE_SPAN) */
 #define CACAOI_GRID_COMPACT 7      /* one invocation per tile, blur group and apply group */
 #define CACAOI_GRID_TILES 8        /* one invocation per tile */
+#define CACAOI_GRID_HALF 9         /* half the output size (rounded up) / workgroup */
 
 #define CACAOI_ALL_VARIANTS 0xffu
 #define CACAOI_VARIANT(v) (1u << (v))
@@ -105,7 +106,7 @@ typedef struct cacaoi_pass_binding {
 /* Bindings a row lists (a binding per variant may share a slot) and variants a pass has. The
  * bindings one variant makes are at most CACAO_PLAN_MAX_BINDINGS (cacao.h): test_pass_table. */
 #define CACAOI_PASS_MAX_BINDINGS 11
-#define CACAOI_MAX_VARIANTS 5
+#define CACAOI_MAX_VARIANTS 6
 
 typedef struct cacaoi_pass_row {
     const char *name;                                /* key names: "generate" */

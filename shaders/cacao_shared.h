@@ -68,15 +68,22 @@
 #define CACAO_HORIZON_NORMALS_INPUT 1
 
 /* Slice-main variants: estimator (GTAO or bitmask) x destination (raw intermediate for the
- * denoiser, or the caller's output when no denoise pass runs). */
+ * denoiser, or the caller's output when no denoise pass runs); the _HALF variants (downsampled)
+ * compute one pixel of each 2x2 block into the intermediate's top-left quarter. */
 #define CACAO_HORIZON_GTAO 0
 #define CACAO_HORIZON_BITMASK 1
 #define CACAO_HORIZON_GTAO_DIRECT 2
 #define CACAO_HORIZON_BITMASK_DIRECT 3
+#define CACAO_HORIZON_GTAO_HALF 4
+#define CACAO_HORIZON_BITMASK_HALF 5
 
-/* Slice-denoise variants: into the ping-pong intermediate, or (the last pass) into the output. */
+/* Slice-denoise variants: into the ping-pong intermediate, or (the last pass) into the output;
+ * the _UPSAMPLE variants (downsampled: always the first pass) filter the half-resolution AO up to
+ * every pixel. */
 #define CACAO_DENOISE_INTERMEDIATE 0
 #define CACAO_DENOISE_FINAL 1
+#define CACAO_DENOISE_UPSAMPLE 2
+#define CACAO_DENOISE_UPSAMPLE_FINAL 3
 
 /* Classify variants (docs/tiles.md): from CACAO's deinterleaved depths, or from the horizon
  * estimators' full-resolution view z (their "slice" is the image: a tile is 8x8 pixels). */

@@ -128,11 +128,25 @@ static void test_subset(void) {
     CHECK(kept == sizeof expected / sizeof expected[0]);
     cacao_key_subset all = CACAO_KEY_SUBSET_ALL;
     for (size_t i = 0; i < n; ++i) CHECK(cacaoi_key_in_subset(&keys[i], &all)); /* no dead keys */
-    /* downsampled only: no slice-estimator key (they run at full resolution only) */
-    CHECK(cacaoi_key_subset_parse("high", "ONLY", "fp32", &s));
-    for (size_t i = 0; i < n; ++i)
-        if (keys[i].pass >= CACAO_PASS_HORIZON_PREPARE && keys[i].pass <= CACAO_PASS_HORIZON_DENOISE)
-            CHECK(!cacaoi_key_in_subset(&keys[i], &s));
+    /* the horizon estimators' estimator and upsample: the half-resolution variants serve the
+     * downsampled configurations only, the others the native ones only */
+    cacao_key_subset native, downsampled;
+    CHECK(cacaoi_key_subset_parse("high", "OFF", "fp32", &native));
+    CHECK(cacaoi_key_subset_parse("high", "ONLY", "fp32", &downsampled));
+    unsigned half_keys = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const bool half = (keys[i].pass == CACAO_PASS_HORIZON_MAIN && (keys[i].variant == CACAO_HORIZON_GTAO_HALF ||
+                                                                     keys[i].variant == CACAO_HORIZON_BITMASK_HALF)) ||
+                          (keys[i].pass == CACAO_PASS_HORIZON_DENOISE && (keys[i].variant == CACAO_DENOISE_UPSAMPLE ||
+                                                                        keys[i].variant == CACAO_DENOISE_UPSAMPLE_FINAL));
+        half_keys += half;
+        if (keys[i].pass == CACAO_PASS_HORIZON_MAIN) {
+            CHECK(cacaoi_key_in_subset(&keys[i], &downsampled) == half);
+            CHECK(cacaoi_key_in_subset(&keys[i], &native) == !half);
+        }
+        if (half) CHECK(cacaoi_key_in_subset(&keys[i], &downsampled) && !cacaoi_key_in_subset(&keys[i], &native));
+    }
+    CHECK(half_keys == 4);
     free(keys);
     CHECK(!cacaoi_key_subset_parse("ultra", "OFF", "fp32", &s));
     CHECK(!cacaoi_key_subset_parse("high", "MAYBE", "fp32", &s));

@@ -86,12 +86,14 @@ static void check_one(const cacao_settings *in, uint32_t w, uint32_t h) {
     CHECK(settings_equal(&p1.settings, &r1));
 
     /* The blur count the caller asked for, in both plans (CACAO: one step of N iterations, default
-     * 2; the slice estimators: N denoise steps, default 1). */
+     * 2; the slice estimators: N denoise steps, default 1, downsampled N filter steps counting
+     * the upsample, which always runs). */
     const bool slice = in->estimator == CACAO_ESTIMATOR_GTAO || in->estimator == CACAO_ESTIMATOR_BITMASK;
     const unsigned want_blur = in->blur_pass_count == CACAO_BLUR_NONE ? 0
                                : in->blur_pass_count == 0             ? (slice ? 1 : 2)
                                                                       : (unsigned)in->blur_pass_count;
-    CHECK(blur_steps(&p2) == (slice ? want_blur : want_blur > 0));
+    const unsigned want_steps = !slice ? want_blur > 0 : in->downsample && want_blur == 0 ? 1 : want_blur;
+    CHECK(blur_steps(&p2) == want_steps);
     if (slice) { /* the budget: the quality level's unless given */
         /* docs/estimators.md: {slices, steps} per quality, GTAO then bitmask */
         static const int budget[2][5][2] = {{{1, 4}, {2, 4}, {2, 6}, {3, 8}, {6, 8}},
@@ -138,8 +140,8 @@ int main(void) {
                             for (size_t f = 0; f < ZERO_FIELDS; ++f)
                                 if (m == ZERO_FIELDS + 1 || m == f + 1)
                                     *(float *)((char *)&s + zero_fields[f]) = CACAO_ZERO;
-                            if (e >= CACAO_ESTIMATOR_GTAO && ds) { /* full resolution only */
-                                cacao_settings r;
+                            if (e >= CACAO_ESTIMATOR_GTAO && ds && blurs[b] > CACAO_HORIZON_HALF_MAX_PASSES) {
+                                cacao_settings r; /* more filter passes than downsampled runs */
                                 CHECK(cacao_settings_resolve(&s, &r, NULL, 0) == CACAO_ERROR_INVALID_ARGUMENT);
                                 continue;
                             }

@@ -209,22 +209,25 @@ static void test_nan_depth(vkdev *dev, const scene_buffers *sb) {
  * passes run over the needed tiles, and the fills give the rest the 1 they compute there. The
  * reference (compute_all_tiles) runs them over every tile, as before classification existed.
  * Every case above, for GTAO and the bitmask, their smallest and a middle budget, no denoise, one,
- * two (both intermediates filled) and eight passes, normals from depth and given. */
+ * two (both intermediates filled) and eight passes, normals from depth and given; and downsampled
+ * (the estimator on every block, the upsample over the needed tiles) with up to the 6 filter
+ * passes whose reach a skipped tile's margin covers. */
 static void test_horizon(vkdev *dev, const scene_buffers *sb, const scene_buffers *faded_sb, float faded_to) {
     static const cacao_estimator estimators[] = {CACAO_ESTIMATOR_GTAO, CACAO_ESTIMATOR_BITMASK};
-    static const int denoise[] = {CACAO_BLUR_NONE, 1, 2, 8};
+    static const int denoise[2][4] = {{CACAO_BLUR_NONE, 1, 2, 8}, {CACAO_BLUR_NONE, 1, 3, CACAO_HORIZON_HALF_MAX_PASSES}};
     const size_t n = (size_t)sb->width * sb->height;
     float *sky = malloc(n * sizeof(float)), *holes = malloc(n * sizeof(float)), *ao = malloc(n * sizeof(float));
     for (size_t i = 0; i < n; ++i) {
         sky[i] = 1.0f;
         holes[i] = (i % 97 == 0 || sb->depth[i] >= 1.0f) ? NAN : sb->depth[i];
     }
+    for (int ds = 0; ds < 2; ++ds)
     for (int e = 0; e < 2; ++e)
         for (int q = 0; q < 5; q += 3)
             for (int d = 0; d < 4; ++d)
                 for (int given = 0; given < 2; ++given) {
-                    cacao_settings s = {.estimator = estimators[e], .quality = qualities[q],
-                                        .generate_normals = !given, .blur_pass_count = denoise[d],
+                    cacao_settings s = {.estimator = estimators[e], .quality = qualities[q], .downsample = ds != 0,
+                                        .generate_normals = !given, .blur_pass_count = denoise[ds][d],
                                         .fade_out_from = 6.0f, .fade_out_to = 12.0f};
                     cacao_tile_counts c;
                     vkdev_frame f = scene_frame(sb, d == 2, given != 0); /* reverse Z with two denoise passes */

@@ -23,6 +23,7 @@ import importlib.util
 import json
 import os
 import struct
+import subprocess
 import sys
 import tempfile
 import zlib
@@ -36,10 +37,16 @@ spec.loader.exec_module(acc)
 
 QUALITIES = acc.QUALITIES
 ESTIMATORS = ['gtao', 'bitmask']
-READS = {'lowest': 8, 'low': 12, 'medium': 18, 'high': 36, 'highest': 64}
 NO_FADE = ['--fade-out', '1000000,2000000']
-CACAO_CONFIGS = ['medium_native', 'high_native']
+CACAO_CONFIGS = ['%s_native' % q for q in QUALITIES]
+GPU_FAMILY = 'navi21'  # the compiler estimate beside each time (docs/gpu.md explains it)
+GPU_ICD = '/usr/share/vulkan/icd.d/radeon_icd.x86_64.json'
 DEVICE = ['?']  # the bench's device and driver, as its JSON reports them
+
+
+def ds_configs():
+    """The estimators downsampled (falloff visibility, the scenes' normals)."""
+    return ['%s_%s_downsampled' % (e, q) for e in ESTIMATORS for q in QUALITIES]
 
 
 def est_configs(suffix=''):
@@ -86,7 +93,7 @@ def measure(a, bench, scenes, work):
             save = work if rep == 0 else None
             cmds = []
             falloff = os.path.join(work, 'f-%s-%d.json' % (scene, rep))
-            cmds.append(('est', falloff, bench_json(bench, scene_dir, est_configs() + est_configs('_gennormals'),
+            cmds.append(('est', falloff, bench_json(bench, scene_dir, est_configs() + est_configs('_gennormals') + ds_configs(),
                                                     NO_FADE, a, falloff, save)))
             binary_dir = os.path.join(work, 'binary')
             os.makedirs(binary_dir, exist_ok=True)
@@ -129,6 +136,41 @@ def measure(a, bench, scenes, work):
     return ours, amd
 
 
+def budget(r):
+    s = r['settings']
+    return '%dx%d' % (s['horizon_slices'], s['horizon_steps']), 2 * s['horizon_slices'] * s['horizon_steps']
+
+
+def gpu_estimates(a, work):
+    """Mcycles per frame at 1920x1080 on RADV's null device (GPU_FAMILY): {config: total} for the
+    estimators (the scenes' normals given, as measured here) and cacao's CACAO levels, and
+    {'amd ' + quality: total} for AMD's native levels (reconstructed normals, AMD's reference
+    setting). None when RADV or amd_cacao_pipelines is missing."""
+    inspect = os.path.join(a.build, 'tools', 'inspect', 'cacao-inspect')
+    pipelines = os.path.join(a.shared, 'amd-cacao', 'amd_cacao_pipelines')
+    if not (os.path.exists(GPU_ICD) and os.path.exists(pipelines) and os.path.exists(inspect)):
+        return None
+    env = dict(os.environ, RADV_FORCE_FAMILY=GPU_FAMILY, VK_ICD_FILENAMES=GPU_ICD, MESA_SHADER_CACHE_DISABLE='true')
+    amd_lines = os.path.join(work, 'amd-pipelines.jsonl')
+
+    def run(cmd):
+        r = subprocess.run(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
+        if r.returncode != 0:
+            sys.exit('estimators-report: failed (%d): %s\n%s' % (r.returncode, ' '.join(cmd), r.stderr))
+        return r.stdout
+    with open(amd_lines, 'w') as f:
+        f.write(run([pipelines, '--device', 'RADV']))
+    out = {}
+    for normals, configs in (('input', est_configs() + ds_configs()), ('depth', CACAO_CONFIGS)):
+        path = os.path.join(work, 'gpu-%s.json' % normals)
+        run([inspect, 'gpu', '--config', ','.join(configs), '--normals', normals, '--amd', amd_lines, '--json', path])
+        for c in json.load(open(path))['configurations']:
+            out[c['name']] = c['cacao']['total_cycles'] / 1e6
+            if 'amd' in c:
+                out['amd ' + c['quality']] = c['amd']['total_cycles'] / 1e6
+    return out
+
+
 def med(rs, field='total_ms'):
     return float(np.median([r[field] for r in rs]))
 
@@ -137,12 +179,100 @@ def rmse(r, truth):
     return r['errors'][truth]['rmse']
 
 
-def report(a, scenes, ours, amd, up_before, up_after, work, device):
+def front_table(scenes, ours, amd, gpu):
+    """One row per estimator quality, cacao CACAO level and AMD level: mean RMSE over the scenes,
+    time against AMD's HIGH of the same run scene by scene, and the GPU estimate against AMD's HIGH."""
+    have_amd = all((s, 'high_native') in amd for s in scenes)
+    amd_high = {s: float(np.median(amd[(s, 'high_native')]['total'])) for s in scenes} if have_amd else {}
+    gpu_high = gpu.get('amd high') if gpu else None
+    head = ['| | quality | budget | mean RMSE vs ao_gt_falloff | time / AMD HIGH (%s) | %s estimate / AMD HIGH |' % (
+        ', '.join(s.split('_')[0] for s in scenes), GPU_FAMILY), '|---|---|---|---:|---|---:|']
+    rows, front = [], {}
+
+    def ratios(times):
+        return ', '.join('%.2f' % (t / amd_high[s]) for s, t in zip(scenes, times)) if have_amd else '-'
+
+    def gpu_ratio(key):
+        return '%.2f' % (gpu[key] / gpu_high) if gpu and gpu_high and key in gpu else '-'
+    for res in ('native', 'downsampled'):
+        for e in ESTIMATORS:
+            for q in QUALITIES:
+                c = '%s_%s_%s' % (e, q, res)
+                errs = [rmse(ours[(s, c)][0], 'ao_gt_falloff') for s in scenes]
+                times = [med(ours[(s, c)]) for s in scenes]
+                b, reads = budget(ours[(scenes[0], c)][0])
+                front[c] = (float(np.mean(errs)), [t / amd_high[s] for s, t in zip(scenes, times)] if have_amd else None,
+                            gpu[c] / gpu_high if gpu and gpu_high else None)
+                rows.append('| %s%s | %s | %s (%d reads%s) | %.4f | %s | %s |' % (
+                    e, ' downsampled' if res != 'native' else '', q, b, reads, ' per block' if res != 'native' else '',
+                    np.mean(errs), ratios(times), gpu_ratio(c)))
+    for c in CACAO_CONFIGS:
+        errs = [rmse(ours[(s, c)][0], 'ao_gt_falloff') for s in scenes]
+        rows.append('| cacao CACAO (AMD\'s settings) | %s | - | %.4f | %s | %s |' % (
+            c.split('_')[0], np.mean(errs), ratios([med(ours[(s, c)]) for s in scenes]), gpu_ratio(c)))
+    if have_amd:
+        for q in QUALITIES:
+            k = [(s, q + '_native') for s in scenes]
+            rows.append('| **AMD CACAO v1.2** | %s | - | %.4f | %s | %s |' % (
+                q, np.mean([amd[x]['errors']['ao_gt_falloff']['rmse'] for x in k]),
+                ratios([float(np.median(amd[x]['total'])) for x in k]), gpu_ratio('amd ' + q)))
+    return head + rows, front
+
+
+def targets(scenes, ours, front):
+    """Issue 34's targets, each met or missed with its numbers."""
+    out = []
+    best = [(c, v) for c, v in front.items() if v[0] <= 0.048]
+    if not best:
+        c, v = min(front.items(), key=lambda kv: kv[1][0])
+        out.append('- Mean RMSE <= 0.048: **missed**; the lowest is %s at %.4f.' % (c, v[0]))
+    for c, (err, t, g) in sorted(best, key=lambda kv: kv[1][0]):
+        tt = 'time / AMD HIGH %s (target <= 0.8 on every scene: %s)' % (
+            ', '.join('%.2f' % x for x in t), 'met' if max(t) <= 0.8 else '**missed**') if t else 'no AMD timing'
+        gg = '%s estimate / AMD HIGH %.2f (target <= 1: %s)' % (GPU_FAMILY, g, 'met' if g <= 1 else '**missed**') \
+            if g is not None else 'no GPU estimate'
+        out.append('- Mean RMSE <= 0.048 (stretch 0.045: %s): %s at %.4f; %s; %s.' % (
+            'met' if err <= 0.045 else 'missed', c, err, tt, gg))
+    fast = [(c, v) for c, v in front.items() if v[1] and max(v[1]) <= 0.8]
+    if fast:
+        c, v = min(fast, key=lambda kv: kv[1][0])
+        out.append('- The most accurate configuration within 0.8 of AMD HIGH\'s time on every scene: %s, mean RMSE %.4f '
+                   '(time / AMD HIGH %s%s).' % (c, v[0], ', '.join('%.2f' % x for x in v[1]),
+                                                '; %s estimate / AMD HIGH %.2f' % (GPU_FAMILY, v[2]) if v[2] is not None else ''))
+    worse = []
+    for res in ('native', 'downsampled'):
+        for e in ESTIMATORS:
+            for s in scenes:
+                errs = [rmse(ours[(s, '%s_%s_%s' % (e, q, res))][0], 'ao_gt_falloff') for q in QUALITIES]
+                worse += ['%s %s %s on %s (%.4f after %.4f)' % (e, QUALITIES[i], res, s, errs[i], errs[i - 1])
+                          for i in range(1, len(errs)) if errs[i] > errs[i - 1]]
+    out.append('- No quality less accurate than a lower one of the same estimator (native, and downsampled), on any '
+               'scene: %s.' % (
+        'met' if not worse else '**missed**: ' + '; '.join(worse)))
+    for e in ESTIMATORS:
+        c = '%s_lowest_native' % e
+        bad = [s for s in scenes if not (med(ours[(s, c)]) <= med(ours[(s, 'lowest_native')]) or
+                                         rmse(ours[(s, c)][0], 'ao_gt_falloff') <
+                                         rmse(ours[(s, 'lowest_native')][0], 'ao_gt_falloff'))]
+        out.append('- %s LOWEST at most as costly as cacao\'s CACAO LOWEST or more accurate, on every scene: %s '
+                   '(RMSE %s against %s; time %s ms against %s ms).' % (
+                       e, 'met' if not bad else '**missed** on ' + ', '.join(bad),
+                       '/'.join('%.4f' % rmse(ours[(s, c)][0], 'ao_gt_falloff') for s in scenes),
+                       '/'.join('%.4f' % rmse(ours[(s, 'lowest_native')][0], 'ao_gt_falloff') for s in scenes),
+                       '/'.join('%.1f' % med(ours[(s, c)]) for s in scenes),
+                       '/'.join('%.1f' % med(ours[(s, 'lowest_native')]) for s in scenes)))
+    return out
+
+
+def report(a, scenes, ours, amd, gpu, up_before, up_after, work, device):
     lines = ['# The horizon-slice estimators: accuracy and time', '',
              '*Generated by `tools/estimators-report.py --reps %d` on %s, %s. `uptime` before: `%s`; after: `%s`. '
              'Every time below is from this one run: cacao-bench and AMD\'s own code interleaved, median over %d '
-             'processes of each process\'s median of %d frames after %d warm-up frames.*' % (
-                 a.reps, datetime.date.today().isoformat(), device, up_before, up_after, a.reps, a.repeat, a.warmup),
+             'processes of each process\'s median of %d frames after %d warm-up frames. The %s figures are ACO\'s '
+             'cost estimate at 1920x1080 on RADV\'s null device (`cacao-inspect gpu`, docs/gpu.md: a compiler\'s '
+             'estimate, not a timing; the horizon main pass weighed by its budget).*' % (
+                 a.reps, datetime.date.today().isoformat(), device, up_before, up_after, a.reps, a.repeat, a.warmup,
+                 GPU_FAMILY),
              '',
              '`--estimator gtao` and `--estimator bitmask` (cacao.h `cacao_estimator`; design in '
              '[estimators-design](#design)) estimate the cosine-weighted visibility the ray-traced truths measure. '
@@ -150,30 +280,50 @@ def report(a, scenes, ours, amd, up_before, up_after, work, device):
              '`shared/spec/estimators.md`; nothing was fitted to these scenes. RMSE over non-background pixels; '
              '"given" = the scene\'s normals (the spec\'s protocol), "reconstructed" = normals from depth (AMD\'s '
              'reference settings reconstruct them too). AMD\'s best = its native level with the lowest RMSE against '
-             '`ao_gt_falloff` under its reference settings.', '']
+             '`ao_gt_falloff` under its reference settings. Single frames only: no temporal accumulation.', '']
+    table, front = front_table(scenes, ours, amd, gpu)
+    lines += ['## The front', '',
+              'Every quality level of both estimators (given normals), cacao\'s CACAO levels and AMD\'s (AMD\'s '
+              'reference settings, reconstructed normals), mean over the scenes; times as ratios to AMD\'s HIGH '
+              'of this run, scene by scene.', ''] + table + ['', 'Issue 34\'s targets:', ''] + \
+        targets(scenes, ours, front) + ['']
     for scene in scenes:
+        amd_high = float(np.median(amd[(scene, 'high_native')]['total'])) if (scene, 'high_native') in amd else None
         lines += ['## %s' % scene, '',
-                  '| estimator | quality | depth reads / px | RMSE vs ao_gt_falloff (given / reconstructed normals) | '
-                  'RMSE vs ao_gt, binary visibility | total ms | horizon_main ms |',
-                  '|---|---|---|---|---|---|---|']
+                  '| estimator | quality | budget (depth reads / px) | RMSE vs ao_gt_falloff (given / reconstructed '
+                  'normals) | RMSE vs ao_gt, binary visibility | total ms | / AMD HIGH | horizon_main ms | %s Mcycles |'
+                  % GPU_FAMILY, '|---|---|---|---|---|---|---|---|---|']
         for e in ESTIMATORS:
             for q in QUALITIES:
                 c = '%s_%s_native' % (e, q)
                 rs, rg, rb = ours[(scene, c)], ours[(scene, c + '_gennormals')], ours[(scene, 'binary:' + c)]
                 main = float(np.median([p['time_ms'] for r in rs for p in r['passes'] if p['name'].startswith('horizon_main')]))
-                lines.append('| %s | %s | %d | %.4f / %.4f | %.4f | %.1f | %.1f |' % (
-                    e, q, READS[q], rmse(rs[0], 'ao_gt_falloff'), rmse(rg[0], 'ao_gt_falloff'),
-                    rmse(rb[0], 'ao_gt'), med(rs), main))
+                b, reads = budget(rs[0])
+                lines.append('| %s | %s | %s (%d) | %.4f / %.4f | %.4f | %.1f | %s | %.1f | %s |' % (
+                    e, q, b, reads, rmse(rs[0], 'ao_gt_falloff'), rmse(rg[0], 'ao_gt_falloff'),
+                    rmse(rb[0], 'ao_gt'), med(rs), '%.2f' % (med(rs) / amd_high) if amd_high else '-', main,
+                    '%.1f' % gpu[c] if gpu else '-'))
+        for e in ESTIMATORS:
+            for q in QUALITIES:
+                c = '%s_%s_downsampled' % (e, q)
+                rs = ours[(scene, c)]
+                main = float(np.median([p['time_ms'] for r in rs for p in r['passes'] if p['name'].startswith('horizon_main')]))
+                b, reads = budget(rs[0])
+                lines.append('| %s downsampled | %s | %s (%d per block) | %.4f / - | - | %.1f | %s | %.1f | %s |' % (
+                    e, q, b, reads, rmse(rs[0], 'ao_gt_falloff'), med(rs),
+                    '%.2f' % (med(rs) / amd_high) if amd_high else '-', main, '%.1f' % gpu[c] if gpu else '-'))
         for c in CACAO_CONFIGS:
             rs = ours[(scene, c)]
-            lines.append('| cacao (CACAO, AMD\'s settings) | %s | - | %.4f (reconstructed) | %.4f | %.1f | - |' % (
-                c.split('_')[0], rmse(rs[0], 'ao_gt_falloff'), rmse(rs[0], 'ao_gt'), med(rs)))
+            lines.append('| cacao (CACAO, AMD\'s settings) | %s | - | %.4f (reconstructed) | %.4f | %.1f | %s | - | %s |' % (
+                c.split('_')[0], rmse(rs[0], 'ao_gt_falloff'), rmse(rs[0], 'ao_gt'), med(rs),
+                '%.2f' % (med(rs) / amd_high) if amd_high else '-', '%.1f' % gpu[c] if gpu else '-'))
         if amd:
             best = min((k for k in amd if k[0] == scene), key=lambda k: amd[k]['errors']['ao_gt_falloff']['rmse'])
             b = amd[best]
-            lines.append('| **AMD CACAO v1.2, best level** | %s | - | %.4f (reconstructed) | %.4f | %.1f | - |' % (
+            lines.append('| **AMD CACAO v1.2, best level** | %s | - | %.4f (reconstructed) | %.4f | %.1f | %s | - | %s |' % (
                 best[1].split('_')[0], b['errors']['ao_gt_falloff']['rmse'], b['errors']['ao_gt']['rmse'],
-                float(np.median(b['total']))))
+                float(np.median(b['total'])), '%.2f' % (float(np.median(b['total'])) / amd_high),
+                '%.1f' % gpu['amd ' + best[1].split('_')[0]] if gpu else '-'))
             lines += ['', 'AMD per native level (RMSE vs ao_gt_falloff, ms): ' + ', '.join(
                 '%s %.4f / %.1f' % (q, amd[(scene, q + '_native')]['errors']['ao_gt_falloff']['rmse'],
                                     float(np.median(amd[(scene, q + '_native')]['total']))) for q in QUALITIES) + '.']
@@ -221,7 +371,7 @@ def main():
         up_after = acc.uptime()
         device = DEVICE[0]
         merged = os.path.join(work, 'merged.json')
-        configs = est_configs() + CACAO_CONFIGS
+        configs = est_configs() + ds_configs() + CACAO_CONFIGS
         results = []
         for c in configs:
             for s in scenes:
@@ -239,7 +389,7 @@ def main():
                                        'rmse_ao_gt': v['errors']['ao_gt']['rmse']} for (s, c), v in amd.items()]}, f)
             plot_cmd += ['--reference', ref]
         acc.run(plot_cmd)
-        report(a, scenes, ours, amd, up_before, up_after, work, device)
+        report(a, scenes, ours, amd, gpu_estimates(a, work), up_before, up_after, work, device)
     print('wrote %s' % os.path.join(a.out, 'estimators.md'))
 
 

@@ -25,7 +25,8 @@ import tempfile
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 QUALITIES = ['lowest', 'low', 'medium', 'high', 'highest']
 CONFIGS = ['%s_%s' % (q, r) for r in ('native', 'downsampled') for q in QUALITIES]
-HORIZON = ['%s_%s_native' % (e, q) for e in ('gtao', 'bitmask') for q in ('lowest', 'low', 'medium', 'high', 'highest')]
+HORIZON = ['%s_%s_%s' % (e, q, r) for r in ('native', 'downsampled') for e in ('gtao', 'bitmask')
+           for q in ('lowest', 'low', 'medium', 'high', 'highest')]
 STAGES = ['prepare', 'classify/compact', 'base', 'importance', 'generate', 'blur', 'apply/upsample']
 HORIZON_STAGES = ['horizon_prepare', 'horizon_main', 'horizon_denoise']
 FAMILY_NAMES = {'vega10': 'Vega 10 (GCN5, gfx9)', 'navi10': 'Navi 10 (RDNA1, gfx10.1)',

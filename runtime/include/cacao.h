@@ -155,6 +155,12 @@ CACAO_API cacao_result cacao_shader_forms_from_name(const char *name, cacao_shad
 
 /* Asks for an explicit 0 in a float field whose 0 would otherwise mean "default". */
 #define CACAO_ZERO (-1.0f)
+/* Downsampled GTAO/BITMASK run at most this many filter passes (blur_pass_count): the upsample
+ * reads blocks up to 3 pixels away and each denoise pass 1 pixel more, and a tile the frame skips
+ * is 8 pixels from any tile it computes: with 3 + 5 pixels of reach the skipped tiles stay exactly
+ * what the full computation gives. */
+#define CACAO_HORIZON_HALF_MAX_PASSES 6
+
 /* Asks for no blur (blur_pass_count 0 means the default, 2). */
 #define CACAO_BLUR_NONE (-1)
 
@@ -175,14 +181,17 @@ typedef struct cacao_settings {
     cacao_quality quality;          /* 0 = HIGHEST */
     cacao_precision precision;      /* 0 = FP32 */
     bool generate_normals;          /* true: reconstruct normals from depth; false: inputs.normals */
-    bool downsample;                /* true: AO at quarter resolution, bilateral upsample (CACAO only) */
+    bool downsample;                /* true: AO at quarter resolution, upsampled (every estimator) */
     /* Horizon-slice estimators. With GTAO or BITMASK: radius is R (the world radius of the
      * visibility estimated); quality picks the budget (slices x steps per side, 2 depth reads per
-     * step: LOWEST 2x2 = 8 reads, LOW 3x2 = 12, MEDIUM 3x3 = 18, HIGH 3x6 = 36, HIGHEST 4x8 = 64);
-     * blur_pass_count is the number of denoise passes (0 = 1, CACAO_BLUR_NONE = none); fade_out_*
-     * and generate_normals apply; the shadow, sharpness, detail, adaptive and bilateral fields and
-     * downsample do not (downsample is refused); precision FP16 runs FP32 (view z, angles and
-     * sector masks need single precision; cacao_context_precision tells). */
+     * step; per estimator, docs/estimators.md: GTAO LOWEST 1x4 ... HIGHEST 6x8, BITMASK LOWEST
+     * 1x4 ... HIGHEST 2x16); blur_pass_count is the number of denoise passes (0 = 1,
+     * CACAO_BLUR_NONE = none); downsample computes one pixel of each 2x2 block and upsamples it
+     * with depth- and normal-aware weights, the first of the blur_pass_count filter passes (so
+     * NONE and 1 both upsample only; at most CACAO_HORIZON_HALF_MAX_PASSES = 6); fade_out_* and
+     * generate_normals apply; the shadow, sharpness, detail, adaptive and bilateral fields do
+     * not; precision FP16 runs FP32 (view z, angles and sector masks need single precision;
+     * cacao_context_precision tells). */
     cacao_estimator estimator;      /* 0 = CACAO */
     cacao_visibility visibility;    /* 0 = FALLOFF */
     float thickness;                /* BITMASK: assumed occluder thickness, world units; 0 = 1.0 R

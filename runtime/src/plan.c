@@ -97,6 +97,10 @@ static void dispatch_size(const cacao_plan *p, const cacao_key *key, uint32_t ou
         out[0] = div_up(p->tiles_x, wx);
         out[1] = div_up(p->tiles_y, wy);
         return;
+    case CACAOI_GRID_HALF:
+        out[0] = div_up(div_up(p->width, 2), wx);
+        out[1] = div_up(div_up(p->height, 2), wy);
+        return;
 
     default: /* CACAOI_GRID_OUTPUT */
         out[0] = div_up(p->width, wx);

@@ -154,13 +154,6 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     const bool slice = s.estimator != CACAO_ESTIMATOR_CACAO;
-    if (slice && s.downsample) {
-        cacaoi_set_error(error, error_size,
-                         "settings.downsample: the %s estimator runs at full resolution only (use quality for a "
-                         "cheaper budget)",
-                         cacao_estimator_name(s.estimator));
-        return CACAO_ERROR_INVALID_ARGUMENT;
-    }
     if (s.horizon_slices < 0 || s.horizon_slices > CACAO_HORIZON_MAX_DIRECTIONS) {
         cacaoi_set_error(error, error_size, "settings.horizon_slices = %d is outside 1..%d (0 = by quality)",
                         s.horizon_slices, CACAO_HORIZON_MAX_DIRECTIONS);
@@ -177,6 +170,13 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
     } else if (s.blur_pass_count < 1 || s.blur_pass_count > 8) {
         cacaoi_set_error(error, error_size, "settings.blur_pass_count = %d is outside 1..8 (0 = default, %d = none)",
                         s.blur_pass_count, CACAO_BLUR_NONE);
+        return CACAO_ERROR_INVALID_ARGUMENT;
+    } else if (slice && s.downsample && s.blur_pass_count > CACAO_HORIZON_HALF_MAX_PASSES) {
+        cacaoi_set_error(error, error_size,
+                         "settings.blur_pass_count = %d: downsampled, the %s estimator runs at most %d filter passes "
+                         "(the upsample and %d denoise passes)",
+                         s.blur_pass_count, cacao_estimator_name(s.estimator), CACAO_HORIZON_HALF_MAX_PASSES,
+                         CACAO_HORIZON_HALF_MAX_PASSES - 1);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
     if (s.quality == CACAO_QUALITY_DEFAULT) s.quality = (cacao_quality)quality_names.default_value;

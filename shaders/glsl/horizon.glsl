@@ -89,7 +89,10 @@ void store_visibility(ivec2 p, float v) { imageStore(horizon_ao_out, p, vec4(v))
 #endif
 
 #if CACAO_PASS == CACAO_PASS_HORIZON_MAIN
-#define HORIZON_BITMASK (CACAO_VARIANT == CACAO_HORIZON_BITMASK || CACAO_VARIANT == CACAO_HORIZON_BITMASK_DIRECT)
+#define HORIZON_BITMASK                                                                                    \
+    (CACAO_VARIANT == CACAO_HORIZON_BITMASK || CACAO_VARIANT == CACAO_HORIZON_BITMASK_DIRECT ||             \
+     CACAO_VARIANT == CACAO_HORIZON_BITMASK_HALF)
+#define HORIZON_HALF (CACAO_VARIANT == CACAO_HORIZON_GTAO_HALF || CACAO_VARIANT == CACAO_HORIZON_BITMASK_HALF)
 
 /* Hilbert-curve index of (x, y) in a 64x64 tile (estimators.md section 2.1). */
 uint hilbert_index(uint x, uint y)
@@ -191,7 +194,9 @@ float sector_fraction(float x, float y, horizon_frame f, float c_low4, float inv
 }
 #endif
 
-float horizon_visibility(ivec2 p, float z, ivec2 size)
+/* The visibility of pixel p; noise_p indexes the per-pixel noise (the pixel itself, or its 2x2
+ * block downsampled, so that neighbouring blocks see well-spread slice angles). */
+float horizon_visibility(ivec2 p, ivec2 noise_p, float z, ivec2 size)
 {
     vec3 pos = horizon_pos(p, z);
     vec3 v = horizon_to_camera(pos);
@@ -199,7 +204,7 @@ float horizon_visibility(ivec2 p, float z, ivec2 size)
     const float radius = CB.horizon_radius, radius2 = radius * radius, inv_radius2 = 1.0 / radius2;
     float rpx = radius / (CB.horizon_pixel_size * view_xy_scale(z)); /* radius in pixels */
     float min_s = CACAO_HORIZON_MIN_OFFSET_PX / rpx;
-    uint h = hilbert_index(uint(p.x) & 63u, uint(p.y) & 63u) + uint(CB.horizon_noise_offset);
+    uint h = hilbert_index(uint(noise_p.x) & 63u, uint(noise_p.y) & 63u) + uint(CB.horizon_noise_offset);
     float xi_s = unit_fraction(h * R2_X + HALF);
     uint xi_t = h * R2_Y + HALF;
     const int ns = CB.horizon_directions, m = CB.horizon_steps;
@@ -303,6 +308,20 @@ float horizon_visibility(ivec2 p, float z, ivec2 size)
     return 1.0 - (1.0 - vis) * sat(z * CB.effect_fade_out_mul + CB.effect_fade_out_add);
 }
 
+#if HORIZON_HALF
+/* Downsampled: invocation q computes pixel 2q, the top-left of its 2x2 block, into texel q of the
+ * intermediate (a direct grid over every block: background pixels store 1 at once). */
+void main()
+{
+    ivec2 group;
+    if (!group_of(group)) return;
+    ivec2 q = texel_of(group);
+    ivec2 size = imageSize(view_depth);
+    if (!in_rect(q, (size + 1) >> 1)) return;
+    float z = fetch_view_z(2 * q);
+    store_visibility(q, z > 0.0 ? horizon_visibility(2 * q, q, z, size) : 1.0);
+}
+#else
 /* Over the needed tiles (docs/tiles.md): a workgroup is one tile of pixels. */
 void main()
 {
@@ -312,14 +331,24 @@ void main()
     ivec2 size = imageSize(view_depth);
     if (!in_rect(p, size)) return;
     float z = fetch_view_z(p);
-    store_visibility(p, z > 0.0 ? horizon_visibility(p, z, size) : 1.0);
+    store_visibility(p, z > 0.0 ? horizon_visibility(p, p, z, size) : 1.0);
 }
+#endif
 #endif /* HORIZON_MAIN */
 
 #if CACAO_PASS == CACAO_PASS_HORIZON_DENOISE
 
-/* 3x3 bilateral filter (estimators.md section 5): weight by the distance of the neighbour's point
- * from this pixel's tangent plane (relative to sigma z) and by the agreement of the normals. */
+/* Weight of neighbour point q (view z zq) for a pixel at pos with normal nrm (estimators.md
+ * section 5): its distance from the pixel's tangent plane relative to sigma z, and the agreement
+ * of the normals (the stored normal as it is: unit to 8 bits, and one that is zero weighs 0). */
+float denoise_weight(vec3 pos, vec3 nrm, float inv_scale, ivec2 q, float zq)
+{
+    float plane = dot(nrm, horizon_pos(q, zq) - pos) * inv_scale;
+    float agree = sat(dot(nrm, fetch_stored_normal(q)));
+    agree *= agree;
+    return exp2(-1.44269504 * plane * plane) * agree * agree; /* exp(-plane^2) */
+}
+
 void main()
 {
     ivec2 group;
@@ -335,6 +364,36 @@ void main()
     vec3 pos = horizon_pos(p, z);
     vec3 nrm = fetch_normal(p, horizon_to_camera(pos));
     float inv_scale = 1.0 / max(CB.horizon_denoise_sigma * z, 1e-30);
+#if CACAO_VARIANT == CACAO_DENOISE_UPSAMPLE || CACAO_VARIANT == CACAO_DENOISE_UPSAMPLE_FINAL
+    /* Downsampled: the blocks' AO (texel q holds pixel 2q's) around p, each weighed by a tent of
+     * radius HORIZON_UPSAMPLE_TENT pixels in x and y from p times the denoise weight of its
+     * pixel; where no block's pixel lies on p's surface (a thin feature between them), the AO of
+     * the most similar one. */
+    const float HORIZON_UPSAMPLE_TENT = 4.0;
+    ivec2 half_size = (size + 1) >> 1, base = p >> 1;
+    float sum = 0.0, weight_sum = 0.0, best = -1.0, best_ao = 1.0;
+    [[unroll]] for (int j = -1; j <= 1; ++j) {
+        [[unroll]] for (int i = -1; i <= 1; ++i) {
+            ivec2 q = base + ivec2(i, j);
+            vec2 d = abs(vec2(p - 2 * q));
+            float tent = max(HORIZON_UPSAMPLE_TENT - d.x, 0.0) * max(HORIZON_UPSAMPLE_TENT - d.y, 0.0);
+            if (!(tent > 0.0) || !in_rect(q, half_size)) continue;
+            float zq = fetch_view_z(2 * q);
+            if (!(zq > 0.0)) continue;
+            float g = denoise_weight(pos, nrm, inv_scale, 2 * q, zq);
+            float ao = imageLoad(horizon_ao, q).r;
+            if (g > best) {
+                best = g;
+                best_ao = ao;
+            }
+            float w = tent * g;
+            sum += w * ao;
+            weight_sum += w;
+        }
+    }
+    store_visibility(p, weight_sum > 1e-4 ? sum / weight_sum : best_ao);
+#else
+    /* 3x3 bilateral filter (estimators.md section 5) */
     float sum = imageLoad(horizon_ao, p).r, weight_sum = 1.0;
     [[unroll]] for (int j = -1; j <= 1; ++j) {
         [[unroll]] for (int i = -1; i <= 1; ++i) {
@@ -342,16 +401,13 @@ void main()
             if ((i == 0 && j == 0) || !in_rect(q, size)) continue;
             float zq = fetch_view_z(q);
             if (!(zq > 0.0)) continue;
-            /* the stored normal as it is: unit to 8 bits, and one that is zero only weighs 0 */
-            float plane = dot(nrm, horizon_pos(q, zq) - pos) * inv_scale;
-            float agree = sat(dot(nrm, fetch_stored_normal(q)));
-            agree *= agree;
-            float w = exp2(-1.44269504 * plane * plane) * agree * agree; /* exp(-plane^2) */
+            float w = denoise_weight(pos, nrm, inv_scale, q, zq);
             sum += w * imageLoad(horizon_ao, q).r;
             weight_sum += w;
         }
     }
     store_visibility(p, sum / weight_sum);
+#endif
 }
 #endif /* HORIZON_DENOISE */
 #endif /* horizon estimators */

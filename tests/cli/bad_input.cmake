@@ -70,8 +70,8 @@ expect_refused("--blur 9: must be a whole number" --scene ${ROOM} --blur 9)
 expect_refused("--radius abc: not a number" --scene ${ROOM} --radius abc)
 expect_refused("--quality ultra: unknown value 'ultra'" --scene ${ROOM} --quality ultra)
 expect_refused("--estimator fast: unknown value 'fast' (one of cacao, gtao, bitmask)" --scene ${ROOM} --estimator fast)
-expect_refused("--downsample (or its key in --settings): settings.downsample: the gtao estimator runs at full"
-               --scene ${ROOM} --estimator gtao --downsample)
+expect_refused("settings.blur_pass_count = 7: downsampled, the gtao estimator runs at most 6 filter passes"
+               --scene ${ROOM} --estimator gtao --downsample --blur 7)
 expect_refused("--steps 33: must be a whole number, 0 (default) to 32" --scene ${ROOM} --estimator bitmask --steps 33)
 expect_refused("--thickness -1: must not be negative" --scene ${ROOM} --estimator bitmask --thickness -1)
 expect_refused("--precision fp8: unknown value" --scene ${ROOM} --precision fp8)

@@ -1,6 +1,5 @@
-# A flag that would not apply is refused, never accepted and ignored (issue 35, defect 8); the
-# existing model is `cacao --estimator gtao --downsample`, refused because the horizon-slice
-# estimators run at full resolution. Each case gets one line naming the flag and a non-zero exit:
+# A flag that would not apply is refused, never accepted and ignored (issue 35, defect 8). Each case
+# gets one line naming the flag and a non-zero exit:
 #   - --slices, --steps, --visibility and --frame (gtao, bitmask) and --thickness (bitmask) with an
 #     estimator that does not read them: in cacao, cacao-inspect plan and, per configuration,
 #     cacao-bench; with an estimator that does, they are taken (and reach the settings);

@@ -54,7 +54,7 @@ static const char *const help_text =
     "                     default: the sweep\n"
     "  --sweep default|full  default: every quality x native/downsampled at the default blur, fp32;\n"
     "                     full adds blur 0..8, fp16 and reconstructed normals (_blurN, _fp16, _gennormals);\n"
-    "                     gtao_* and bitmask_* are the horizon-slice estimators (native, fp32; blur = denoise passes)\n"
+    "                     gtao_* and bitmask_* are the horizon-slice estimators (fp32; blur = denoise passes)\n"
     "  --list-configs     print the configurations the flags select and exit\n"
     "  --warmup N         untimed frames first (default 2: lavapipe compiles shader variants then)\n"
     "  --repeat N         timed frames (default 7)\n"

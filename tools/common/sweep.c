@@ -25,18 +25,19 @@ static void name_config(sweep_config *c) {
 }
 
 /* By estimator, quality, resolution, normals, precision, then blur (the default first, then 0..8);
- * the horizon-slice estimators are native and fp32 only. */
+ * the horizon-slice estimators are fp32 only. */
 uint32_t sweep_full(sweep_config out[SWEEP_FULL_SIZE]) {
     uint32_t n = 0;
     for (int e = CACAO_ESTIMATOR_CACAO; e <= CACAO_ESTIMATOR_BITMASK; ++e) {
-        const int variants = e == CACAO_ESTIMATOR_CACAO ? 2 : 1; /* of resolution and of precision */
+        const int precisions = e == CACAO_ESTIMATOR_CACAO ? 2 : 1;
         for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
-            for (int ds = 0; ds < variants; ++ds)
+            for (int ds = 0; ds < 2; ++ds)
                 for (int gen = 0; gen < 2; ++gen)
-                    for (int fp16 = 0; fp16 < variants; ++fp16)
+                    for (int fp16 = 0; fp16 < precisions; ++fp16)
                         for (int k = -1; k <= 8; ++k) {
                             const int blur = k < 0 ? default_blur((cacao_estimator)e) : k;
                             if (k == default_blur((cacao_estimator)e)) continue; /* listed first */
+                            if (e != CACAO_ESTIMATOR_CACAO && ds && blur > CACAO_HORIZON_HALF_MAX_PASSES) continue;
                             sweep_config *c = &out[n++];
                             *c = (sweep_config){.estimator = (cacao_estimator)e,
                                                 .quality = (cacao_quality)q,

@@ -27,7 +27,7 @@ typedef struct sweep_config {
 } sweep_config;
 
 /* Configurations of the full sweep. */
-#define SWEEP_FULL_SIZE (5 * 2 * 2 * 2 * 9 + 2 * 5 * 2 * 9)
+#define SWEEP_FULL_SIZE (5 * 2 * 2 * 2 * 9 + 2 * 5 * 2 * (9 + 9 - 2))
 
 /* Writes the full sweep in its order; returns SWEEP_FULL_SIZE. */
 uint32_t sweep_full(sweep_config out[SWEEP_FULL_SIZE]);
