@@ -474,7 +474,9 @@ CACAO_API cacao_result cacao_record(cacao_context *context, VkCommandBuffer comm
  * plane, invalid depth). CACAO: tiles of 8x8 slice texels (16x16 pixels native, 32x32
  * downsampled); generate and blur run only where an active tile is near. GTAO and BITMASK:
  * tiles of 8x8 pixels; the estimator and the denoise passes run only where an active tile is
- * near (generate_* counts them; blur_* is 0 of 0). The rest of the AO is 1, as the full
+ * near (generate_* counts them; blur_* is 0 of 0); downsampled, the estimator runs on every 2x2
+ * block (a background block returns at once) and the upsample and denoise passes where an
+ * active tile is near. The rest of the AO is 1, as the full
  * computation gives it. The counts live on the device: record a copy after cacao_record, read it once the frame is
  * done. */
 typedef struct cacao_tile_counts {
