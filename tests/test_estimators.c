@@ -305,15 +305,18 @@ static void test_invariance(vkdev *dev) {
     float *ref = malloc(sizeof(float) * n), *ao = malloc(sizeof(float) * n);
     const cacao_scene base = cacao_default_scene(w, h);
     cacao_prim prims[64];
+    for (int ds = 0; ds < 2; ++ds)
     for (int e = CACAO_ESTIMATOR_GTAO; e <= CACAO_ESTIMATOR_BITMASK; ++e) {
         scene_buffers b;
         scene_buffers_render(&base, &b);
         cacao_settings s = slice_settings(e, CACAO_VISIBILITY_FALLOFF, 0, 0, (float)base.ao_radius_world);
-        s.blur_pass_count = 0; /* the default denoise pass */
+        s.blur_pass_count = 0; /* the default denoise pass (downsampled: the upsample) */
+        s.downsample = ds != 0;
         vkdev_frame f = scene_frame(&b, false, true), fr = scene_frame(&b, true, true);
         if (run(dev, &s, &f, ref) && run(dev, &s, &fr, ao)) {
             const double m = mean_abs_diff(ref, ao, n);
-            printf("%s reverse-Z vs standard: mean |diff| %.6f\n", cacao_estimator_name(e), m);
+            printf("%s%s reverse-Z vs standard: mean |diff| %.6f\n", cacao_estimator_name(e), ds ? " downsampled" : "",
+                   m);
             CHECK(m < 0.5 / 255.0);
         }
         scene_buffers_free(&b);
@@ -329,7 +332,8 @@ static void test_invariance(vkdev *dev) {
             vkdev_frame fs = scene_frame(&bs, false, true);
             if (run(dev, &ss, &fs, ao)) {
                 const double m = mean_abs_diff(ref, ao, n);
-                printf("%s world scale x%g vs x1: mean |diff| %.6f\n", cacao_estimator_name(e), sc, m);
+                printf("%s%s world scale x%g vs x1: mean |diff| %.6f\n", cacao_estimator_name(e),
+                       ds ? " downsampled" : "", sc, m);
                 CHECK(m <= 1.0 / 255.0);
             }
             scene_buffers_free(&bs);
@@ -356,10 +360,12 @@ static void test_invalid_depth(vkdev *dev) {
             dirty_depth[i] = x % 3 == 0 ? NAN : (x % 3 == 1 ? INFINITY : -INFINITY);
             far_depth[i] = 1.0f;
         }
+    for (int ds = 0; ds < 2; ++ds)
     for (int e = CACAO_ESTIMATOR_GTAO; e <= CACAO_ESTIMATOR_BITMASK; ++e) {
         cacao_settings s = slice_settings(e, CACAO_VISIBILITY_FALLOFF, 0, 0, radius);
         s.generate_normals = true;
         s.blur_pass_count = 2;
+        s.downsample = ds != 0;
         vkdev_frame f = scene_frame(&b, false, false);
         f.depth = dirty_depth;
         if (!run(dev, &s, &f, dirty)) continue;
@@ -367,8 +373,8 @@ static void test_invalid_depth(vkdev *dev) {
         if (!run(dev, &s, &f, far)) continue;
         size_t differ = 0;
         for (size_t i = 0; i < n; ++i) differ += dirty[i] != far[i];
-        printf("%s NaN/Inf block vs the same block at the far plane: %zu pixels differ\n", cacao_estimator_name(e),
-               differ);
+        printf("%s%s NaN/Inf block vs the same block at the far plane: %zu pixels differ\n", cacao_estimator_name(e),
+               ds ? " downsampled" : "", differ);
         CHECK(all_finite_unit(dirty, n));
         CHECK(differ == 0);
     }
