@@ -67,69 +67,55 @@ _Static_assert(12 <= CACAOI_SEQUENCE_MAX && 8 + CACAO_KEY_MAX_BLUR_PASSES <= CAC
 _Static_assert(CACAO_WG_HORIZON_X == CACAO_TILE && CACAO_WG_HORIZON_Y == CACAO_TILE,
                "a horizon estimator's group is one tile of the list it runs over");
 
-/* Horizon estimators: classification from the caller's depth (docs/tiles.md), prepare over the
- * tiles that are not all background (the fill of the others stores their view z and normal), the
- * estimator over the needed tiles (into the output when no denoise pass runs), the fills of the rest with AO 1 (the
- * intermediates the denoise passes read, and the output), then the denoise passes over the needed
- * tiles, ping-ponging between AO_RAW and AO_PONG, the last into the output. */
-/* Downsampled: the estimator at one pixel of each 2x2 block (a direct grid of half the size, into
- * AO_RAW's top-left quarter), then the upsample over the needed tiles as the first filter pass
- * (into the output, or AO_PONG when more denoise passes follow); the fills give the later passes'
- * inputs their 1 on the tiles they skip (AO_RAW only after the upsample has read it). */
-static size_t horizon_half_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENCE_MAX]) {
-    size_t n = 0;
-    const unsigned blur = c->blur_passes > 1 ? c->blur_passes : 1; /* the upsample is always a pass */
-    push(out, &n, CACAO_PASS_CLASSIFY, CACAO_CLASSIFY_HORIZON, 0, 0, 0);
-    push(out, &n, CACAO_PASS_COMPACT, CACAO_COMPACT_HORIZON, 0, 0, 0);
-    push(out, &n, CACAO_PASS_HORIZON_PREPARE, c->normals_from_input ? CACAO_HORIZON_NORMALS_INPUT : CACAO_HORIZON_NORMALS_DEPTH,
-         0, 0, 0);
-    push(out, &n, CACAO_PASS_FILL, CACAO_FILL_VIEW, 0, 0, 0);
-    push(out, &n, CACAO_PASS_HORIZON_MAIN,
-         c->estimator == CACAO_KEY_ESTIMATOR_GTAO ? CACAO_HORIZON_GTAO_HALF : CACAO_HORIZON_BITMASK_HALF, 0, 0, 0);
-    push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT, 0, 0, 0);
-    push(out, &n, CACAO_PASS_HORIZON_DENOISE, blur == 1 ? CACAO_DENOISE_UPSAMPLE_FINAL : CACAO_DENOISE_UPSAMPLE, 0, 0, 0);
-    if (blur >= 2) rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0), CACAO_BINDING_HORIZON_AO_OUT,
-                          CACAO_RES_AO_PONG);
-    if (blur >= 3) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0); /* AO_RAW, after the upsample */
-    cacao_resource ao = CACAO_RES_AO_PONG;
-    for (unsigned pass = 2; pass <= blur; ++pass) {
-        const bool last = pass == blur;
-        cacaoi_step *s = push(out, &n, CACAO_PASS_HORIZON_DENOISE, last ? CACAO_DENOISE_FINAL : CACAO_DENOISE_INTERMEDIATE,
+/* Denoise passes first..last over the needed tiles, the first reading `ao`, ping-ponging between
+ * AO_RAW and AO_PONG, the last into the output. */
+static void push_denoise_passes(cacaoi_step *out, size_t *n, unsigned first, unsigned last, cacao_resource ao) {
+    for (unsigned pass = first; pass <= last; ++pass) {
+        cacaoi_step *s = push(out, n, CACAO_PASS_HORIZON_DENOISE, pass == last ? CACAO_DENOISE_FINAL : CACAO_DENOISE_INTERMEDIATE,
                               0, 0, 0);
         const cacao_resource next = ao == CACAO_RES_AO_RAW ? CACAO_RES_AO_PONG : CACAO_RES_AO_RAW;
         rebind(s, CACAO_BINDING_HORIZON_AO, ao);
-        if (!last) rebind(s, CACAO_BINDING_HORIZON_AO_OUT, next);
+        if (pass != last) rebind(s, CACAO_BINDING_HORIZON_AO_OUT, next);
         ao = next;
     }
-    return n;
 }
 
+/* Horizon estimators: classification from the caller's depth (docs/tiles.md), prepare over the
+ * tiles that are not all background (the fill of the others stores their view z and normal).
+ * Native: the estimator over the needed tiles (into the output when no denoise pass runs), the
+ * fills of the rest with AO 1 (the intermediates the denoise passes read, and the output), then
+ * the denoise passes over the needed tiles. Downsampled: the estimator at one pixel of each 2x2
+ * block (a direct grid of half the size, into AO_RAW's top-left quarter), then the upsample over
+ * the needed tiles as the first filter pass (into the output, or AO_PONG when denoise passes
+ * follow); the fills give the later passes' inputs their 1 on the tiles they skip (AO_RAW only
+ * after the upsample has read it). */
 static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENCE_MAX]) {
-    if (c->downsampled) return horizon_half_sequence(c, out);
     size_t n = 0;
-    const unsigned blur = c->blur_passes;
+    const bool half = c->downsampled;
+    const unsigned blur = half && c->blur_passes < 1 ? 1 : c->blur_passes; /* downsampled: the upsample always runs */
+    const bool gtao = c->estimator == CACAO_KEY_ESTIMATOR_GTAO;
     push(out, &n, CACAO_PASS_CLASSIFY, CACAO_CLASSIFY_HORIZON, 0, 0, 0);
     push(out, &n, CACAO_PASS_COMPACT, CACAO_COMPACT_HORIZON, 0, 0, 0);
     push(out, &n, CACAO_PASS_HORIZON_PREPARE, c->normals_from_input ? CACAO_HORIZON_NORMALS_INPUT : CACAO_HORIZON_NORMALS_DEPTH,
          0, 0, 0);
     push(out, &n, CACAO_PASS_FILL, CACAO_FILL_VIEW, 0, 0, 0);
-    const unsigned main_variant = (c->estimator == CACAO_KEY_ESTIMATOR_GTAO ? CACAO_HORIZON_GTAO : CACAO_HORIZON_BITMASK) +
-                                  (blur == 0 ? CACAO_HORIZON_GTAO_DIRECT : 0);
-    push(out, &n, CACAO_PASS_HORIZON_MAIN, main_variant, 0, 0, 0);
+    if (half) {
+        push(out, &n, CACAO_PASS_HORIZON_MAIN, gtao ? CACAO_HORIZON_GTAO_HALF : CACAO_HORIZON_BITMASK_HALF, 0, 0, 0);
+        push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT, 0, 0, 0);
+        push(out, &n, CACAO_PASS_HORIZON_DENOISE, blur == 1 ? CACAO_DENOISE_UPSAMPLE_FINAL : CACAO_DENOISE_UPSAMPLE, 0, 0, 0);
+        if (blur >= 2) rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0), CACAO_BINDING_HORIZON_AO_OUT,
+                              CACAO_RES_AO_PONG);
+        if (blur >= 3) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0); /* AO_RAW, after the upsample */
+        push_denoise_passes(out, &n, 2, blur, CACAO_RES_AO_PONG);
+        return n;
+    }
+    push(out, &n, CACAO_PASS_HORIZON_MAIN,
+         (gtao ? CACAO_HORIZON_GTAO : CACAO_HORIZON_BITMASK) + (blur == 0 ? CACAO_HORIZON_GTAO_DIRECT : 0), 0, 0, 0);
     if (blur >= 1) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0); /* AO_RAW */
     if (blur >= 2) rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0), CACAO_BINDING_HORIZON_AO_OUT,
                           CACAO_RES_AO_PONG);
     push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT, 0, 0, 0);
-    cacao_resource ao = CACAO_RES_AO_RAW;
-    for (unsigned pass = 1; pass <= blur; ++pass) {
-        const bool last = pass == blur;
-        cacaoi_step *s = push(out, &n, CACAO_PASS_HORIZON_DENOISE, last ? CACAO_DENOISE_FINAL : CACAO_DENOISE_INTERMEDIATE,
-                              0, 0, 0);
-        const cacao_resource next = ao == CACAO_RES_AO_RAW ? CACAO_RES_AO_PONG : CACAO_RES_AO_RAW;
-        rebind(s, CACAO_BINDING_HORIZON_AO, ao);
-        if (!last) rebind(s, CACAO_BINDING_HORIZON_AO_OUT, next);
-        ao = next;
-    }
+    push_denoise_passes(out, &n, 1, blur, CACAO_RES_AO_RAW);
     return n;
 }
 
