@@ -52,6 +52,7 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
     IMAGE(VIEW_NORMALS,    "view_normals",    FULL,       false, false, R8G8B8A8_SNORM, "rgba8_snorm", 4),
     IMAGE(AO_RAW,          "ao_raw",          FULL,       false, false, R16_SFLOAT,     "r16f",        2),
     IMAGE(AO_PONG,         "ao_pong",         FULL,       false, false, R16_SFLOAT,     "r16f",        2),
+    IMAGE(AO_HALF,         "ao_half",         HALF,       false, false, R16_SFLOAT,     "r16f",        2),
 };
 #undef CALLER
 #undef BUFFER
@@ -143,19 +144,20 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * a direct grid of half the size (background pixels return at once) and the upsample over the
      * needed tiles. */
     PASS(HORIZON_MAIN) = {"horizon_main", {"gtao", "bitmask", "gtao_direct", "bitmask_direct", "gtao_half", "bitmask_half"},
-                        6, false, false, false, WG(HORIZON), CACAOI_GRID_OUTPUT, 6,
+                        6, false, false, false, WG(HORIZON), CACAOI_GRID_OUTPUT, 7,
                         {CONSTANTS, R(VIEW_DEPTH, VIEW_DEPTH, ALL), R(VIEW_NORMALS, VIEW_NORMALS, ALL),
-                         W(HORIZON_AO_OUT, AO_RAW,
-                           V(CACAO_HORIZON_GTAO) | V(CACAO_HORIZON_BITMASK) | V(CACAO_HORIZON_GTAO_HALF) |
-                               V(CACAO_HORIZON_BITMASK_HALF)),
+                         W(HORIZON_AO_OUT, AO_RAW, V(CACAO_HORIZON_GTAO) | V(CACAO_HORIZON_BITMASK)),
+                         W(HORIZON_AO_OUT, AO_HALF, V(CACAO_HORIZON_GTAO_HALF) | V(CACAO_HORIZON_BITMASK_HALF)),
                          W(OUTPUT, OUTPUT, V(CACAO_HORIZON_GTAO_DIRECT) | V(CACAO_HORIZON_BITMASK_DIRECT)),
                          R(TILES, TILES, V(CACAO_HORIZON_GTAO) | V(CACAO_HORIZON_BITMASK) | V(CACAO_HORIZON_GTAO_DIRECT) |
                                              V(CACAO_HORIZON_BITMASK_DIRECT))},
                         .lists = {GEN, GEN, GEN, GEN, CACAO_LIST_NONE, CACAO_LIST_NONE},
                         .grids = {[CACAO_HORIZON_GTAO_HALF] = CACAOI_GRID_HALF, [CACAO_HORIZON_BITMASK_HALF] = CACAOI_GRID_HALF}},
     PASS(HORIZON_DENOISE) = {"horizon_denoise", {"intermediate", "final", "upsample", "upsample_final"}, 4, false, false,
-                           false, WG(HORIZON), CACAOI_GRID_OUTPUT, 7,
-                           {CONSTANTS, R(HORIZON_AO, AO_RAW, ALL), R(VIEW_DEPTH, VIEW_DEPTH, ALL),
+                           false, WG(HORIZON), CACAOI_GRID_OUTPUT, 8,
+                           {CONSTANTS, R(HORIZON_AO, AO_RAW, V(CACAO_DENOISE_INTERMEDIATE) | V(CACAO_DENOISE_FINAL)),
+                            R(HORIZON_AO, AO_HALF, V(CACAO_DENOISE_UPSAMPLE) | V(CACAO_DENOISE_UPSAMPLE_FINAL)),
+                            R(VIEW_DEPTH, VIEW_DEPTH, ALL),
                             R(VIEW_NORMALS, VIEW_NORMALS, ALL),
                             W(HORIZON_AO_OUT, AO_PONG, V(CACAO_DENOISE_INTERMEDIATE) | V(CACAO_DENOISE_UPSAMPLE)),
                             W(OUTPUT, OUTPUT, V(CACAO_DENOISE_FINAL) | V(CACAO_DENOISE_UPSAMPLE_FINAL)), R(TILES, TILES, ALL)},

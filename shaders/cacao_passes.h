@@ -64,6 +64,7 @@ extern const cacaoi_slot_row cacaoi_slots[CACAO_BINDING_COUNT];
 #define CACAOI_SIZE_IMPORTANCE 3 /* half a slice */
 #define CACAOI_SIZE_FULL 4       /* the output's size */
 #define CACAOI_SIZE_TILES 5      /* the tile buffer: header, classes and lists (cacao_plan.tile_buffer_bytes) */
+#define CACAOI_SIZE_HALF 6       /* half the output's size, rounded up */
 
 typedef struct cacaoi_resource_row {
     const char *name;        /* cacao_resource_name() */

@@ -85,10 +85,9 @@ static void push_denoise_passes(cacaoi_step *out, size_t *n, unsigned first, uns
  * Native: the estimator over the needed tiles (into the output when no denoise pass runs), the
  * fills of the rest with AO 1 (the intermediates the denoise passes read, and the output), then
  * the denoise passes over the needed tiles. Downsampled: the estimator at one pixel of each 2x2
- * block (a direct grid of half the size, into AO_RAW's top-left quarter), then the upsample over
+ * block (a direct grid of half the size, into AO_HALF), then the upsample over
  * the needed tiles as the first filter pass (into the output, or AO_PONG when denoise passes
- * follow); the fills give the later passes' inputs their 1 on the tiles they skip (AO_RAW only
- * after the upsample has read it). */
+ * follow); the fills give the later passes' inputs their 1 on the tiles they skip. */
 static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENCE_MAX]) {
     size_t n = 0;
     const bool half = c->downsampled;
@@ -105,7 +104,7 @@ static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI
         push(out, &n, CACAO_PASS_HORIZON_DENOISE, blur == 1 ? CACAO_DENOISE_UPSAMPLE_FINAL : CACAO_DENOISE_UPSAMPLE, 0, 0, 0);
         if (blur >= 2) rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0), CACAO_BINDING_HORIZON_AO_OUT,
                               CACAO_RES_AO_PONG);
-        if (blur >= 3) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0); /* AO_RAW, after the upsample */
+        if (blur >= 3) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0); /* AO_RAW */
         push_denoise_passes(out, &n, 2, blur, CACAO_RES_AO_PONG);
         return n;
     }

@@ -69,7 +69,7 @@
 
 /* Slice-main variants: estimator (GTAO or bitmask) x destination (raw intermediate for the
  * denoiser, or the caller's output when no denoise pass runs); the _HALF variants (downsampled)
- * compute one pixel of each 2x2 block into the intermediate's top-left quarter. */
+ * compute one pixel of each 2x2 block into the half-size intermediate. */
 #define CACAO_HORIZON_GTAO 0
 #define CACAO_HORIZON_BITMASK 1
 #define CACAO_HORIZON_GTAO_DIRECT 2

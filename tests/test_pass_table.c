@@ -110,7 +110,9 @@ static void test_slots(void) {
                 if (r->format != first->format || r->layered != first->layered)
                     fprintf(stderr, "slot %s: %s binds %s, another row %s\n", cacaoi_slots[s].name,
                             cacaoi_passes[p].name, r->name, first->name);
-                CHECK(r->format == first->format && r->layered == first->layered && r->size == first->size);
+                /* (the size may differ: horizon_denoise reads the full-size AO_RAW or, upsampling,
+                 * the half-size AO_HALF through one slot; no shader sizes a loop by that image) */
+                CHECK(r->format == first->format && r->layered == first->layered);
                 ++rows;
             }
         if (rows == 0) fprintf(stderr, "slot %s: no pass row binds it\n", cacaoi_slots[s].name);

@@ -232,6 +232,7 @@ typedef enum cacao_resource {
     CACAO_RES_VIEW_NORMALS,     /* GTAO/BITMASK: full-resolution view normals, RGBA8 SNORM */
     CACAO_RES_AO_RAW,           /* GTAO/BITMASK: visibility before the last denoise pass, R16F */
     CACAO_RES_AO_PONG,          /* GTAO/BITMASK: denoise ping-pong, R16F */
+    CACAO_RES_AO_HALF,          /* GTAO/BITMASK downsampled: the 2x2 blocks' visibility, R16F, half size */
     CACAO_RES_TILES,            /* storage + indirect buffer: tile classes, lists, dispatch commands */
     CACAO_RES_COUNT
 } cacao_resource;

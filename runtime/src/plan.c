@@ -117,6 +117,7 @@ static void add_image(cacao_plan *p, cacao_resource res, uint32_t levels_bound) 
     uint32_t w = p->width, h = p->height, layers = 1;
     if (row->size == CACAOI_SIZE_SLICE) w = p->slice_width, h = p->slice_height;
     if (row->size == CACAOI_SIZE_IMPORTANCE) w = p->importance_width, h = p->importance_height;
+    if (row->size == CACAOI_SIZE_HALF) w = div_up(p->width, 2), h = div_up(p->height, 2);
     if (row->layered) layers = p->slice_count;
     const uint32_t chain = CACAO_DEPTH_MIP_LEVELS(w > h ? w : h);
     const uint32_t mips = levels_bound < chain ? levels_bound : chain;
