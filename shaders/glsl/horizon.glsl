@@ -198,6 +198,11 @@ float sector_fraction(float x, float y, horizon_frame f, float c_low4, float inv
  * block downsampled, so that neighbouring blocks see well-spread slice angles). */
 float horizon_visibility(ivec2 p, ivec2 noise_p, float z, ivec2 size)
 {
+    /* the fade-out distance range of the settings: occlusion fades to none. Where it has faded
+     * completely the result is 1 whatever the estimate, so none is made (a faded pixel of an
+     * active tile, or any faded block downsampled, costs this test only). */
+    float fade = sat(z * CB.effect_fade_out_mul + CB.effect_fade_out_add);
+    if (fade == 0.0) return 1.0;
     vec3 pos = horizon_pos(p, z);
     vec3 v = horizon_to_camera(pos);
     vec3 nrm = fetch_normal(p, v);
@@ -304,8 +309,7 @@ float horizon_visibility(ivec2 p, ivec2 noise_p, float z, ivec2 size)
 #else
     float vis = sat(sum_vis / max(sum_full, 1e-9));
 #endif
-    /* the fade-out distance range of the settings: occlusion fades to none */
-    return 1.0 - (1.0 - vis) * sat(z * CB.effect_fade_out_mul + CB.effect_fade_out_add);
+    return 1.0 - (1.0 - vis) * fade;
 }
 
 #if HORIZON_HALF
