@@ -196,13 +196,8 @@ float sector_fraction(float x, float y, horizon_frame f, float c_low4, float inv
 
 /* The visibility of pixel p; noise_p indexes the per-pixel noise (the pixel itself, or its 2x2
  * block downsampled, so that neighbouring blocks see well-spread slice angles). */
-float horizon_visibility(ivec2 p, ivec2 noise_p, float z, ivec2 size)
+float horizon_visibility(ivec2 p, ivec2 noise_p, float z, float fade, ivec2 size)
 {
-    /* the fade-out distance range of the settings: occlusion fades to none. Where it has faded
-     * completely the result is 1 whatever the estimate, so none is made (a faded pixel of an
-     * active tile, or any faded block downsampled, costs this test only). */
-    float fade = sat(z * CB.effect_fade_out_mul + CB.effect_fade_out_add);
-    if (fade == 0.0) return 1.0;
     vec3 pos = horizon_pos(p, z);
     vec3 v = horizon_to_camera(pos);
     vec3 nrm = fetch_normal(p, v);
@@ -309,8 +304,13 @@ float horizon_visibility(ivec2 p, ivec2 noise_p, float z, ivec2 size)
 #else
     float vis = sat(sum_vis / max(sum_full, 1e-9));
 #endif
-    return 1.0 - (1.0 - vis) * fade;
+    return 1.0 - (1.0 - vis) * fade; /* the fade-out: occlusion fades to none */
 }
+
+/* The fade-out distance range of the settings at view z: 0 where occlusion has faded completely.
+ * There the result is 1 whatever the estimate, so main makes none (a faded pixel of an active tile,
+ * or a faded block downsampled, costs this test only; one branch with the background test). */
+float horizon_fade(float z) { return sat(z * CB.effect_fade_out_mul + CB.effect_fade_out_add); }
 
 #if HORIZON_HALF
 /* Downsampled: invocation q computes pixel 2q, the top-left of its 2x2 block, into texel q of the
@@ -322,8 +322,8 @@ void main()
     ivec2 q = texel_of(group);
     ivec2 size = imageSize(view_depth);
     if (!in_rect(q, (size + 1) >> 1)) return;
-    float z = fetch_view_z(2 * q);
-    store_visibility(q, z > 0.0 ? horizon_visibility(2 * q, q, z, size) : 1.0);
+    float z = fetch_view_z(2 * q), fade = horizon_fade(z);
+    store_visibility(q, z > 0.0 && fade > 0.0 ? horizon_visibility(2 * q, q, z, fade, size) : 1.0);
 }
 #else
 /* Over the needed tiles (docs/tiles.md): a workgroup is one tile of pixels. */
@@ -334,8 +334,8 @@ void main()
     ivec2 p = texel_of(group);
     ivec2 size = imageSize(view_depth);
     if (!in_rect(p, size)) return;
-    float z = fetch_view_z(p);
-    store_visibility(p, z > 0.0 ? horizon_visibility(p, p, z, size) : 1.0);
+    float z = fetch_view_z(p), fade = horizon_fade(z);
+    store_visibility(p, z > 0.0 && fade > 0.0 ? horizon_visibility(p, p, z, fade, size) : 1.0);
 }
 #endif
 #endif /* HORIZON_MAIN */
