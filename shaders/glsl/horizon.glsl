@@ -312,32 +312,26 @@ float horizon_visibility(ivec2 p, ivec2 noise_p, float z, float fade, ivec2 size
  * or a faded block downsampled, costs this test only; one branch with the background test). */
 float horizon_fade(float z) { return sat(z * CB.effect_fade_out_mul + CB.effect_fade_out_add); }
 
+/* Native: over the needed tiles (docs/tiles.md), a workgroup is one tile of pixels, invocation t
+ * computes pixel t. Downsampled: a direct grid over every 2x2 block, invocation t computes pixel
+ * 2t, the top-left of its block, into texel t of the half-size intermediate (background blocks
+ * store 1 at once). The noise follows t. */
+void main()
+{
+    ivec2 group;
+    if (!group_of(group)) return;
+    ivec2 t = texel_of(group);
+    ivec2 size = imageSize(view_depth);
 #if HORIZON_HALF
-/* Downsampled: invocation q computes pixel 2q, the top-left of its 2x2 block, into texel q of the
- * intermediate (a direct grid over every block: background pixels store 1 at once). */
-void main()
-{
-    ivec2 group;
-    if (!group_of(group)) return;
-    ivec2 q = texel_of(group);
-    ivec2 size = imageSize(view_depth);
-    if (!in_rect(q, (size + 1) >> 1)) return;
-    float z = fetch_view_z(2 * q), fade = horizon_fade(z);
-    store_visibility(q, z > 0.0 && fade > 0.0 ? horizon_visibility(2 * q, q, z, fade, size) : 1.0);
-}
+    if (!in_rect(t, (size + 1) >> 1)) return;
+    ivec2 p = 2 * t;
 #else
-/* Over the needed tiles (docs/tiles.md): a workgroup is one tile of pixels. */
-void main()
-{
-    ivec2 group;
-    if (!group_of(group)) return;
-    ivec2 p = texel_of(group);
-    ivec2 size = imageSize(view_depth);
-    if (!in_rect(p, size)) return;
-    float z = fetch_view_z(p), fade = horizon_fade(z);
-    store_visibility(p, z > 0.0 && fade > 0.0 ? horizon_visibility(p, p, z, fade, size) : 1.0);
-}
+    if (!in_rect(t, size)) return;
+    ivec2 p = t;
 #endif
+    float z = fetch_view_z(p), fade = horizon_fade(z);
+    store_visibility(t, z > 0.0 && fade > 0.0 ? horizon_visibility(p, t, z, fade, size) : 1.0);
+}
 #endif /* HORIZON_MAIN */
 
 #if CACAO_PASS == CACAO_PASS_HORIZON_DENOISE
@@ -369,10 +363,11 @@ void main()
     vec3 nrm = fetch_normal(p, horizon_to_camera(pos));
     float inv_scale = 1.0 / max(CB.horizon_denoise_sigma * z, 1e-30);
 #if CACAO_VARIANT == CACAO_DENOISE_UPSAMPLE || CACAO_VARIANT == CACAO_DENOISE_UPSAMPLE_FINAL
-    /* Downsampled: the blocks' AO (texel q holds pixel 2q's) around p, each weighed by a tent of
-     * radius HORIZON_UPSAMPLE_TENT pixels in x and y from p times the denoise weight of its
-     * pixel; where no block's pixel lies on p's surface (a thin feature between them), the AO of
-     * the most similar one. */
+    /* Downsampled: the 3x3 blocks' AO (texel q holds pixel 2q's) around p, each weighed by a tent
+     * of radius HORIZON_UPSAMPLE_TENT pixels in x and y from p (the blocks' pixels lie 0 to 3
+     * pixels away: every weight is positive) times the denoise weight of its pixel; where no
+     * block's pixel lies on p's surface (a thin feature between them), the AO of the most similar
+     * one. */
     const float HORIZON_UPSAMPLE_TENT = 4.0;
     ivec2 half_size = (size + 1) >> 1, base = p >> 1;
     float sum = 0.0, weight_sum = 0.0, best = -1.0, best_ao = 1.0;
@@ -381,7 +376,7 @@ void main()
             ivec2 q = base + ivec2(i, j);
             vec2 d = abs(vec2(p - 2 * q));
             float tent = max(HORIZON_UPSAMPLE_TENT - d.x, 0.0) * max(HORIZON_UPSAMPLE_TENT - d.y, 0.0);
-            if (!(tent > 0.0) || !in_rect(q, half_size)) continue;
+            if (!in_rect(q, half_size)) continue;
             float zq = fetch_view_z(2 * q);
             if (!(zq > 0.0)) continue;
             float g = denoise_weight(pos, nrm, inv_scale, 2 * q, zq);
