@@ -70,12 +70,15 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
 #define WG(name) {CACAO_WG_##name##_X, CACAO_WG_##name##_Y}
 #define GEN CACAO_LIST_GENERATE
 
-/* The generate row and its GPU form's (the same bindings, lists and grids). */
-#define GENERATE_ROW(name)                                                                         \
+/* The generate row and its GPU form's (the same lists and grids), `taps` the variants whose taps'
+ * depths come through the storage image with imageLoad: every variant of the CPU form (lavapipe
+ * runs it faster than a fetch through the sampled view); Q3 and its base pass of the GPU form,
+ * whose Q0..Q2 fetch them through the sampled view (measured on a GPU: docs/gpu.md). */
+#define GENERATE_ROW(name, taps)                                                                   \
     {name, {"q0", "q1", "q2", "q3", "q3base"}, 5, false, false, false, WG(GENERATE), CACAOI_GRID_SLICE_LAYERS, 11, \
      {CONSTANTS, R(LOAD_COUNTER, LOAD_COUNTER, V(CACAO_GENERATE_Q3)), R(DEPTHS, DEPTHS, ALL),               \
-      /* the taps' and normals' single texels: imageLoad (cacao.comp) */                            \
-      R(DEPTHS_IMAGE, DEPTHS, ALL), R(NORMALS_IMAGE, NORMALS, ALL), R(SSAO_BASE, SSAO_PONG, V(CACAO_GENERATE_Q3)), \
+      /* the normals' single texels: imageLoad (cacao.comp) */                                     \
+      R(DEPTHS_IMAGE, DEPTHS, taps), R(NORMALS_IMAGE, NORMALS, ALL), R(SSAO_BASE, SSAO_PONG, V(CACAO_GENERATE_Q3)), \
       R(IMPORTANCE_MAP, IMPORTANCE, V(CACAO_GENERATE_Q3)), W(SSAO_IMAGE, SSAO_PING, ALL & ~V(CACAO_GENERATE_Q3_BASE)), \
       W(SSAO_IMAGE, SSAO_PONG, V(CACAO_GENERATE_Q3_BASE)), W(IMPORTANCE_MAP_IMAGE, IMPORTANCE, V(CACAO_GENERATE_Q3_BASE)), \
       R(TILES, TILES, ALL & ~V(CACAO_GENERATE_Q3_BASE))},                                          \
@@ -107,7 +110,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * load counter; the Q3 base pass writes the second AO buffer and the importance map
      * (importance.md "GenerateImportanceMap"): an invocation per importance texel computes the
      * 2x2 slice texels of every layer that texel reads. */
-    PASS(GENERATE) = GENERATE_ROW("generate"),
+    PASS(GENERATE) = GENERATE_ROW("generate", ALL),
     /* spec: importance.md: two smoothing passes (ping-pong) of the map the Q3 base pass wrote. */
     PASS(IMPORTANCE_A) = {"importance_a", {NULL}, 1, false, false, false, WG(IMPORTANCE), CACAOI_GRID_IMPORTANCE, 3,
                           {CONSTANTS, R(IMPORTANCE_MAP, IMPORTANCE, ALL), W(IMPORTANCE_MAP_IMAGE, IMPORTANCE_PONG, ALL)}},
@@ -187,7 +190,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     /* prepare: each direction between two neighbouring depths normalised once for the two
      * normals that use it; generate: the tap's atlas level in integers. */
     PASS(PREPARE_GPU) = PREPARE_ROW("prepare_gpu"),
-    PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu"),
+    PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu", V(CACAO_GENERATE_Q3) | V(CACAO_GENERATE_Q3_BASE)),
     PASS(FILL) = {"fill", {NULL, "horizon", "output", "view"}, 4, false, false, false, {CACAO_TILE, CACAO_TILE},
                   CACAOI_GRID_SLICE_LAYERS, 7,
                   {CONSTANTS, R(TILES, TILES, ALL), W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),

@@ -108,7 +108,30 @@ static void test_cost(void) {
     CHECK(gpu_step_cost(groups, 1, 64, -1.0) < 0);
 }
 
+/* The statistics are read by the names drivers give them: RADV's and NVIDIA's ("Register Count",
+ * "Stack Size": NVIDIA's per-thread stack, where it spills), and either driver's spill shows. */
+static void test_statistic_names(void) {
+    CHECK(gpu_stat_from_name("VGPRs") == GPU_STAT_VGPRS);
+    CHECK(gpu_stat_from_name("Inverse Throughput") == GPU_STAT_INVERSE_THROUGHPUT);
+    CHECK(gpu_stat_from_name("Register Count") == GPU_STAT_REGISTERS);
+    CHECK(gpu_stat_from_name("Stack Size") == GPU_STAT_STACK_BYTES);
+    CHECK(gpu_stat_from_name("Shared Memory Size") == GPU_STAT_SHARED_BYTES);
+    CHECK(gpu_stat_from_name("Local Memory Size") == GPU_STAT_COUNT); /* NVIDIA reports 2^36 there: not read */
+    CHECK(gpu_stat_from_name("vgprs") == GPU_STAT_COUNT);              /* exact names only */
+    gpu_stats s = gpu_stats_none();
+    CHECK(!gpu_stats_spill(&s));
+    s.value[GPU_STAT_REGISTERS] = 255;
+    s.value[GPU_STAT_STACK_BYTES] = 0;
+    CHECK(!gpu_stats_spill(&s));
+    s.value[GPU_STAT_STACK_BYTES] = 16;
+    CHECK(gpu_stats_spill(&s));
+    s = gpu_stats_none();
+    s.value[GPU_STAT_SCRATCH_BYTES] = 1024;
+    CHECK(gpu_stats_spill(&s));
+}
+
 int main(void) {
+    test_statistic_names();
     test_every_key_has_a_stage();
     test_amd_highest_native();
     test_amd_lowest_downsampled();

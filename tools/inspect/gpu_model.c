@@ -30,7 +30,7 @@ gpu_stat gpu_stat_from_name(const char *name) {
 
 bool gpu_stats_spill(const gpu_stats *s) {
     return s->value[GPU_STAT_SCRATCH_BYTES] > 0 || s->value[GPU_STAT_SPILLED_VGPRS] > 0 ||
-           s->value[GPU_STAT_SPILLED_SGPRS] > 0;
+           s->value[GPU_STAT_SPILLED_SGPRS] > 0 || s->value[GPU_STAT_STACK_BYTES] > 0;
 }
 
 const char *const gpu_stage_names[GPU_STAGE_COUNT] = {

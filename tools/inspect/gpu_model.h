@@ -17,8 +17,10 @@
 
 /* ---- Statistics ------------------------------------------------------------------------------ */
 
-/* The pipeline statistics read, by the name RADV gives them (VK_KHR_pipeline_executable_properties)
- * and the short column header the tool prints. */
+/* The pipeline statistics read, by the name the driver gives them (VK_KHR_pipeline_executable_properties)
+ * and the short column header the tool prints: RADV's (VGPRs .. Inverse Throughput), then NVIDIA's
+ * (registers per thread, the per-thread stack its compiler spills to, shared memory). A statistic
+ * the driver does not report stays negative. */
 #define GPU_STATS(X)                                                                                                   \
     X(VGPRS, "VGPRs", "vgpr")                                                                                          \
     X(SGPRS, "SGPRs", "sgpr")                                                                                          \
@@ -29,7 +31,10 @@
     X(OCCUPANCY, "Subgroups per SIMD", "waves/simd")                                                                   \
     X(INSTRUCTIONS, "Instructions", "instr")                                                                           \
     X(LATENCY, "Latency", "latency")                                                                                   \
-    X(INVERSE_THROUGHPUT, "Inverse Throughput", "inv_thr")
+    X(INVERSE_THROUGHPUT, "Inverse Throughput", "inv_thr")                                                         \
+    X(REGISTERS, "Register Count", "regs")                                                                             \
+    X(STACK_BYTES, "Stack Size", "stack")                                                                              \
+    X(SHARED_BYTES, "Shared Memory Size", "shared")
 
 typedef enum gpu_stat {
 #define GPU_STAT_ENUM(id, name, column) GPU_STAT_##id,
@@ -53,7 +58,7 @@ gpu_stats gpu_stats_none(void);
 /* The statistic called name (as gpu_stat_names spells it), or GPU_STAT_COUNT for another. */
 gpu_stat gpu_stat_from_name(const char *name);
 
-/* True when the pipeline uses scratch memory or spills registers. */
+/* True when the pipeline uses scratch memory or spills registers (RADV), or a stack (NVIDIA). */
 bool gpu_stats_spill(const gpu_stats *stats);
 
 /* ---- Stages ---------------------------------------------------------------------------------- */
