@@ -192,7 +192,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     PASS(PREPARE_GPU) = PREPARE_ROW("prepare_gpu"),
     PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu", V(CACAO_GENERATE_Q3) | V(CACAO_GENERATE_Q3_BASE)),
     PASS(FILL) = {"fill", {NULL, "horizon", "output", "view"}, 4, false, false, false, {CACAO_TILE, CACAO_TILE},
-                  CACAOI_GRID_SLICE_LAYERS, 7,
+                  CACAOI_GRID_SLICE, 7,
                   {CONSTANTS, R(TILES, TILES, ALL), W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),
                    W(HORIZON_AO_OUT, AO_RAW, V(CACAO_FILL_HORIZON)), W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT)),
                    W(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_FILL_VIEW)), W(VIEW_NORMALS, VIEW_NORMALS, V(CACAO_FILL_VIEW))},

@@ -124,7 +124,7 @@
 #define CACAO_TILE 8
 #define CACAO_LIST_NONE 0                /* a direct dispatch */
 #define CACAO_LIST_GENERATE 1            /* needed tiles (one generate group each, z = layers) */
-#define CACAO_LIST_FILL_SLICES 2         /* tiles that are not needed (z = layers) */
+#define CACAO_LIST_FILL_SLICES 2         /* tiles that are not needed (z 1: a group fills every layer) */
 #define CACAO_LIST_PREPARE 3             /* horizon estimators: tiles not all background (their prepare) */
 #define CACAO_LIST_BACKGROUND 4          /* horizon estimators: tiles all background (view z -1 filled) */
 #define CACAO_LIST_BLUR 5                /* blur groups touching a needed tile (z = layers) */

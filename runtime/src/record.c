@@ -133,7 +133,9 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
         for (unsigned list = 1; list <= CACAO_LIST_COUNT; ++list) { /* x: the grid's width; rows 0 */
             const uint32_t width = list == CACAO_LIST_BLUR ? p->blur_groups_x : p->tiles_x;
             header[CACAO_TILE_COMMAND(list)] = width ? width : 1;
-            header[CACAO_TILE_COMMAND(list) + 2] = p->slice_count; /* every list covers all layers */
+            /* generate and the blur cover the layers with z; a fill group loops over them (one group
+             * per tile: a fill's groups were its cost on a GPU, docs/gpu.md) */
+            header[CACAO_TILE_COMMAND(list) + 2] = list == CACAO_LIST_FILL_SLICES ? 1 : p->slice_count;
         }
         ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], 0, sizeof header, header);
         const VkDeviceSize lists =

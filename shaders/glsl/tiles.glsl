@@ -168,7 +168,8 @@ void main()
 #elif CACAO_VARIANT == CACAO_FILL_OUTPUT
     if (in_rect(p, imageSize(output_image))) imageStore(output_image, p, vec4(1.0, 0.0, 0.0, 0.0));
 #else
-    if (in_rect(p, imageSize(ssao_image).xy)) imageStore(ssao_image, ivec3(p, int(gl_WorkGroupID.z)), vec4(1.0, 1.0, 0.0, 0.0));
+    if (in_rect(p, imageSize(ssao_image).xy))
+        for (int layer = 0; layer < CB.slice_count; ++layer) imageStore(ssao_image, ivec3(p, layer), vec4(1.0, 1.0, 0.0, 0.0));
 #endif
 }
 #endif /* FILL */
