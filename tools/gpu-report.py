@@ -56,6 +56,10 @@ ISSUE_31 = {'lowest_native': 0.78, 'low_native': 0.60, 'medium_native': 0.50, 'h
 MEASURED = {'final': 'h200-final.json', 'before': 'h200-before.json',
             'forms': 'h200-run-texelfetch.json', 'forms_before': 'h200-run-texelfetch-before.json',
             'atomics': 'h200-run-atomics.json', 'atomics_before': 'h200-run-atomics-before.json'}
+# What the runs are of, and what changed after them (said with the tables: a run measures its code).
+MEASURED_CODE = ('The final run is of commit 8ba0da9, its "before" of 6588704 (the previous main); the change made '
+                 'after them, the fills with one workgroup per tile instead of one per tile and layer (9d4d565), was '
+                 'not measured on this GPU.')
 SCENES = ['interior_fzkhaus', 'statues_scanned', 'street_track']
 AMD_CONFIGS = ['%s_%s' % (q.upper(), r) for r in ('native', 'downsampled') for q in QUALITIES]
 MEASURED_STAGES = ['prepare', 'other', 'base', 'importance', 'generate', 'blur', 'apply', 'upsample']
@@ -419,8 +423,8 @@ def measured_section(runs, results):
            'depth, blur 2). The GPU\'s clocks are its driver\'s own (this workplace leaves the GPU\'s settings as they '
            'are): `nvidia-smi` read an SM clock of %s before the run and %s after it; both sides ran under the '
            'same conditions, interleaved. Frames this short (0.06-0.35 ms) are dominated by fixed costs per dispatch, which no compiler '
-           'statistic shows.' % (proc['reps'], proc['frames'], proc['warmup_frames'],
-                                  clocks[0], clocks[1]),
+           'statistic shows. %s' % (proc['reps'], proc['frames'], proc['warmup_frames'],
+                                  clocks[0], clocks[1], MEASURED_CODE),
            '', '### Totals: cacao / AMD', '',
            '| configuration | AMD ms (interior) | cacao ms (interior) | cacao/AMD interior | statues | street | '
            'navi21 estimate (RADV, below) |', '|---|---:|---:|---:|---:|---:|---:|']
