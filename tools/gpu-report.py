@@ -438,11 +438,14 @@ def measured_section(runs, results):
         out.append('| %s | %s | %s | %s | %s |' % (
             cfg, '%.3f' % first['amd']['total_ms'] if first else '-', '%.3f' % first['cacao']['total_ms'] if first else '-',
             ' | '.join('%.2f' % r['ratio'] if r else '-' for r in per), est_ratio))
+    ests = [navi[c.lower()]['cacao']['total_cycles'] / navi[c.lower()]['amd']['total_cycles']
+            for c in AMD_CONFIGS if c.lower() in navi and navi[c.lower()]['amd']['total_cycles']]
     if ratios:
         out += ['', '**On this GPU cacao takes %.2f-%.2fx AMD\'s time** (all 30 scene x configuration pairs): slower '
-                'than AMD everywhere, where the RADV estimate below puts it at or under AMD\'s cost. The estimate '
-                'counts issued instructions; what it leaves out (the fixed cost of each dispatch and barrier, '
-                'workgroup launches, memory) decides frames this short.' % (min(ratios), max(ratios))]
+                'than AMD everywhere, where the RADV estimate below (navi21) puts it at %s of AMD\'s cost. The '
+                'estimate counts issued instructions; what it leaves out (the fixed cost of each dispatch and '
+                'barrier, workgroup launches, memory) decides frames this short.' % (
+                    min(ratios), max(ratios), '%.2f-%.2f' % (min(ests), max(ests)) if ests else '(not run)')]
     # per stage
     out += ['', '### Per stage (interior_fzkhaus, microseconds, AMD / cacao)', '',
             'Stages as sidebyside.py groups the passes. cacao\'s "tiles" are its tile classification and lists '
