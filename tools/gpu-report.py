@@ -213,7 +213,7 @@ SIMDs at the tail of a small dispatch).
 
 **Where the estimate and a real GPU disagree, the real GPU wins.** One real GPU has timed cacao
 against AMD's code so far (an NVIDIA H200: section "Measured on a real GPU", after the overview):
-there cacao takes more time than AMD in every configuration, where this estimate puts it at or
+there cacao takes more time than AMD in every configuration, where this estimate puts it at about or
 under AMD's cost. Read the estimate for registers, spills and occupancy, not for speed.
 
 Regenerate with `tools/gpu-report.py` (needs a build, `../shared/amd-cacao` and mesa-vulkan-drivers;
