@@ -422,8 +422,8 @@ def measured_section(runs, results):
            'scene\'s depth; AMD\'s reference settings of each scene on both sides (fp32, normals reconstructed from '
            'depth, blur 2). The GPU\'s clocks are its driver\'s own (this workplace leaves the GPU\'s settings as they '
            'are): `nvidia-smi` read an SM clock of %s before the run and %s after it; both sides ran under the '
-           'same conditions, interleaved. Frames this short (0.06-0.35 ms) are dominated by fixed costs per dispatch, which no compiler '
-           'statistic shows. %s' % (proc['reps'], proc['frames'], proc['warmup_frames'],
+           'same conditions, interleaved. In frames this short (0.06-0.35 ms) the fixed costs of each dispatch, barrier and workgroup '
+           'weigh heavily (the tables below), and no compiler statistic shows them. %s' % (proc['reps'], proc['frames'], proc['warmup_frames'],
                                   clocks[0], clocks[1], MEASURED_CODE),
            '', '### Totals: cacao / AMD', '',
            '| configuration | AMD ms (interior) | cacao ms (interior) | cacao/AMD interior | statues | street | '
