@@ -138,6 +138,9 @@ static void test_dispatch_sizes(void) {
     CHECK(strcmp(b8.steps[b8.step_count - 2].key_name, "blur.8.fp32") == 0);
     CHECK(b8.blur_groups_x == 20 && b8.blur_groups_y == 34); /* ceil(960/48), ceil(540/16) */
     CHECK(p.steps[10].dispatch[0] == 60 && p.steps[10].dispatch[1] == 34); /* smart apply: 4x4 per invocation */
+    /* the list's indirect command takes its z from these: generate and the blur cover the four
+     * layers with z, a fill group loops over them */
+    CHECK(p.steps[7].dispatch[2] == 1 && p.steps[8].dispatch[2] == 1 && p.steps[9].dispatch[2] == 4);
     CHECK(p.steps[6].list == CACAO_LIST_GENERATE && p.steps[7].list == CACAO_LIST_FILL_SLICES &&
           p.steps[9].list == CACAO_LIST_BLUR && p.steps[10].list == CACAO_LIST_NONE && p.steps[3].list == CACAO_LIST_NONE);
     cacao_plan d =
@@ -146,6 +149,27 @@ static void test_dispatch_sizes(void) {
     CHECK(strcmp(d.steps[d.step_count - 1].key_name, "upsample.smart.fp32") == 0);
     /* upsample: 2x2 full-res pixels per half-res position, 2x2 positions per thread, 8x8 threads */
     CHECK(d.steps[d.step_count - 1].dispatch[0] == 32 && d.steps[d.step_count - 1].dispatch[1] == 2); /* /32 */
+}
+
+/* The host writes each list's indirect command z from the steps that dispatch over it (record.c):
+ * the steps sharing a list agree on it, in every configuration. */
+static void test_lists_agree_on_layers(void) {
+    for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
+        for (int e = CACAO_ESTIMATOR_CACAO; e <= CACAO_ESTIMATOR_BITMASK; ++e)
+            for (int ds = 0; ds < 2; ++ds)
+                for (uint32_t blur = 0; blur <= 6; ++blur) {
+                    cacao_plan p = build((cacao_settings){.quality = (cacao_quality)q, .estimator = (cacao_estimator)e,
+                                                          .downsample = ds != 0, .blur_pass_count = blur,
+                                                          .generate_normals = true},
+                                         640, 360);
+                    uint32_t z[CACAO_LIST_COUNT + 1] = {0};
+                    for (uint32_t i = 0; i < p.step_count; ++i) {
+                        const cacao_plan_step *st = &p.steps[i];
+                        if (!st->list) continue;
+                        CHECK(z[st->list] == 0 || z[st->list] == st->dispatch[2]);
+                        z[st->list] = st->dispatch[2];
+                    }
+                }
 }
 
 /* Small sizes: the depth mip chain is the one a mip-mapped image of the slice's size would have
@@ -191,6 +215,7 @@ int main(void) {
     test_steps_per_quality();
     test_only_needed_resources();
     test_dispatch_sizes();
+    test_lists_agree_on_layers();
     test_small_mip_chain();
     test_invalid();
     cacao_plan p = build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);

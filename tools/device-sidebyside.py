@@ -96,7 +96,7 @@ def sidebyside(a, part, scene, amd, cacao, configs, tag=None):
     return out
 
 
-def run_front(a, scene, estimators):
+def run_front(a, scene):
     """cacao-bench at the sidebyside sizes, on the upscaled depth sidebyside.py made."""
     bench = os.path.join(a.build, 'tools', 'bench', 'cacao-bench')
     configs = ','.join(['%s_%s_%s' % (e, q, r) for e in ('gtao', 'bitmask') for r in ('native', 'downsampled')
@@ -213,7 +213,7 @@ def main():
                     json.dump(doc, open(out, 'w'), indent=1)
         elif part == 'front':
             for s in scenes:
-                run_front(a, s, estimators)
+                run_front(a, s)
         elif part == 'stats':
             run_stats(a)
     if a.failures:

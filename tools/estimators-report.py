@@ -272,17 +272,16 @@ def real_gpu():
     spec.loader.exec_module(g)
     runs = g.load_measured(os.path.join(ROOT, 'docs', 'gpu-measured'))
     forms = runs.get('forms', {})
-    names = sorted({k.split('.', 2)[2] for k in forms if k.startswith('estimators.')})
-    if not names:
+    rows = g.estimator_results(forms)
+    if not rows:
         return []
     device = g.line_of(g.text_part(forms, 'devices'), '0:').split(':', 1)[-1].strip()
     out = ['', 'On a real GPU (%s; docs/gpu.md, "Measured on a real GPU": 1920x1080, timed side by side with AMD\'s '
            'code, one denoise pass, normals from depth), time / AMD HIGH per scene (%s):' % (
                device, ', '.join(g.SCENES)), '']
     worst = []
-    for n in names:
-        rs = [forms.get('estimators.%s.%s' % (sc, n)) for sc in g.SCENES]
-        ratios = [d['results'][0]['ratio'] for d in rs if d]
+    for n, per in rows:
+        ratios = [r['ratio'] for r in per if r]
         worst.append(max(ratios))
         out.append('- %s: %s' % (n, ', '.join('%.2f' % r for r in ratios)))
     out.append('')

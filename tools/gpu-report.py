@@ -375,6 +375,14 @@ def text_part(parts, name):
     return v if isinstance(v, str) else ''
 
 
+def estimator_results(parts):
+    """[(estimator configuration, [its result against AMD HIGH per scene of SCENES, or None])] of a
+    run's estimators part (device-sidebyside.py writes estimators.SCENE.CONFIG)."""
+    names = sorted({k.split('.', 2)[2] for k in parts if k.startswith('estimators.')})
+    return [(n, [parts['estimators.%s.%s' % (sc, n)]['results'][0] if 'estimators.%s.%s' % (sc, n) in parts else None
+                 for sc in SCENES]) for n in names]
+
+
 def sm_clock(text):
     """The SM clock of an `nvidia-smi --query-gpu=...,clocks.sm,... --format=csv` reading."""
     lines = text.splitlines()
@@ -541,23 +549,14 @@ def measured_section(runs, results):
                 'lowest_native,low_native --amd ...`). Both apply forms are kept as they are until a GPU of each '
                 'vendor has timed them: the AMD estimate and the NVIDIA timing disagree. The upsample has one form.']
     # the horizon estimators
-    est = sorted(k for k in forms if k.startswith('estimators.'))
-    if est:
+    rows = estimator_results(forms)
+    if rows:
         out += ['', '### The horizon-slice estimators against AMD HIGH (same run as the forms)', '',
                 '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
-        names = []
-        for k in est:
-            n = k.split('.', 2)[2]
-            if n not in names:
-                names.append(n)
-        for n in names:
-            cells = []
-            for sc in SCENES:
-                doc = forms.get('estimators.%s.%s' % (sc, n))
-                r = doc['results'][0] if doc else None
-                cells.append('%.3f ms / %.3f ms = %.2f' % (r['cacao']['total_ms'], r['amd']['total_ms'], r['ratio'])
-                             if r else '-')
-            out.append('| %s (1 denoise pass) | %s |' % (n, ' | '.join(cells)))
+        for n, per in rows:
+            out.append('| %s (1 denoise pass) | %s |' % (n, ' | '.join(
+                '%.3f ms / %.3f ms = %.2f' % (r['cacao']['total_ms'], r['amd']['total_ms'], r['ratio']) if r else '-'
+                for r in per)))
     # the driver's statistics
     text = text_part(fin, 'stats.cacao')
     if text:

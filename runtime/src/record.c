@@ -133,10 +133,12 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
         for (unsigned list = 1; list <= CACAO_LIST_COUNT; ++list) { /* x: the grid's width; rows 0 */
             const uint32_t width = list == CACAO_LIST_BLUR ? p->blur_groups_x : p->tiles_x;
             header[CACAO_TILE_COMMAND(list)] = width ? width : 1;
-            /* generate and the blur cover the layers with z; a fill group loops over them (one group
-             * per tile: a fill's groups were its cost on a GPU, docs/gpu.md) */
-            header[CACAO_TILE_COMMAND(list) + 2] = list == CACAO_LIST_FILL_SLICES ? 1 : p->slice_count;
+            header[CACAO_TILE_COMMAND(list) + 2] = 1;
         }
+        /* z: the layers of the grid of the steps that dispatch over the list (their pass row's
+         * grid: generate and the blur cover the layers with z, a fill group loops over them) */
+        for (uint32_t i = 0; i < p->step_count; ++i)
+            if (p->steps[i].list) header[CACAO_TILE_COMMAND(p->steps[i].list) + 2] = p->steps[i].dispatch[2];
         ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], 0, sizeof header, header);
         const VkDeviceSize lists =
             sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_LIST_BASE(CACAO_LIST_GENERATE, (VkDeviceSize)p->tiles_x * p->tiles_y);
