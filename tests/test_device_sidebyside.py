@@ -38,7 +38,8 @@ def tool(*args):
 shutil.rmtree(WORK, ignore_errors=True)
 os.makedirs(WORK)
 
-# Bad arguments: one clear error naming the flag or value, non-zero exit, nothing written.
+# Bad arguments: one clear error naming the flag or value, non-zero exit, nothing written. They are
+# checked before any path, so this runs with or without ../shared (the last case names a missing one).
 out_dir = os.path.join(WORK, 'never')
 for args, needle in ((['--out', out_dir], '--device'),
                      (['--device', 'X', '--parts', 'cacao,bogus', '--out', out_dir], "'bogus'"),

@@ -178,14 +178,14 @@ def main():
             die("--parts: unknown part '%s' (%s)" % (p, ', '.join(PARTS)))
     if a.reps < 1 or a.frames < 2:
         die('--reps must be >= 1 and --frames >= 2')
+    estimators = a.estimators.split(',')
+    for e in estimators:  # every argument checked before any path
+        estimator_flags(e)
     a.shared, a.build, a.out = (os.path.abspath(x) for x in (a.shared, a.build, a.out))
     for need in (os.path.join(a.shared, 'amd-cacao', 'sidebyside.py'), os.path.join(a.build, 'tools', 'cli', 'cacao')):
         if not os.path.exists(need):
             die('missing %s (--shared, --build)' % need)
     scenes = a.scenes.split(',')
-    estimators = a.estimators.split(',')
-    for e in estimators:
-        estimator_flags(e)
     os.makedirs(a.out, exist_ok=True)
     a.failures = []
     a.work = os.path.join(a.out, 'work')
