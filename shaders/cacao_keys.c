@@ -21,13 +21,20 @@ static unsigned max_fp16(const cacaoi_pass_row *a) { return a->has_precision ? 1
 bool cacaoi_key_is_valid(const cacao_key *key) {
     if (!key || key->pass >= CACAO_PASS_COUNT) return false;
     const cacaoi_pass_row *a = &cacaoi_passes[key->pass];
-    return key->variant < a->variants && key->downsampled <= max_downsampled(a) && key->blur_passes >= min_blur(a) &&
+    return key->variant < a->variants && !cacaoi_fill_is_clear(key->pass, key->variant) && key->downsampled <= max_downsampled(a) && key->blur_passes >= min_blur(a) &&
            key->blur_passes <= max_blur(a) && key->fp16 <= max_fp16(a);
 }
 
 /* The first key of the key space (*key zeroed) or the one after *key, in canonical order; false
  * past the last. The axes vary fastest from the last: fp16, blur passes, resolution, variant, pass. */
-static bool key_next(cacao_key *k, bool first) {
+static bool key_step(cacao_key *k, bool first);
+static bool key_next(cacao_key *k, bool first) { /* the fills that are clears have no module: no key */
+    bool more = key_step(k, first);
+    while (more && cacaoi_fill_is_clear(k->pass, k->variant)) more = key_step(k, false);
+    return more;
+}
+
+static bool key_step(cacao_key *k, bool first) {
     if (first) {
         *k = (cacao_key){0, 0, 0, (uint8_t)min_blur(&cacaoi_passes[0]), 0};
         return true;

@@ -174,8 +174,6 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                        R(SRC_DEPTH, DEPTH_INPUT, V(CACAO_CLASSIFY_HORIZON)), W(TILES, TILES, ALL)}},
     PASS(COMPACT) = {"compact", {NULL, "horizon"}, 2, false, false, false, {CACAO_WG_COMPACT, 1}, CACAOI_GRID_COMPACT, 2,
                      {CONSTANTS, W(TILES, TILES, ALL)}},
-    /* AO 1 into the slices' AO of the tiles generate skips (and, a step rebinding SSAO_IMAGE, into
-     * the blur's output there when a blur runs). */
     /* spec: prepare.md, normals from depth: PREPARE_DEPTHS's variants and the normals in one pass,
      * a 2x2 quad of slice texels per invocation sharing one block of depths. */
     PASS(PREPARE) = PREPARE_ROW("prepare"),
@@ -191,13 +189,17 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * normals that use it; generate: the tap's atlas level in integers. */
     PASS(PREPARE_GPU) = PREPARE_ROW("prepare_gpu"),
     PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu", V(CACAO_GENERATE_Q3) | V(CACAO_GENERATE_Q3_BASE)),
+    /* The value of the tiles no pass computes: AO 1 into the caller's output over the unneeded
+     * tiles (a dispatch); into the slices' AO and the blur's output (CACAO, a step rebinding
+     * SSAO_IMAGE), the horizon estimators' AO intermediates, and their view z and normals for
+     * background: clears of the whole image before the passes that write the needed tiles. */
     PASS(FILL) = {"fill", {NULL, "horizon", "output", "view"}, 4, false, false, false, {CACAO_TILE, CACAO_TILE},
                   CACAOI_GRID_SLICE, 7,
-                  {CONSTANTS, R(TILES, TILES, ALL), W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),
+                  {CONSTANTS, R(TILES, TILES, V(CACAO_FILL_OUTPUT)), W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),
                    W(HORIZON_AO_OUT, AO_RAW, V(CACAO_FILL_HORIZON)), W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT)),
                    W(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_FILL_VIEW)), W(VIEW_NORMALS, VIEW_NORMALS, V(CACAO_FILL_VIEW))},
-                  .lists = {CACAO_LIST_FILL_SLICES, CACAO_LIST_FILL_SLICES, CACAO_LIST_FILL_SLICES,
-                            CACAO_LIST_BACKGROUND}},
+                  /* the variants of cacao's own images are clears (cacao_plan_step.clear) */
+                  .lists = {[CACAO_FILL_OUTPUT] = CACAO_LIST_FILL_SLICES}},
 };
 #undef R
 #undef W
@@ -245,4 +247,27 @@ size_t cacaoi_variant_bindings(unsigned pass, unsigned variant, cacaoi_pass_bind
         ++n;
     }
     return n;
+}
+
+bool cacaoi_fill_is_clear(unsigned pass, unsigned variant) {
+    return pass == CACAO_PASS_FILL && variant != CACAO_FILL_OUTPUT;
+}
+
+/* What the shaders would store there (tiles.glsl before clears): RG8 AO 1 with edges 1, R16F AO 1,
+ * R32F view z -1, RGBA8_SNORM normal (0, 0, -1). */
+bool cacaoi_clear_value(unsigned resource, float out[4]) {
+    static const float ao[4] = {1.0f, 1.0f, 0.0f, 0.0f}, view_z[4] = {-1.0f, 0.0f, 0.0f, 0.0f},
+                       normal[4] = {0.0f, 0.0f, -1.0f, 0.0f};
+    const float *v = NULL;
+    switch (resource) {
+    case CACAO_RES_SSAO_PING:
+    case CACAO_RES_SSAO_PONG:
+    case CACAO_RES_AO_RAW:
+    case CACAO_RES_AO_PONG: v = ao; break;
+    case CACAO_RES_VIEW_DEPTH: v = view_z; break;
+    case CACAO_RES_VIEW_NORMALS: v = normal; break;
+    default: return false;
+    }
+    memcpy(out, v, 4 * sizeof(float));
+    return true;
 }

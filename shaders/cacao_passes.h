@@ -153,4 +153,12 @@ bool cacaoi_pass_expect(unsigned pass, unsigned variant, cacaoi_module_expect *o
  * variant the table lacks. */
 size_t cacaoi_variant_bindings(unsigned pass, unsigned variant, cacaoi_pass_binding out[CACAO_PLAN_MAX_BINDINGS]);
 
+/* The fill variants that fill cacao's own images: recorded as a clear of the whole image
+ * (cacao_plan_step.clear), never dispatched. */
+bool cacaoi_fill_is_clear(unsigned pass, unsigned variant);
+
+/* The colour a clear step stores into an intermediate (float32 channels: the value the passes
+ * would give the tiles they skip); false for a resource no step clears. */
+bool cacaoi_clear_value(unsigned resource, float out[4]);
+
 #endif /* CACAO_PASSES_H */

@@ -51,6 +51,7 @@ static cacaoi_step *push(cacaoi_step *out, size_t *n, unsigned pass, unsigned va
     cacaoi_step *s = &out[(*n)++];
     memset(s, 0, sizeof *s);
     s->key = (cacao_key){(uint8_t)pass, (uint8_t)variant, (uint8_t)ds, (uint8_t)blur, (uint8_t)fp16};
+    s->clear = cacaoi_fill_is_clear(pass, variant);
     return s;
 }
 
@@ -81,13 +82,14 @@ static void push_denoise_passes(cacaoi_step *out, size_t *n, unsigned first, uns
 }
 
 /* Horizon estimators: classification from the caller's depth (docs/tiles.md), prepare over the
- * tiles that are not all background (the fill of the others stores their view z and normal).
- * Native: the estimator over the needed tiles (into the output when no denoise pass runs), the
- * fills of the rest with AO 1 (the intermediates the denoise passes read, and the output), then
- * the denoise passes over the needed tiles. Downsampled: the estimator at one pixel of each 2x2
- * block (a direct grid of half the size, into AO_HALF), then the upsample over
- * the needed tiles as the first filter pass (into the output, or AO_PONG when denoise passes
- * follow); the fills give the later passes' inputs their 1 on the tiles they skip. */
+ * tiles that are not all background (a clear before it gives the others the view z and normal
+ * the prepare would store there). Native: the intermediates the denoise passes read cleared to AO
+ * 1, the estimator over the needed tiles (into the output when no denoise pass runs), the fill
+ * of the output's other tiles with AO 1, then the denoise passes over the needed tiles.
+ * Downsampled: the estimator at one pixel of each 2x2 block (a direct grid of half the size, into
+ * AO_HALF), then the upsample over the needed tiles as the first filter pass (into the output, or
+ * AO_PONG when denoise passes follow); the clears give the later passes' inputs their 1 on the
+ * tiles they skip. */
 static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENCE_MAX]) {
     size_t n = 0;
     const bool half = c->downsampled;
@@ -95,24 +97,23 @@ static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI
     const bool gtao = c->estimator == CACAO_KEY_ESTIMATOR_GTAO;
     push(out, &n, CACAO_PASS_CLASSIFY, CACAO_CLASSIFY_HORIZON, 0, 0, 0);
     push(out, &n, CACAO_PASS_COMPACT, CACAO_COMPACT_HORIZON, 0, 0, 0);
+    push(out, &n, CACAO_PASS_FILL, CACAO_FILL_VIEW, 0, 0, 0); /* a clear */
     push(out, &n, CACAO_PASS_HORIZON_PREPARE, c->normals_from_input ? CACAO_HORIZON_NORMALS_INPUT : CACAO_HORIZON_NORMALS_DEPTH,
          0, 0, 0);
-    push(out, &n, CACAO_PASS_FILL, CACAO_FILL_VIEW, 0, 0, 0);
+    /* the AO intermediates the denoise passes read, cleared to AO 1 (AO_RAW, AO_PONG) */
+    const bool raw = half ? blur >= 3 : blur >= 1, pong = blur >= 2;
+    if (raw) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0);
+    if (pong) rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0), CACAO_BINDING_HORIZON_AO_OUT,
+                     CACAO_RES_AO_PONG);
     if (half) {
         push(out, &n, CACAO_PASS_HORIZON_MAIN, gtao ? CACAO_HORIZON_GTAO_HALF : CACAO_HORIZON_BITMASK_HALF, 0, 0, 0);
         push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT, 0, 0, 0);
         push(out, &n, CACAO_PASS_HORIZON_DENOISE, blur == 1 ? CACAO_DENOISE_UPSAMPLE_FINAL : CACAO_DENOISE_UPSAMPLE, 0, 0, 0);
-        if (blur >= 2) rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0), CACAO_BINDING_HORIZON_AO_OUT,
-                              CACAO_RES_AO_PONG);
-        if (blur >= 3) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0); /* AO_RAW */
         push_denoise_passes(out, &n, 2, blur, CACAO_RES_AO_PONG);
         return n;
     }
     push(out, &n, CACAO_PASS_HORIZON_MAIN,
          (gtao ? CACAO_HORIZON_GTAO : CACAO_HORIZON_BITMASK) + (blur == 0 ? CACAO_HORIZON_GTAO_DIRECT : 0), 0, 0, 0);
-    if (blur >= 1) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0); /* AO_RAW */
-    if (blur >= 2) rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0), CACAO_BINDING_HORIZON_AO_OUT,
-                          CACAO_RES_AO_PONG);
     push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT, 0, 0, 0);
     push_denoise_passes(out, &n, 1, blur, CACAO_RES_AO_RAW);
     return n;
@@ -131,19 +132,24 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     }
     push(out, &n, CACAO_PASS_CLASSIFY, 0, 0, 0, 0);
     push(out, &n, CACAO_PASS_COMPACT, 0, 0, 0, 0);
-    if (c->quality == CACAO_KEY_QUALITY_HIGHEST) {
+    /* The tiles generate skips read as AO 1 in its output and, where a blur runs, in the blur's
+     * (the blur and apply groups next to a needed tile read them): clears of the whole images,
+     * which generate and the blur then overwrite on the tiles they compute. HIGHEST's base pass
+     * writes the blur's output image first (generate reads it): cleared after generate there. */
+    const bool highest = c->quality == CACAO_KEY_QUALITY_HIGHEST;
+    push(out, &n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0);
+    if (c->blur_passes > 0 && !highest)
+        rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0), CACAO_BINDING_SSAO_IMAGE, CACAO_RES_SSAO_PONG);
+    if (highest) {
         push(out, &n, cacaoi_form_pass(CACAO_PASS_GENERATE, c->gpu_forms), CACAO_GENERATE_Q3_BASE, 0, 0, 0);
         push(out, &n, CACAO_PASS_IMPORTANCE_A, 0, 0, 0, 0);
         push(out, &n, CACAO_PASS_IMPORTANCE_B, 0, 0, 0, 0);
     }
     push(out, &n, cacaoi_form_pass(CACAO_PASS_GENERATE, c->gpu_forms), cacaoi_qualities[c->quality].generate_variant, 0,
          0, 0);
-    /* The tiles generate skips read as AO 1 in its output and, where a blur runs, in the blur's
-     * (the blur and apply groups next to a needed tile read them). */
-    push(out, &n, CACAO_PASS_FILL, 0, 0, 0, 0);
     if (c->blur_passes > 0) {
-        cacaoi_step *f = push(out, &n, CACAO_PASS_FILL, 0, 0, 0, 0);
-        rebind(f, CACAO_BINDING_SSAO_IMAGE, CACAO_RES_SSAO_PONG);
+        if (highest)
+            rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0), CACAO_BINDING_SSAO_IMAGE, CACAO_RES_SSAO_PONG);
         push(out, &n, cacaoi_form_pass(CACAO_PASS_BLUR, c->gpu_forms), 0, 0, c->blur_passes, fp);
     }
     cacaoi_step *s = push(out, &n, cacaoi_form_pass(c->downsampled ? CACAO_PASS_UPSAMPLE : CACAO_PASS_APPLY, c->gpu_forms),
@@ -158,6 +164,7 @@ size_t cacaoi_keys_for_config(const cacao_key_config *c, cacao_key out[CACAO_KEY
     const size_t count = cacaoi_sequence(c, steps);
     size_t n = 0;
     for (size_t i = 0; i < count; ++i) {
+        if (steps[i].clear) continue; /* no module */
         size_t j = 0;
         while (j < n && cacaoi_key_compare(&out[j], &steps[i].key) != 0) ++j;
         if (j == n) out[n++] = steps[i].key;

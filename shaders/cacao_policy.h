@@ -87,6 +87,7 @@ bool cacaoi_pass_in_forms(unsigned pass, bool gpu_forms);
  * (ping-pong buffers), that resource. */
 typedef struct cacaoi_step {
     cacao_key key;
+    bool clear; /* a clear of the images it writes, not a dispatch (cacao_plan_step.clear) */
     uint8_t override_count;
     uint8_t override_slot[2];
     uint8_t override_resource[2];

@@ -92,7 +92,9 @@
 
 /* Fill variants: AO 1 into the slices' AO (CACAO), into the horizon estimators' AO intermediate,
  * or into the caller's output (a horizon estimator's last pass writes it over the needed tiles);
- * or, over the background list, the view z (-1) and normal the horizon prepare stores there. */
+ * or the view z (-1) and normal the horizon prepare stores for background. Only the output's is a
+ * dispatch (over the unneeded tiles); the others fill cacao's own images and are recorded as a
+ * clear of the whole image before the passes that write the needed tiles (cacao_plan_step.clear). */
 #define CACAO_FILL_SLICES 0
 #define CACAO_FILL_HORIZON 1
 #define CACAO_FILL_OUTPUT 2
@@ -115,7 +117,7 @@
  *            CACAO_TILE_COMMAND(l)), the tile counts per class (CACAO_TILE_COUNT_*), and the
  *            entries per list (list l at CACAO_TILE_LIST_ENTRIES(l));
  *   classes  one uint per tile, from CACAO_TILE_CLASSES;
- *   lists    the generate, fill, prepare and background lists hold up to one entry per tile, the
+ *   lists    the generate, fill and prepare lists hold up to one entry per tile, the
  *            blur list (the last) one per blur group; list l starts at CACAO_TILE_LIST_BASE(l, tiles).
  * A list is dispatched as a grid x wide (tiles_x, or blur_groups_x for the blur) and as many rows
  * as its entries fill (lavapipe runs a 1D grid of the same groups slower); group (x, y)
@@ -124,11 +126,10 @@
 #define CACAO_TILE 8
 #define CACAO_LIST_NONE 0                /* a direct dispatch */
 #define CACAO_LIST_GENERATE 1            /* needed tiles (one generate group each, z = layers) */
-#define CACAO_LIST_FILL_SLICES 2         /* tiles that are not needed (z 1: a group fills every layer) */
+#define CACAO_LIST_FILL_SLICES 2         /* tiles that are not needed (the output's fill) */
 #define CACAO_LIST_PREPARE 3             /* horizon estimators: tiles not all background (their prepare) */
-#define CACAO_LIST_BACKGROUND 4          /* horizon estimators: tiles all background (view z -1 filled) */
-#define CACAO_LIST_BLUR 5                /* blur groups touching a needed tile (z = layers) */
-#define CACAO_LIST_COUNT 5
+#define CACAO_LIST_BLUR 4                /* blur groups touching a needed tile (z = layers) */
+#define CACAO_LIST_COUNT 4
 #define CACAO_TILE_HEADER 32
 #define CACAO_TILE_COMMAND(list) (3 * ((list) - 1)) /* header: list's indirect command (x, y, z) */
 #define CACAO_TILE_COUNT_ACTIVE 15       /* header: tiles per class */
@@ -136,7 +137,7 @@
 #define CACAO_TILE_COUNT_BACKGROUND 17
 #define CACAO_TILE_LIST_ENTRIES(list) (CACAO_TILE_COUNT_BACKGROUND + (list)) /* header: entries in list */
 #define CACAO_TILE_CLASSES CACAO_TILE_HEADER /* first tile class */
-/* First entry of list 1..5 (tiles: tiles_x tiles_y); the uints of the whole buffer. */
+/* First entry of list 1..4 (tiles: tiles_x tiles_y); the uints of the whole buffer. */
 #define CACAO_TILE_LIST_BASE(list, tiles) (CACAO_TILE_CLASSES + (tiles) * (list))
 #define CACAO_TILE_BUFFER_UINTS(tiles, blur_groups) (CACAO_TILE_LIST_BASE(CACAO_LIST_BLUR, tiles) + (blur_groups))
 #define CACAO_TILE_NO_ENTRY 0xffffffffu  /* list slots past the last entry (the host fills them) */

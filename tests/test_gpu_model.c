@@ -25,7 +25,7 @@ static void test_every_key_has_a_stage(void) {
         const bool known = gpu_stage_of_key(name, &stage);
         if (!known) fprintf(stderr, "no stage for %s\n", name);
         CHECK(known);
-        /* the fills ("fill", "fill.horizon", "fill.output") dispatch nothing when every tile is active */
+        /* the output's fill ("fill.output") dispatches nothing when every tile is active */
         CHECK(!known || (stage == GPU_STAGE_LEFT_OUT) == (strncmp(name, "fill", 4) == 0));
     }
     gpu_stage stage;
@@ -33,6 +33,7 @@ static void test_every_key_has_a_stage(void) {
     CHECK(gpu_stage_of_key("generate.q3", &stage) && stage == GPU_STAGE_GENERATE);
     CHECK(gpu_stage_of_key("upsample.smart.fp16", &stage) && stage == GPU_STAGE_APPLY);
     CHECK(gpu_stage_of_key("compact", &stage) && stage == GPU_STAGE_CLASSIFY);
+    CHECK(gpu_stage_of_key("clear.ssao_ping", &stage) && stage == GPU_STAGE_LEFT_OUT); /* a transfer, no shader */
     CHECK(!gpu_stage_of_key("frobnicate.q1", &stage));
 }
 

@@ -187,6 +187,16 @@ static void check_config(const cacao_settings *s) {
         const cacao_plan_step *st = &plan.steps[i];
         const cacao_key key = cacaoi_plan_step_key(st);
         CHECK(cacaoi_key_compare(&key, &steps[i].key) == 0);
+        CHECK(st->clear == steps[i].clear);
+        if (st->clear) { /* a transfer: it only writes cacao's own images, each with a clear value; no module */
+            CHECK(st->dispatch[0] == 0 && st->list == CACAO_LIST_NONE && st->binding_count >= 1);
+            for (uint32_t j = 0; j < st->binding_count; ++j) {
+                float value[4];
+                CHECK(st->bindings[j].write && allocated[st->bindings[j].resource] &&
+                      cacaoi_clear_value(st->bindings[j].resource, value));
+            }
+            continue;
+        }
         size_t k = 0;
         while (k < key_count && cacaoi_key_compare(&keys[k], &key) != 0) ++k;
         CHECK(k < key_count);

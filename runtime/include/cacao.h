@@ -275,6 +275,9 @@ typedef struct cacao_plan_step {
     uint32_t dispatch[3];       /* workgroups (an indirect step: the most it can dispatch) */
     uint8_t list;               /* 0: dispatched directly; else the tile list it dispatches
                                    indirectly (1 generate, 2 fill, 3 blur: docs/tiles.md) */
+    bool clear;                 /* not a dispatch: vkCmdClearColorImage of every image the step
+                                   writes (whole image) to the AO 1 / background value the tiles no
+                                   pass computes keep (docs/tiles.md); no pipeline, dispatch 0 0 0 */
     uint32_t binding_count;
     cacao_plan_binding bindings[CACAO_PLAN_MAX_BINDINGS];
     bool barrier_before;        /* a compute->compute barrier precedes this step */
@@ -392,7 +395,8 @@ CACAO_API cacao_result cacao_context_create_pipelines(cacao_context *context, ca
 /* The pipeline step `step` of the settings' plan dispatches (after cacao_context_create_pipelines
  * or a resize; steps in cacao_plan_build's order, which the size does not change), for tools that
  * inspect, name or profile pipelines; steps with one permutation share one pipeline.
- * VK_NULL_HANDLE before either call (and after a set_settings until one) or for a step past the plan's. */
+ * VK_NULL_HANDLE before either call (and after a set_settings until one), for a step past the plan's
+ * and for a clear step (cacao_plan_step.clear: no pipeline). */
 CACAO_API VkPipeline cacao_context_pipeline(const cacao_context *context, uint32_t step);
 
 /* The plan the context records (valid after a successful resize; NULL before). */

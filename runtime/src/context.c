@@ -321,7 +321,9 @@ static void release_frame_resources(cacao_context *ctx) {
 /* A pipeline depends on its step's key only, never on the size: a resize whose plan has the same
  * keys in the same order (same settings, new size: dynamic resolution) keeps the pipelines. */
 static bool pipelines_fit(const cacao_context *ctx, const cacao_plan *plan) {
-    if (!ctx->pipelines[0] || ctx->plan.step_count != plan->step_count) return false;
+    bool created = false; /* a clear step has none */
+    for (uint32_t i = 0; i < ctx->plan.step_count; ++i) created = created || ctx->pipelines[i];
+    if (!created || ctx->plan.step_count != plan->step_count) return false;
     for (uint32_t i = 0; i < plan->step_count; ++i)
         if (memcmp(ctx->plan.steps[i].key, plan->steps[i].key, sizeof plan->steps[i].key) != 0) return false;
     return true;
@@ -379,7 +381,8 @@ static cacao_result create_image(cacao_context *ctx, const cacao_plan_image *pi)
         .samples = VK_SAMPLE_COUNT_1_BIT,
         .tiling = VK_IMAGE_TILING_OPTIMAL,
         .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                 VK_IMAGE_USAGE_TRANSFER_SRC_BIT, /* copyable for inspection */
+                 VK_IMAGE_USAGE_TRANSFER_SRC_BIT | /* copyable for inspection */
+                 VK_IMAGE_USAGE_TRANSFER_DST_BIT,  /* the plan's clear steps */
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
         .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
     };
@@ -544,6 +547,7 @@ static bool step_matches_module(const cacao_plan_step *step, const cacao_permuta
 }
 
 static cacao_result create_pipeline(cacao_context *ctx, uint32_t index) {
+    if (ctx->plan.steps[index].clear) return CACAO_SUCCESS; /* a transfer: no pipeline */
     const uint32_t owner = pipeline_owner(&ctx->plan, index);
     if (owner != index) { /* one pipeline per distinct permutation */
         ctx->pipelines[index] = ctx->pipelines[owner];
@@ -610,7 +614,7 @@ static cacao_result plan_settings(cacao_context *ctx, uint32_t width, uint32_t h
     if (r != CACAO_SUCCESS) return r;
     for (uint32_t i = 0; i < plan->step_count; ++i) {
         const cacao_key key = cacaoi_plan_step_key(&plan->steps[i]);
-        if (!cacaoi_table_find(&cacaoi_embedded_table, &key))
+        if (!plan->steps[i].clear && !cacaoi_table_find(&cacaoi_embedded_table, &key))
             return cacaoi_fail(ctx, CACAO_ERROR_PERMUTATION_MISSING,
                                "permutation '%s' is not embedded in this build (subset %s)", plan->steps[i].key_name,
                                cacaoi_embedded_table.subset);

@@ -2,6 +2,7 @@
  * writing which resources, and where barriers go (spec: README "Pass graph"). Pure: no Vulkan
  * calls. The runtime records it, allocates from it and creates pipelines from it; the tools print
  * it. */
+#include <stdio.h>
 #include <string.h>
 
 #include "cacao_passes.h"
@@ -225,12 +226,18 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
         st->key[2] = key->downsampled;
         st->key[3] = key->blur_passes;
         st->key[4] = key->fp16;
-        dispatch_size(plan, key, st->dispatch);
-        st->list = cacaoi_passes[key->pass].lists[key->variant];
+        st->clear = steps[i].clear;
+        if (!st->clear) {
+            dispatch_size(plan, key, st->dispatch);
+            st->list = cacaoi_passes[key->pass].lists[key->variant];
+        }
         for (size_t j = 0; j < binding_count[i]; ++j) {
             const cacaoi_pass_binding *b = &bindings[i][j];
+            if (st->clear && !b->write) continue; /* a clear only writes its images */
             st->bindings[st->binding_count++] = (cacao_plan_binding){b->slot, b->resource, b->write};
         }
+        if (st->clear && st->binding_count) /* named by what it clears: "clear.ssao_ping" */
+            snprintf(st->key_name, sizeof st->key_name, "clear.%s", cacaoi_resources[st->bindings[0].resource].name);
         finish_step(&b, st);
     }
     return CACAO_SUCCESS;
@@ -264,10 +271,16 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
         fprintf(out, "\ntiles: %ux%u of %dx%d slice texels (tile buffer %llu bytes)\n", p->tiles_x, p->tiles_y,
                 CACAO_TILE, CACAO_TILE, (unsigned long long)p->tile_buffer_bytes);
     }
+    uint32_t cleared = 0; /* resources a clear wrote last */
     for (uint32_t i = 0; i < p->step_count; ++i) {
         const cacao_plan_step *s = &p->steps[i];
+        const uint32_t cleared_before = cleared;
+        for (uint32_t j = 0; j < s->binding_count; ++j)
+            if (s->bindings[j].write) cleared = s->clear ? cleared | (1u << s->bindings[j].resource)
+                                                         : cleared & ~(1u << s->bindings[j].resource);
         if (s->barrier_before) {
-            fprintf(out, "  barrier (compute -> compute) for");
+            const bool after_clear = (s->barrier_resources & cleared_before) != 0;
+            fprintf(out, "  barrier (%s -> %s) for", after_clear ? "transfer" : "compute", s->clear ? "transfer" : "compute");
             for (unsigned r = 0; r < CACAO_RES_COUNT; ++r)
                 if (s->barrier_resources & (1u << r)) fprintf(out, " %s", cacaoi_resources[r].name);
             fprintf(out, "\n");
@@ -276,9 +289,14 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
                                                  "needed tiles",
                                                  "unneeded tiles",
                                                  "tiles not all background",
-                                                 "background tiles",
                                                  "blur groups at needed tiles"};
         _Static_assert(sizeof list_names / sizeof list_names[0] == CACAO_LIST_COUNT + 1, "a name per list");
+        if (s->clear) {
+            fprintf(out, "  %2u %-34s clear (no dispatch)            writes", i, s->key_name);
+            print_resources(out, s, true);
+            fprintf(out, "\n");
+            continue;
+        }
         fprintf(out, "  %2u %-34s dispatch %4u x %4u x %u%s%s  reads", i, s->key_name, s->dispatch[0], s->dispatch[1],
                 s->dispatch[2], s->list ? " at most, indirect over " : "", list_names[s->list]);
         print_resources(out, s, false);

@@ -103,8 +103,10 @@ static void record_frame_start(cacao_context *ctx, VkCommandBuffer cmd, const ca
     uint32_t n = 0;
     for (uint32_t i = 0; i < ctx->plan.image_count; ++i)
         barriers[n++] = image_barrier(ctx->images[ctx->plan.images[i].resource].image, VK_IMAGE_ASPECT_COLOR_BIT,
-                                      VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, VK_ACCESS_SHADER_WRITE_BIT,
-                                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+                                      VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                                      VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                                          VK_ACCESS_TRANSFER_WRITE_BIT);
     barriers[n++] = image_barrier(in->depth.image, aspect_of(in->depth.format), in->depth.layout, in->depth.layout,
                                   VK_ACCESS_MEMORY_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT);
     if (!ctx->plan.settings.generate_normals)
@@ -179,20 +181,52 @@ static void describe(const cacao_context *ctx, const cacao_inputs *in, const cac
     }
 }
 
+/* A clear step (cacao_plan_step.clear): every image it writes, whole, to the value the passes
+ * would give the tiles they skip. */
+static void record_clear(cacao_context *ctx, VkCommandBuffer cmd, const cacao_plan_step *step) {
+    for (uint32_t i = 0; i < step->binding_count; ++i) {
+        VkClearColorValue color;
+        if (!cacaoi_clear_value(step->bindings[i].resource, color.float32)) continue;
+        const VkImageSubresourceRange range = {VK_IMAGE_ASPECT_COLOR_BIT, 0, VK_REMAINING_MIP_LEVELS, 0,
+                                               VK_REMAINING_ARRAY_LAYERS};
+        ctx->vk.CmdClearColorImage(cmd, ctx->images[step->bindings[i].resource].image, VK_IMAGE_LAYOUT_GENERAL, &color, 1,
+                                   &range);
+    }
+}
+
+static bool plan_has_clears(const cacao_plan *plan) {
+    for (uint32_t i = 0; i < plan->step_count; ++i)
+        if (plan->steps[i].clear) return true;
+    return false;
+}
+
+/* The stage of a step: a clear's is the transfer stage. */
+static VkPipelineStageFlags step_stage(const cacao_plan_step *step) {
+    return step->clear ? VK_PIPELINE_STAGE_TRANSFER_BIT : VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+}
+
 static void record_step(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in, uint32_t index) {
     const cacao_plan_step *step = &ctx->plan.steps[index];
     if (step->barrier_before) {
         /* With tiles, every barrier also makes the compact pass's commands visible to the
-         * indirect dispatches after it. */
-        const bool tiles = ctx->plan.uses_tiles;
+         * indirect dispatches after it. Clears are transfers: a barrier orders them too where the
+         * plan has any (before a clear: the passes that read the image; after: its writes). */
+        const bool tiles = ctx->plan.uses_tiles, clears = plan_has_clears(&ctx->plan);
         const VkMemoryBarrier memory = {
             .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
-            .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT,
-            .dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
-                             (tiles ? VK_ACCESS_INDIRECT_COMMAND_READ_BIT : 0)};
-        ctx->vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | (tiles ? VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT : 0),
+            .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT |
+                             (clears ? VK_ACCESS_TRANSFER_WRITE_BIT : 0),
+            .dstAccessMask = step->clear ? VK_ACCESS_TRANSFER_WRITE_BIT
+                                         : VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                                               (tiles ? VK_ACCESS_INDIRECT_COMMAND_READ_BIT : 0)};
+        ctx->vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | (clears ? VK_PIPELINE_STAGE_TRANSFER_BIT : 0),
+                             step->clear ? VK_PIPELINE_STAGE_TRANSFER_BIT
+                                         : VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | (tiles ? VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT : 0),
                              0, 1, &memory, 0, NULL, 0, NULL);
+    }
+    if (step->clear) {
+        record_clear(ctx, cmd, step);
+        return;
     }
     descriptor_info infos[CACAO_PLAN_MAX_BINDINGS];
     VkWriteDescriptorSet writes[CACAO_PLAN_MAX_BINDINGS];
@@ -235,7 +269,7 @@ cacao_result cacao_record(cacao_context *ctx, VkCommandBuffer cmd, const cacao_i
     for (uint32_t i = 0; i < ctx->plan.step_count; ++i) {
         record_step(ctx, cmd, in, i);
         if (timer)
-            ctx->vk.CmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timer, in->timestamp_first_query + i + 1);
+            ctx->vk.CmdWriteTimestamp(cmd, step_stage(&ctx->plan.steps[i]), timer, in->timestamp_first_query + i + 1);
     }
 
     /* Output back to the caller's layout; its later accesses are ordered after our writes. */

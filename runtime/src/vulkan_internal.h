@@ -22,7 +22,7 @@
     X(DestroyPipelineLayout) X(CreateShaderModule) X(DestroyShaderModule)                           \
     X(CreateComputePipelines) X(DestroyPipeline) X(CmdBindPipeline) X(CmdDispatch)                 \
     X(CmdDispatchIndirect) X(CmdPipelineBarrier) X(CmdUpdateBuffer) X(CmdFillBuffer)                \
-    X(CmdCopyBuffer) X(CmdWriteTimestamp) X(CmdPushDescriptorSetKHR)
+    X(CmdCopyBuffer) X(CmdWriteTimestamp) X(CmdPushDescriptorSetKHR) X(CmdClearColorImage)
 
 #define CACAOI_VK_MEMBER(name) PFN_vk##name name;
 typedef struct cacaoi_vk {
@@ -61,7 +61,7 @@ struct cacao_context {
     VkSampler nearest_sampler, linear_sampler;
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout pipeline_layout;
-    VkPipeline pipelines[CACAO_PLAN_MAX_STEPS]; /* one per plan step */
+    VkPipeline pipelines[CACAO_PLAN_MAX_STEPS]; /* one per plan step (VK_NULL_HANDLE for a clear) */
     cacao_intermediate images[CACAO_RES_COUNT];
     VkBuffer buffers[CACAO_RES_COUNT];             /* the plan's buffers, by resource */
     VkDeviceMemory memory_blocks[VK_MAX_MEMORY_TYPES]; /* every intermediate and buffer lives in

@@ -133,8 +133,8 @@ void main()
         ivec2 g = ivec2(i % CB.tiles_x, i / CB.tiles_x);
         append(touches_needed(g, g) ? CACAO_LIST_GENERATE : CACAO_LIST_FILL_SLICES, g);
 #if CACAO_VARIANT == CACAO_COMPACT_HORIZON
-        bool background = tiles[CACAO_TILE_CLASSES + i] == CACAO_TILE_CLASS_BACKGROUND;
-        append(background ? CACAO_LIST_BACKGROUND : CACAO_LIST_PREPARE, g);
+        /* the background tiles keep the clear's view z and normal (what the prepare would store) */
+        if (tiles[CACAO_TILE_CLASSES + i] != CACAO_TILE_CLASS_BACKGROUND) append(CACAO_LIST_PREPARE, g);
 #endif
     } else if (i < t + b) {
         i -= t;
@@ -149,8 +149,9 @@ void main()
 /* ---- fill ---- */
 #if CACAO_PASS == CACAO_PASS_FILL
 /* docs/tiles.md: AO 1, the value the full computation gives every texel of a tile that is not
- * needed (edges 1: nothing reads them there): the slices' AO (CACAO), or the horizon estimators'
- * intermediate or the caller's output. */
+ * needed, into the caller's output (a horizon estimator's last pass writes the needed tiles).
+ * cacao's own images get theirs from a clear (cacao_plan_step.clear): no variant dispatches for
+ * them. */
 layout(local_size_x = CACAO_TILE, local_size_y = CACAO_TILE) in;
 
 void main()
@@ -158,18 +159,6 @@ void main()
     ivec2 group;
     if (!group_of(group)) return;
     ivec2 p = texel_of(group);
-#if CACAO_VARIANT == CACAO_FILL_VIEW
-    if (in_rect(p, imageSize(view_depth))) { /* what the horizon prepare stores for background */
-        imageStore(view_depth, p, vec4(-1.0));
-        imageStore(view_normals, p, vec4(0.0, 0.0, -1.0, 0.0));
-    }
-#elif CACAO_VARIANT == CACAO_FILL_HORIZON
-    if (in_rect(p, imageSize(horizon_ao_out))) imageStore(horizon_ao_out, p, vec4(1.0));
-#elif CACAO_VARIANT == CACAO_FILL_OUTPUT
     if (in_rect(p, imageSize(output_image))) imageStore(output_image, p, vec4(1.0, 0.0, 0.0, 0.0));
-#else
-    if (in_rect(p, imageSize(ssao_image).xy))
-        for (int layer = 0; layer < CB.slice_count; ++layer) imageStore(ssao_image, ivec3(p, layer), vec4(1.0, 1.0, 0.0, 0.0));
-#endif
 }
 #endif /* FILL */

@@ -59,7 +59,7 @@ static const char *const help_text =
     "scratch and LDS bytes, occupancy (subgroups per SIMD), instructions, and the compiler's latency and\n"
     "inverse throughput (cycles per wave64); then per configuration its estimated frame cost per stage:\n"
     "workgroups x wave64s per workgroup x inverse throughput, summed (a compiler's estimate, not a timing;\n"
-    "the tile fill steps are left out; indirect steps count their largest grid). docs/gpu.md explains it.\n"
+    "the tile fill and clear steps are left out; indirect steps count their largest grid). docs/gpu.md explains it.\n"
     "  --config LIST     configurations by name or glob, comma-separated, repeatable (names as\n"
     "                    `cacao-bench --list-configs --sweep full` prints them, e.g. high_native)\n"
     "  --all             measure every embedded permutation, each read once (configurations whose keys\n"
@@ -315,6 +315,7 @@ static bool measure_config(gpu_session *s, const sweep_config *c, bool normals_f
         return complain("%s: %s", c->name, err);
     bool wanted = false;
     for (uint32_t i = 0; i < plan.step_count; ++i) {
+        if (plan.steps[i].clear) continue; /* a transfer: no pipeline */
         const uint32_t p = permutation_index(&plan.steps[i]);
         if (p == UINT32_MAX && !required) return true;
         if (p == UINT32_MAX)
@@ -332,6 +333,7 @@ static bool measure_config(gpu_session *s, const sweep_config *c, bool normals_f
                         cacao_result_string(r), cacao_context_last_error(s->ctx));
     s->compiled++;
     for (uint32_t i = 0; i < plan.step_count; ++i) {
+        if (plan.steps[i].clear) continue;
         gpu_measured *m = &s->measured[permutation_index(&plan.steps[i])];
         if (m->done) continue;
         const VkPipeline pipeline = cacao_context_pipeline(s->ctx, i);
@@ -391,6 +393,10 @@ static bool estimate_cacao(const gpu_session *s, gpu_config_cost *cc) {
     for (uint32_t i = 0; i < cc->plan.step_count; ++i) {
         const cacao_plan_step *step = &cc->plan.steps[i];
         gpu_step_estimate *st = &e->steps[i];
+        if (step->clear) { /* a transfer, left out like the tile fill: no shader to weigh */
+            *st = (gpu_step_estimate){.name = step->key_name, .stage = GPU_STAGE_LEFT_OUT};
+            continue;
+        }
         const uint32_t p = permutation_index(step);
         gpu_stage stage;
         if (!gpu_stage_of_key(step->key_name, &stage))

@@ -52,6 +52,7 @@ static const struct {
     {"classify", GPU_STAGE_CLASSIFY},
     {"compact", GPU_STAGE_CLASSIFY},
     {"fill", GPU_STAGE_LEFT_OUT},
+    {"clear.", GPU_STAGE_LEFT_OUT}, /* the clears of cacao's own images (transfers, not shaders) */
     {"importance_", GPU_STAGE_IMPORTANCE},
     {"blur.", GPU_STAGE_BLUR},
     {"blur_gpu.", GPU_STAGE_BLUR}, /* the GPU forms (cacao_shader_forms) */

@@ -239,6 +239,13 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
     for (uint32_t i = 0; i < plan->step_count; ++i) {
         const cacao_plan_step *st = &plan->steps[i];
         printf("  %2u %-34s ", i, st->key_name);
+        if (st->clear) {
+            const bool view = st->bindings[0].resource == CACAO_RES_VIEW_DEPTH;
+            printf(view ? "clears view z and normals; the %u background tiles keep them (%.1f%% of the tiles)\n"
+                        : "clears to AO 1; the %u skipped tiles keep it (%.1f%% of the tiles)\n",
+                   view ? c->background : generate_skipped, percent(view ? c->background : generate_skipped, c->tiles));
+            continue;
+        }
         switch (st->list) {
         case CACAO_LIST_GENERATE:
             printf("runs %u of %u tiles, skips %u (%.1f%%)\n", c->generate_run, c->generate_total, generate_skipped,
@@ -318,7 +325,7 @@ static int cmd_plan(const inspect_args *a) {
     int missing = 0;
     for (uint32_t i = 0; i < plan.step_count; ++i) {
         const cacao_key key = cacaoi_plan_step_key(&plan.steps[i]);
-        if (!cacaoi_table_find(table, &key)) missing += fprintf(stderr, "note: %s is not embedded in this build\n",
+        if (!plan.steps[i].clear && !cacaoi_table_find(table, &key)) missing += fprintf(stderr, "note: %s is not embedded in this build\n",
                                                                plan.steps[i].key_name) > 0;
     }
     return missing ? 1 : 0;
@@ -435,7 +442,7 @@ static int cmd_verify(void) {
                         ++configs;
                         for (uint32_t i = 0; i < plan.step_count; ++i) {
                             const cacao_key key = cacaoi_plan_step_key(&plan.steps[i]);
-                            if (!cacaoi_table_find(table, &key)) {
+                            if (!plan.steps[i].clear && !cacaoi_table_find(table, &key)) {
                                 fprintf(stderr, "missing: %s (quality %s)\n", plan.steps[i].key_name,
                                         cacao_quality_name(s.quality));
                                 ++missing;
