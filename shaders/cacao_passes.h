@@ -153,6 +153,10 @@ bool cacaoi_pass_expect(unsigned pass, unsigned variant, cacaoi_module_expect *o
  * variant the table lacks. */
 size_t cacaoi_variant_bindings(unsigned pass, unsigned variant, cacaoi_pass_binding out[CACAO_PLAN_MAX_BINDINGS]);
 
+/* The passes that run over every group and skip by the tile classes (the GPU forms of generate
+ * and the blur: docs/tiles.md): a group that is not needed stores AO 1 and returns. */
+bool cacaoi_skips_by_class(unsigned pass, unsigned variant);
+
 /* The fill variants that fill cacao's own images: recorded as a clear of the whole image
  * (cacao_plan_step.clear), never dispatched. */
 bool cacaoi_fill_is_clear(unsigned pass, unsigned variant);

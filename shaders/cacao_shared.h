@@ -118,7 +118,8 @@
  *            entries per list (list l at CACAO_TILE_LIST_ENTRIES(l));
  *   classes  one uint per tile, from CACAO_TILE_CLASSES;
  *   lists    the generate, fill and prepare lists hold up to one entry per tile, the
- *            blur list (the last) one per blur group; list l starts at CACAO_TILE_LIST_BASE(l, tiles).
+ *            blur list (the last) one per blur group; list l starts at CACAO_TILE_LIST_BASE(l, tiles);
+ *   needed   a flag per tile, then one per blur group (CACAO_TILE_NEEDED, CACAO_TILE_BLUR_NEEDED).
  * A list is dispatched as a grid x wide (tiles_x, or blur_groups_x for the blur) and as many rows
  * as its entries fill (lavapipe runs a 1D grid of the same groups slower); group (x, y)
  * takes entry y width + x, and a group past the last entry finds CACAO_TILE_NO_ENTRY (the host
@@ -139,7 +140,13 @@
 #define CACAO_TILE_CLASSES CACAO_TILE_HEADER /* first tile class */
 /* First entry of list 1..4 (tiles: tiles_x tiles_y); the uints of the whole buffer. */
 #define CACAO_TILE_LIST_BASE(list, tiles) (CACAO_TILE_CLASSES + (tiles) * (list))
-#define CACAO_TILE_BUFFER_UINTS(tiles, blur_groups) (CACAO_TILE_LIST_BASE(CACAO_LIST_BLUR, tiles) + (blur_groups))
+/* After the lists: one flag per tile and one per blur group, 0 where the lists would hold it
+ * (a tile within one tile of an active one; a blur group touching such a tile), else
+ * CACAO_TILE_NO_ENTRY as the host's fill left it. classify marks them from each active tile; the
+ * GPU forms of generate and the blur read their group's (cacaoi_skips_by_class). */
+#define CACAO_TILE_NEEDED(tiles, blur_groups) (CACAO_TILE_LIST_BASE(CACAO_LIST_BLUR, tiles) + (blur_groups))
+#define CACAO_TILE_BLUR_NEEDED(tiles, blur_groups) (CACAO_TILE_NEEDED(tiles, blur_groups) + (tiles))
+#define CACAO_TILE_BUFFER_UINTS(tiles, blur_groups) (CACAO_TILE_BLUR_NEEDED(tiles, blur_groups) + (blur_groups))
 #define CACAO_TILE_NO_ENTRY 0xffffffffu  /* list slots past the last entry (the host fills them) */
 #define CACAO_TILE_CLASS_ACTIVE 0
 #define CACAO_TILE_CLASS_FADED 1

@@ -188,6 +188,14 @@ static void check_config(const cacao_settings *s) {
         const cacao_key key = cacaoi_plan_step_key(st);
         CHECK(cacaoi_key_compare(&key, &steps[i].key) == 0);
         CHECK(st->clear == steps[i].clear);
+        /* a step reading the tile buffer is a list dispatch, classify or compact, or a GPU form
+         * that skips by the classes itself (and then writes its count there) */
+        if (cacaoi_skips_by_class(st->key[0], st->key[1]))
+            CHECK(st->list == CACAO_LIST_NONE && config.gpu_forms);
+        for (uint32_t j = 0; j < st->binding_count; ++j)
+            if (st->bindings[j].resource == CACAO_RES_TILES)
+                CHECK(st->list != CACAO_LIST_NONE || st->key[0] == CACAO_PASS_CLASSIFY || st->key[0] == CACAO_PASS_COMPACT ||
+                      cacaoi_skips_by_class(st->key[0], st->key[1]));
         if (st->clear) { /* a transfer: it only writes cacao's own images, each with a clear value; no module */
             CHECK(st->dispatch[0] == 0 && st->list == CACAO_LIST_NONE && st->binding_count >= 1);
             for (uint32_t j = 0; j < st->binding_count; ++j) {

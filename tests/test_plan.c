@@ -67,6 +67,37 @@ static void test_steps_per_quality(void) {
     }
 }
 
+/* The GPU forms (docs/tiles.md): classify, then generate and the blur on direct grids that skip
+ * by the classes in the shader; no compact, no lists, no clears (a group that is not needed
+ * stores the 1 itself), at every quality and blur count. The tile buffer still holds the classes,
+ * the counts and the needed flags classify marks. */
+static void test_gpu_forms_skip_in_shader(void) {
+    for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
+        for (uint32_t blur = 0; blur <= 8; blur += 4) {
+            cacao_plan p = build((cacao_settings){.quality = (cacao_quality)q, .blur_pass_count = blur,
+                                                  .generate_normals = true, .shader_forms = CACAO_SHADER_FORMS_GPU},
+                                 1920, 1080);
+            bool classify = false, generate = false;
+            for (uint32_t i = 0; i < p.step_count; ++i) {
+                const cacao_plan_step *st = &p.steps[i];
+                CHECK(st->list == CACAO_LIST_NONE && !st->clear && strcmp(st->key_name, "compact") != 0);
+                classify |= strcmp(st->key_name, "classify") == 0;
+                const bool skips = strncmp(st->key_name, "blur_gpu.", 9) == 0 ||
+                                   (strncmp(st->key_name, "generate_gpu.", 13) == 0 &&
+                                    strcmp(st->key_name, "generate_gpu.q3base") != 0);
+                if (skips) { /* after classify; every group of the grid, and it writes the counts */
+                    CHECK(classify && st->dispatch[2] == p.slice_count);
+                    bool tiles_written = false;
+                    for (uint32_t j = 0; j < st->binding_count; ++j)
+                        tiles_written |= st->bindings[j].resource == CACAO_RES_TILES && st->bindings[j].write;
+                    CHECK(tiles_written);
+                }
+                generate |= skips && st->key_name[0] == 'g';
+            }
+            CHECK(classify && generate && p.uses_tiles);
+        }
+}
+
 static void test_only_needed_resources(void) {
     cacao_plan low = build(
         (cacao_settings){.quality = CACAO_QUALITY_LOW, .blur_pass_count = CACAO_BLUR_NONE, .generate_normals = true},
@@ -101,8 +132,8 @@ static void test_only_needed_resources(void) {
      * 64x32 texels (8x8 threads of 8x4 each, from their footprints). */
     CHECK(lowest.tiles_x == 120 && lowest.tiles_y == 68 && lowest.blur_groups_x == 15 && lowest.blur_groups_y == 17);
     /* header, classes, three lists of a tile each (generate, fill, and the horizon estimators'
-     * prepare list), the blur list */
-    CHECK(lowest.tile_buffer_bytes == 4u * (32u + 4u * 120u * 68u + 15u * 17u));
+     * prepare list), the blur list, then a needed flag per tile and per blur group */
+    CHECK(lowest.tile_buffer_bytes == 4u * (32u + 5u * 120u * 68u + 2u * 15u * 17u));
     cacao_plan highest =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
     const cacao_plan_image *depths = find_image(&highest, CACAO_RES_DEPTHS);
@@ -223,6 +254,7 @@ static void test_invalid(void) {
 
 int main(void) {
     test_steps_per_quality();
+    test_gpu_forms_skip_in_shader();
     test_only_needed_resources();
     test_dispatch_sizes();
     test_lists_agree_on_layers();

@@ -19,7 +19,10 @@
  *   - the horizon estimators (GTAO, bitmask) likewise: identical to their reference, exactly 1
  *     with nothing estimated on an all-background frame, more than half the tiles skipped when
  *     three quarters of the pixels lie beyond the fade-out (test_horizon).
- * The counts come from the runtime (cacao_record_tile_counts) through vkdev's timings. */
+ * The CACAO cases run with both shader forms: the CPU forms skip through tile lists and clears,
+ * the GPU forms in the shader (a group that is not needed stores the 1 and returns), counting the
+ * same tiles. The counts come from the runtime (cacao_record_tile_counts) through vkdev's
+ * timings. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,11 +32,18 @@
 static const cacao_quality qualities[] = {CACAO_QUALITY_LOWEST, CACAO_QUALITY_LOW, CACAO_QUALITY_MEDIUM,
                                           CACAO_QUALITY_HIGH, CACAO_QUALITY_HIGHEST};
 
+/* The shader forms the CACAO runs use: the CPU forms skip through tile lists, the GPU forms run
+ * every group of generate and the blur and skip by the classes in the shader (docs/tiles.md);
+ * main runs the CACAO cases with both. */
+static cacao_shader_forms forms = CACAO_SHADER_FORMS_CPU;
+
 /* One run; false (a test failure) when cacao fails or reports no tile counts. */
 static bool run_counts(vkdev *dev, const cacao_settings *s, const vkdev_frame *f, float *ao, cacao_tile_counts *counts) {
     char err[512];
     cacao_timings t;
-    const cacao_result r = vkdev_run(dev, s, f, 1, ao, &t, err, sizeof err);
+    cacao_settings settings = *s;
+    settings.shader_forms = forms; /* the horizon estimators have one form */
+    const cacao_result r = vkdev_run(dev, &settings, f, 1, ao, &t, err, sizeof err);
     if (r != CACAO_SUCCESS || !t.has_tiles) {
         fprintf(stderr, "cacao run failed: %s: %s\n", cacao_result_string(r), err);
         ++test_failures;
@@ -57,8 +67,9 @@ static bool same_as_all_tiles(vkdev *dev, cacao_settings s, const vkdev_frame *f
         size_t differ = 0;
         for (size_t i = 0; i < n; ++i) differ += memcmp(&a[i], &b[i], sizeof(float)) != 0;
         if (differ)
-            fprintf(stderr, "%s, quality %d, %s, blur %d: %zu pixels differ from compute_all_tiles\n", what,
-                    (int)s.quality, s.downsample ? "downsampled" : "native", s.blur_pass_count, differ);
+            fprintf(stderr, "%s, quality %d, %s, blur %d, %s forms: %zu pixels differ from compute_all_tiles\n", what,
+                    (int)s.quality, s.downsample ? "downsampled" : "native", s.blur_pass_count,
+                    forms == CACAO_SHADER_FORMS_GPU ? "GPU" : "CPU", differ);
         CHECK(differ == 0);
         CHECK(on->active + on->faded + on->background == on->tiles);
         CHECK(on->generate_run >= on->active && on->generate_run <= on->tiles); /* active tiles and a margin */
@@ -279,6 +290,16 @@ int main(void) {
     test_mostly_faded(&dev, 256, 144, false);
     test_mostly_faded(&dev, 512, 288, true);
     test_nan_depth(&dev, &sb);
+    /* the GPU forms: the same cases (lavapipe runs both sides of their skip, slowly: the
+     * downsampled frame once, with the CPU forms); mostly faded at 512x288, where the GPU blur's
+     * larger groups (up to 64x48 texels) leave some away from every active tile */
+    forms = CACAO_SHADER_FORMS_GPU;
+    test_equal_everywhere(&dev, &sb);
+    test_all_background(&dev, &sb);
+    test_no_background(&dev, &sb);
+    test_mostly_faded(&dev, 512, 288, false);
+    test_nan_depth(&dev, &sb);
+    forms = CACAO_SHADER_FORMS_CPU;
     test_horizon(&dev, &sb, &sb, first_quartile_z(&sb, &scene.camera));
     scene_buffers_free(&sb);
     vkdev_destroy(&dev);

@@ -173,6 +173,14 @@ void main()
     rvec4 e[BY][BX];
     rfloat wsum[BY][BX];
     float packed[BY][BX];
+#if CACAO_SKIPS_BY_CLASS
+    /* compact's test for the blur list (classify's flag), the same for the whole group (so are
+     * the barriers under it): a group the list would leave out stores AO 1 and edges 1 (the
+     * value the CPU forms' clear leaves there) where it stores, and computes nothing */
+    const bool run = group_needed(group);
+    if (run) count_group(CACAO_LIST_BLUR);
+    if (run) {
+#endif
     [[unroll]] for (int y = 0; y < BY; ++y) {
         [[unroll]] for (int x = 0; x < BX; ++x) {
             ivec2 c = mirror_coord(tile_origin - BLUR_N + b0 + ivec2(x, y), s);
@@ -245,6 +253,16 @@ void main()
         /* no second barrier: the next iteration writes the other buffer, and the one after
          * this buffer again only after that iteration's barrier */
     }
+#if CACAO_SKIPS_BY_CLASS
+    } else {
+        [[unroll]] for (int y = 0; y < BY; ++y) {
+            [[unroll]] for (int x = 0; x < BX; ++x) {
+                v[y][x] = rfloat(1.0);
+                packed[y][x] = 1.0;
+            }
+        }
+    }
+#endif
 
     /* inner texels: (blurred AO, original packed edges) */
 #if CACAO_PASS == CACAO_PASS_BLUR_GPU

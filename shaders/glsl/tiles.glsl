@@ -29,6 +29,54 @@ bool group_of(out ivec2 g)
  * pass declares its local size (glslang takes 1 x 1 x 1 before). */
 #define texel_of(g) ((g) * ivec2(gl_WorkGroupSize.xy) + ivec2(gl_LocalInvocationID.xy))
 
+/* The GPU forms of generate and the blur run every group of a direct grid and skip by the tile
+ * classes (cacaoi_skips_by_class): a group the lists would leave out stores the AO 1 the CPU
+ * forms' clear stores there and returns, a workgroup-uniform branch a GPU skips (lavapipe runs
+ * both sides: the CPU forms keep the lists). */
+#if (CACAO_PASS == CACAO_PASS_GENERATE_GPU && CACAO_VARIANT != CACAO_GENERATE_Q3_BASE) || CACAO_PASS == CACAO_PASS_BLUR_GPU
+#define CACAO_SKIPS_BY_CLASS 1
+#else
+#define CACAO_SKIPS_BY_CLASS 0
+#endif
+
+#if CACAO_PASS == CACAO_PASS_COMPACT
+/* Some tile within one tile of the tiles [t0, t1] is active: a needed tile lies in [t0, t1]. */
+bool touches_needed(ivec2 t0, ivec2 t1)
+{
+    ivec2 last = ivec2(CB.tiles_x, CB.tiles_y) - 1;
+    t0 = clamp(t0 - 1, ivec2(0), last);
+    t1 = clamp(t1 + 1, ivec2(0), last);
+    for (int y = t0.y; y <= t1.y; ++y)
+        for (int x = t0.x; x <= t1.x; ++x)
+            if (tiles[CACAO_TILE_CLASSES + y * CB.tiles_x + x] == CACAO_TILE_CLASS_ACTIVE) return true;
+    return false;
+}
+#endif
+
+#if CACAO_SKIPS_BY_CLASS || CACAO_PASS == CACAO_PASS_CLASSIFY
+uint needed_base() { return uint(CACAO_TILE_NEEDED(CB.tiles_x * CB.tiles_y, CB.blur_groups_x * CB.blur_groups_y)); }
+uint blur_needed_base() { return uint(CACAO_TILE_BLUR_NEEDED(CB.tiles_x * CB.tiles_y, CB.blur_groups_x * CB.blur_groups_y)); }
+#endif
+
+#if CACAO_SKIPS_BY_CLASS
+/* Group g of generate (a tile) or of the blur is one the lists would hold (classify's flags:
+ * compact's test, made from each active tile). One load per invocation, the same for the group. */
+bool group_needed(ivec2 g)
+{
+#if CACAO_PASS == CACAO_PASS_BLUR_GPU
+    return tiles[blur_needed_base() + g.y * CB.blur_groups_x + g.x] == 0u;
+#else
+    return tiles[needed_base() + g.y * CB.tiles_x + g.x] == 0u;
+#endif
+}
+
+/* A group that runs counts itself once (layer 0) where compact counts a list's entries. */
+void count_group(int list)
+{
+    if (gl_LocalInvocationIndex == 0u && gl_WorkGroupID.z == 0u) atomicAdd(tiles[CACAO_TILE_LIST_ENTRIES(list)], 1u);
+}
+#endif
+
 /* ---- classify ---- */
 #if CACAO_PASS == CACAO_PASS_CLASSIFY
 /* docs/tiles.md: one invocation per tile, no barriers. A texel is quiet where every layer's
@@ -37,6 +85,25 @@ bool group_of(out ivec2 g)
  * else faded when some texel is not background, else background. Gathers read 2x2 texels; past
  * the slice's edge they clamp to texels of the same tile. */
 layout(local_size_x = CACAO_WG_CLASSIFY, local_size_y = CACAO_WG_CLASSIFY) in;
+
+#if CACAO_VARIANT == CACAO_CLASSIFY_SLICES
+/* Active tile a makes needed the tiles within one tile of it, and the blur groups whose output
+ * touches one of those: compact's tests, turned around (a group g, output texels g out .. g out +
+ * out - 1, touches tiles a - 1 .. a + 1 when g out < (a + 2) TILE and g out + out > (a - 1) TILE).
+ * Every mark stores the same 0 (the GPU forms' flags; the CPU forms run from compact's lists). */
+void mark_needed(ivec2 a)
+{
+    ivec2 last = ivec2(CB.tiles_x, CB.tiles_y) - 1;
+    for (int y = max(a.y - 1, 0); y <= min(a.y + 1, last.y); ++y)
+        for (int x = max(a.x - 1, 0); x <= min(a.x + 1, last.x); ++x) atomicAnd(tiles[needed_base() + y * CB.tiles_x + x], 0u);
+    if (CB.blur_groups_x == 0) return; /* no blur */
+    ivec2 out_size = ivec2(CB.blur_out_x, CB.blur_out_y);
+    ivec2 g0 = max(a - 1, ivec2(0)) * CACAO_TILE / out_size;
+    ivec2 g1 = min(((a + 2) * CACAO_TILE - 1) / out_size, ivec2(CB.blur_groups_x, CB.blur_groups_y) - 1);
+    for (int y = g0.y; y <= g1.y; ++y)
+        for (int x = g0.x; x <= g1.x; ++x) atomicAnd(tiles[blur_needed_base() + y * CB.blur_groups_x + x], 0u);
+}
+#endif
 
 #if CACAO_VARIANT == CACAO_CLASSIFY_HORIZON
 /* The horizon estimators' pixels, from the caller's depth, before their prepare: background where
@@ -100,6 +167,9 @@ void main()
              : (flags & 2u) != 0u ? CACAO_TILE_CLASS_FADED : CACAO_TILE_CLASS_BACKGROUND;
     tiles[CACAO_TILE_CLASSES + t.y * CB.tiles_x + t.x] = cls;
     atomicAdd(tiles[CACAO_TILE_COUNT_ACTIVE + cls], 1u);
+#if CACAO_VARIANT == CACAO_CLASSIFY_SLICES
+    if (cls == CACAO_TILE_CLASS_ACTIVE) mark_needed(t);
+#endif
 }
 #endif /* CLASSIFY */
 
@@ -109,18 +179,6 @@ void main()
  * computes it (or, a tile, into the one that fills it with 1). Order within a list is arbitrary:
  * every group writes only its own texels. */
 layout(local_size_x = CACAO_WG_COMPACT) in;
-
-/* Some tile within one tile of the tiles [t0, t1] is active: a needed tile lies in [t0, t1]. */
-bool touches_needed(ivec2 t0, ivec2 t1)
-{
-    ivec2 last = ivec2(CB.tiles_x, CB.tiles_y) - 1;
-    t0 = clamp(t0 - 1, ivec2(0), last);
-    t1 = clamp(t1 + 1, ivec2(0), last);
-    for (int y = t0.y; y <= t1.y; ++y)
-        for (int x = t0.x; x <= t1.x; ++x)
-            if (tiles[CACAO_TILE_CLASSES + y * CB.tiles_x + x] == CACAO_TILE_CLASS_ACTIVE) return true;
-    return false;
-}
 
 /* Entry i goes to grid row i / width: the command's rows cover every entry. */
 void append(int list, ivec2 g)

@@ -411,7 +411,9 @@ static bool estimate_cacao(const gpu_session *s, gpu_config_cost *cc) {
                                   .groups = {step->dispatch[0], step->dispatch[1], step->dispatch[2]},
                                   .dispatches = 1,
                                   .threads = wg[0] * wg[1] * wg[2],
-                                  .indirect = step->list != 0,
+                                  /* a list's entry check, or the GPU forms' class check: both a
+                                     workgroup-uniform branch around the body */
+                                  .indirect = step->list != 0 || cacaoi_skips_by_class(step->key[0], step->key[1]),
                                   .inverse_throughput = stats->value[GPU_STAT_INVERSE_THROUGHPUT]};
         /* A step dispatched from a tile list starts with the group's entry check (tiles.glsl,
          * group_of: the groups past the last entry return). ACO weighs the body under that

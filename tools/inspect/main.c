@@ -246,7 +246,11 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
                    view ? c->background : generate_skipped, percent(view ? c->background : generate_skipped, c->tiles));
             continue;
         }
-        switch (st->list) {
+        /* the GPU forms of generate and the blur skip the groups the lists leave out themselves */
+        const unsigned list = !cacaoi_skips_by_class(st->key[0], st->key[1]) ? st->list
+                              : st->key[0] == CACAO_PASS_BLUR_GPU        ? CACAO_LIST_BLUR
+                                                                         : CACAO_LIST_GENERATE;
+        switch (list) {
         case CACAO_LIST_GENERATE:
             printf("runs %u of %u tiles, skips %u (%.1f%%)\n", c->generate_run, c->generate_total, generate_skipped,
                    percent(generate_skipped, c->generate_total));
