@@ -77,9 +77,10 @@ typedef struct cacao_key_config {
  * other pass, the upsample included, is itself). */
 unsigned cacaoi_form_pass(unsigned pass, bool gpu_forms);
 
-/* True when configurations with these forms can dispatch the pass (false for the other forms'
- * rows: the CPU blur, apply, prepare and generate under GPU forms, their GPU rows under CPU forms). */
-bool cacaoi_pass_in_forms(unsigned pass, bool gpu_forms);
+/* True when configurations with these forms can dispatch the pass's variant (false for the other
+ * forms' rows: the CPU blur, apply, prepare and generate under GPU forms, their GPU rows under CPU
+ * forms; and CACAO's compact under GPU forms, which skip in the shader instead of from lists). */
+bool cacaoi_key_in_forms(unsigned pass, unsigned variant, bool gpu_forms);
 
 /* ---- The sequence ---- */
 

@@ -1,7 +1,7 @@
 /* test_pipelines_first - pipelines created before any size is known (cacao_context_create_pipelines,
  * an engine's load-time warm-up), on lavapipe with validation:
  *   - they are the pipelines of the settings' plan: one per step, steps of one permutation sharing
- *     one, as many as a resize of a fresh context creates; cacao_context_plan stays NULL and
+ *     one, none for a clear step, as many as a resize of a fresh context creates; cacao_context_plan stays NULL and
  *     cacao_record refuses (NOT_READY) until a resize;
  *   - a later resize with the same settings keeps every one of them (the same handles, the same
  *     count) and its frame is bit-identical to a context that never called it;
@@ -30,8 +30,8 @@ static void check_settings(vkdev *dev, const cacao_settings *s, const vkdev_fram
     VkPipeline before[CACAO_PLAN_MAX_STEPS] = {0};
     for (uint32_t i = 0; plan && i < plan->step_count; ++i) {
         before[i] = cacao_context_pipeline(ctx, i);
-        CHECK(before[i] != VK_NULL_HANDLE);
-        for (uint32_t j = 0; j < i; ++j) /* shared exactly where the permutation is the same */
+        CHECK((before[i] != VK_NULL_HANDLE) == !plan->steps[i].clear); /* a clear step has none */
+        for (uint32_t j = 0; j < i && !plan->steps[i].clear; ++j) /* shared exactly where the permutation is the same */
             CHECK((before[j] == before[i]) == (strcmp(plan->steps[j].key_name, plan->steps[i].key_name) == 0));
     }
     CHECK(plan && cacao_context_pipeline(ctx, plan->step_count) == VK_NULL_HANDLE);
@@ -55,7 +55,8 @@ static void check_settings(vkdev *dev, const cacao_settings *s, const vkdev_fram
     CHECK(cacao_context_plan(ctx) == NULL);
     cacao_plan other_plan;
     CHECK(cacao_plan_build(&other, f->width, f->height, &other_plan, NULL, 0) == CACAO_SUCCESS);
-    for (uint32_t i = 0; i < other_plan.step_count; ++i) CHECK(cacao_context_pipeline(ctx, i) != VK_NULL_HANDLE);
+    for (uint32_t i = 0; i < other_plan.step_count; ++i)
+        CHECK((cacao_context_pipeline(ctx, i) != VK_NULL_HANDLE) == !other_plan.steps[i].clear);
     CHECK(cacao_context_pipeline(ctx, other_plan.step_count) == VK_NULL_HANDLE);
 done:
     if (ctx && cacao_context_last_error(ctx)[0]) fprintf(stderr, "context: %s\n", cacao_context_last_error(ctx));

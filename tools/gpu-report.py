@@ -57,9 +57,10 @@ MEASURED = {'final': 'h200-final.json', 'before': 'h200-before.json',
             'forms': 'h200-run-texelfetch.json', 'forms_before': 'h200-run-texelfetch-before.json',
             'atomics': 'h200-run-atomics.json', 'atomics_before': 'h200-run-atomics-before.json'}
 # What the runs are of, and what changed after them (said with the tables: a run measures its code).
-MEASURED_CODE = ('The final run is of commit 8ba0da9, its "before" of 6588704 (the previous main); the change made '
-                 'after them, the fills with one workgroup per tile instead of one per tile and layer (9d4d565), was '
-                 'not measured on this GPU.')
+MEASURED_CODE = ('The final run is of commit 8ba0da9, its "before" of 6588704 (the previous main); the changes made '
+                 'after them were not measured on this GPU: the fills with one workgroup per tile instead of one per '
+                 'tile and layer (9d4d565), then no fills at all: on a GPU generate and the blur skip the groups '
+                 'that are not needed in the shader, with no compact pass, list or clear (docs/tiles.md, "What runs").')
 SCENES = ['interior_fzkhaus', 'statues_scanned', 'street_track']
 AMD_CONFIGS = ['%s_%s' % (q.upper(), r) for r in ('native', 'downsampled') for q in QUALITIES]
 MEASURED_STAGES = ['prepare', 'other', 'base', 'importance', 'generate', 'blur', 'apply', 'upsample']
@@ -242,10 +243,13 @@ Such a step's shader begins with its group's entry check (the groups past the li
 return at once), a workgroup-uniform branch, and ACO weighs everything under a uniform branch as
 run half the time (below): its "Inverse Throughput" is half the body's. The estimate therefore
 doubles it for list-dispatched steps (the same horizon_main.gtao code: 7727 cycles per wave as a
-direct dispatch, 3863 from the list). Estimates made before this correction (this report's
+direct dispatch, 3863 from the list). The GPU forms of generate and the blur run every group and
+branch the same way on their group's needed flag (docs/tiles.md): doubled too, which also counts
+their skip side (the stores of AO 1 a skipped group makes) at full weight on every group, an
+overestimate where every tile is active. Estimates made before this correction (this report's
 earlier versions, issue 31's table) counted cacao's generate and blur at half their weight. The
-per-permutation tables below print ACO's figure as it reports it. The tile fill steps are left
-out (with every tile active they dispatch nothing).
+per-permutation tables below print ACO's figure as it reports it. The tile fill and clear steps
+are left out (the fill dispatches nothing with every tile active; a clear runs no shader).
 
 AMD's steps per configuration follow AMD's own code (`FFX_CACAO_VkDraw` in `ffx_cacao_impl.cpp`,
 `FFX_CACAO_UpdateBufferSizeInfo` in `ffx_cacao.cpp`, `ffx_cacao_defines.h`, the numthreads of
@@ -307,6 +311,12 @@ fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
   rolled. At Q0..Q2 the GPU form fetches its taps' depths through the sampled view of the atlas
   (`texelFetch`; the CPU form, Q3 and its base pass load them from the storage image): the same
   texels, chosen by what a real GPU measured (section "Measured on a real GPU").
+- `generate_gpu` and `blur_gpu` run on direct grids and skip by the tile classes themselves: a
+  group reads its needed flag (classify marks them) and, when not needed, stores AO 1 and computes
+  nothing else; the CPU forms run from compact's lists with clears (docs/tiles.md). On navi21 at
+  LOWEST native the flag and the skip side cost the estimate 0.56 Mcycles in generate and 0.37 in
+  the blur, while the compact pass, the clears and two indirect dispatches, which the estimate does
+  not weigh, are gone: not yet timed on a GPU.
 
 ## Against issue 31's measurement
 

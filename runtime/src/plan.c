@@ -279,8 +279,11 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
             if (s->bindings[j].write) cleared = s->clear ? cleared | (1u << s->bindings[j].resource)
                                                          : cleared & ~(1u << s->bindings[j].resource);
         if (s->barrier_before) {
-            const bool after_clear = (s->barrier_resources & cleared_before) != 0;
-            fprintf(out, "  barrier (%s -> %s) for", after_clear ? "transfer" : "compute", s->clear ? "transfer" : "compute");
+            const bool after_clear = (s->barrier_resources & cleared_before) != 0,
+                       after_compute = (s->barrier_resources & ~cleared_before) != 0;
+            fprintf(out, "  barrier (%s -> %s) for",
+                    after_clear ? (after_compute ? "compute, transfer" : "transfer") : "compute",
+                    s->clear ? "transfer" : "compute");
             for (unsigned r = 0; r < CACAO_RES_COUNT; ++r)
                 if (s->barrier_resources & (1u << r)) fprintf(out, " %s", cacaoi_resources[r].name);
             fprintf(out, "\n");
