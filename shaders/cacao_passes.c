@@ -193,17 +193,19 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * normals that use it; generate: the tap's atlas level in integers. */
     PASS(PREPARE_GPU) = PREPARE_ROW("prepare_gpu"),
     PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu", V(CACAO_GENERATE_Q3) | V(CACAO_GENERATE_Q3_BASE), W, CACAO_LIST_NONE),
-    /* The value of the tiles no pass computes: AO 1 into the caller's output over the unneeded
-     * tiles (a dispatch); into the slices' AO and the blur's output (CACAO, a step rebinding
-     * SSAO_IMAGE), the horizon estimators' AO intermediates, and their view z and normals for
-     * background: clears of the whole image before the passes that write the needed tiles. */
+    /* The value of the tiles no pass computes: AO 1 over the unneeded tiles into the slices' AO
+     * and the blur's output (CACAO's CPU forms, a step rebinding SSAO_IMAGE) and into the caller's
+     * output (dispatches); into the horizon estimators' AO intermediates, and their view z and
+     * normals for background: clears of the whole image before the passes that write the needed
+     * tiles (on lavapipe a clear of a 16-bit image costs a full frame of CACAO about 4%, a fill
+     * over an empty list nothing: docs/tiles.md). */
     PASS(FILL) = {"fill", {NULL, "horizon", "output", "view"}, 4, false, false, false, {CACAO_TILE, CACAO_TILE},
                   CACAOI_GRID_SLICE, 7,
-                  {CONSTANTS, R(TILES, TILES, V(CACAO_FILL_OUTPUT)), W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),
+                  {CONSTANTS, R(TILES, TILES, V(CACAO_FILL_SLICES) | V(CACAO_FILL_OUTPUT)), W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),
                    W(HORIZON_AO_OUT, AO_RAW, V(CACAO_FILL_HORIZON)), W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT)),
                    W(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_FILL_VIEW)), W(VIEW_NORMALS, VIEW_NORMALS, V(CACAO_FILL_VIEW))},
-                  /* the variants of cacao's own images are clears (cacao_plan_step.clear) */
-                  .lists = {[CACAO_FILL_OUTPUT] = CACAO_LIST_FILL_SLICES}},
+                  /* the horizon estimators' own images are cleared (cacao_plan_step.clear) */
+                  .lists = {[CACAO_FILL_SLICES] = CACAO_LIST_FILL_SLICES, [CACAO_FILL_OUTPUT] = CACAO_LIST_FILL_SLICES}},
 };
 #undef R
 #undef W
@@ -258,7 +260,7 @@ bool cacaoi_skips_by_class(unsigned pass, unsigned variant) {
 }
 
 bool cacaoi_fill_is_clear(unsigned pass, unsigned variant) {
-    return pass == CACAO_PASS_FILL && variant != CACAO_FILL_OUTPUT;
+    return pass == CACAO_PASS_FILL && (variant == CACAO_FILL_HORIZON || variant == CACAO_FILL_VIEW);
 }
 
 /* What the shaders would store there (tiles.glsl before clears): RG8 AO 1 with edges 1, R16F AO 1,

@@ -135,28 +135,23 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     }
     push(out, &n, CACAO_PASS_CLASSIFY, 0, 0, 0, 0);
     /* The CPU forms run generate and the blur over lists of the groups that need them (compact);
-     * the tiles they skip read as AO 1 in generate's output and, where a blur runs, in the blur's
-     * (the blur and apply groups next to a needed tile read them): clears of the whole images,
-     * which generate and the blur then overwrite on the tiles they compute. HIGHEST's base pass
-     * writes the blur's output image first (generate reads it): cleared after generate there. The
-     * GPU forms run every group and store the AO 1 of a group they skip themselves: no lists, no
-     * clears (docs/tiles.md). */
-    const bool highest = c->quality == CACAO_KEY_QUALITY_HIGHEST, lists = !c->gpu_forms;
-    if (lists) {
-        push(out, &n, CACAO_PASS_COMPACT, 0, 0, 0, 0);
-        push(out, &n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0);
-        if (c->blur_passes > 0 && !highest)
-            rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0), CACAO_BINDING_SSAO_IMAGE, CACAO_RES_SSAO_PONG);
-    }
-    if (highest) {
+     * the GPU forms run every group and store the AO 1 of a group they skip themselves: no lists,
+     * no fills (docs/tiles.md). */
+    const bool lists = !c->gpu_forms;
+    if (lists) push(out, &n, CACAO_PASS_COMPACT, 0, 0, 0, 0);
+    if (c->quality == CACAO_KEY_QUALITY_HIGHEST) {
         push(out, &n, cacaoi_form_pass(CACAO_PASS_GENERATE, c->gpu_forms), CACAO_GENERATE_Q3_BASE, 0, 0, 0);
         push(out, &n, CACAO_PASS_IMPORTANCE_A, 0, 0, 0, 0);
         push(out, &n, CACAO_PASS_IMPORTANCE_B, 0, 0, 0, 0);
     }
     push(out, &n, cacaoi_form_pass(CACAO_PASS_GENERATE, c->gpu_forms), cacaoi_qualities[c->quality].generate_variant, 0,
          0, 0);
+    /* Lists: the tiles generate skips read as AO 1 in its output and, where a blur runs, in the
+     * blur's (the blur and apply groups next to a needed tile read them): fills over the list of
+     * the unneeded tiles. */
+    if (lists) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0);
     if (c->blur_passes > 0) {
-        if (highest && lists)
+        if (lists)
             rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0), CACAO_BINDING_SSAO_IMAGE, CACAO_RES_SSAO_PONG);
         push(out, &n, cacaoi_form_pass(CACAO_PASS_BLUR, c->gpu_forms), 0, 0, c->blur_passes, fp);
     }

@@ -92,9 +92,9 @@
 
 /* Fill variants: AO 1 into the slices' AO (CACAO), into the horizon estimators' AO intermediate,
  * or into the caller's output (a horizon estimator's last pass writes it over the needed tiles);
- * or the view z (-1) and normal the horizon prepare stores for background. Only the output's is a
- * dispatch (over the unneeded tiles); the others fill cacao's own images and are recorded as a
- * clear of the whole image before the passes that write the needed tiles (cacao_plan_step.clear). */
+ * or the view z (-1) and normal the horizon prepare stores for background. The slices' and the
+ * output's are dispatches over the unneeded tiles; the horizon estimators' own images are cleared
+ * whole before the passes that write the needed tiles (cacao_plan_step.clear). */
 #define CACAO_FILL_SLICES 0
 #define CACAO_FILL_HORIZON 1
 #define CACAO_FILL_OUTPUT 2
@@ -127,7 +127,7 @@
 #define CACAO_TILE 8
 #define CACAO_LIST_NONE 0                /* a direct dispatch */
 #define CACAO_LIST_GENERATE 1            /* needed tiles (one generate group each, z = layers) */
-#define CACAO_LIST_FILL_SLICES 2         /* tiles that are not needed (the output's fill) */
+#define CACAO_LIST_FILL_SLICES 2         /* tiles that are not needed (z 1: a group fills every layer) */
 #define CACAO_LIST_PREPARE 3             /* horizon estimators: tiles not all background (their prepare) */
 #define CACAO_LIST_BLUR 4                /* blur groups touching a needed tile (z = layers) */
 #define CACAO_LIST_COUNT 4

@@ -105,8 +105,8 @@ static void test_subset(void) {
                               "blur.7.fp32", "blur.8.fp32", "apply.smart.fp32", "horizon_prepare.depth",
                               "horizon_prepare.input", "horizon_main.gtao", "horizon_main.bitmask",
                               "horizon_main.gtao_direct", "horizon_main.bitmask_direct",
-                              "horizon_denoise.intermediate", "horizon_denoise.final", "classify", "compact",
-                              /* the horizon estimators' tiles (docs/tiles.md; cacao's own images are
+                              "horizon_denoise.intermediate", "horizon_denoise.final", "classify", "compact", "fill",
+                              /* the horizon estimators' tiles (docs/tiles.md; their own images are
                                * cleared, not filled: no key) */
                               "classify.horizon", "compact.horizon", "fill.output",
                               /* the GPU forms: a build embeds both, the device chooses (in key order) */

@@ -23,21 +23,20 @@ static cacao_plan build(cacao_settings s, uint32_t w, uint32_t h) {
 
 static void test_steps_per_quality(void) {
     /* By hand from the spec's pass graph, with blur 2, native, normals from depth, and the tile
-     * passes of docs/tiles.md: classify and compact after the depths, then clears of the AO and
-     * of the blur's output (AO 1 where generate and the blur skip) before generate; at HIGHEST
-     * the base pass writes the blur's output image first, so its clear comes after generate. */
+     * passes of docs/tiles.md: classify and compact after the depths, a fill of the AO and of
+     * the blur's output after generate (the CPU forms: lists). */
 #define TILES "classify", "compact"
-#define CLEARS "clear.ssao_ping", "clear.ssao_pong"
+#define FILLS "fill", "fill"
     const char *expected[5][16] = {
-        {"prepare.half.native", TILES, CLEARS, "generate.q0", "blur.2.fp32", "apply.half.fp32"},
-        {"prepare.full.native", TILES, CLEARS, "generate.q0", "blur.2.fp32", "apply.nonsmart.fp32"},
-        {"prepare.full.native", TILES, CLEARS, "generate.q1", "blur.2.fp32", "apply.smart.fp32"},
-        {"prepare.mips.native", TILES, CLEARS, "generate.q2", "blur.2.fp32", "apply.smart.fp32"},
-        {"prepare.mips.native", TILES, "clear.ssao_ping", "generate.q3base", "importance_a", "importance_b",
-         "generate.q3", "clear.ssao_pong", "blur.2.fp32", "apply.smart.fp32"},
+        {"prepare.half.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.half.fp32"},
+        {"prepare.full.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.nonsmart.fp32"},
+        {"prepare.full.native", TILES, "generate.q1", FILLS, "blur.2.fp32", "apply.smart.fp32"},
+        {"prepare.mips.native", TILES, "generate.q2", FILLS, "blur.2.fp32", "apply.smart.fp32"},
+        {"prepare.mips.native", TILES, "generate.q3base", "importance_a", "importance_b",
+         "generate.q3", FILLS, "blur.2.fp32", "apply.smart.fp32"},
     };
 #undef TILES
-#undef CLEARS
+#undef FILLS
     for (int q = 0; q < 5; ++q) {
         cacao_plan p = build((cacao_settings){.quality = (cacao_quality)(q + 1), .generate_normals = true}, 1920, 1080);
         uint32_t n = 0;
@@ -48,19 +47,14 @@ static void test_steps_per_quality(void) {
                 fprintf(stderr, "quality %d step %u: %s, expected %s\n", q, i, p.steps[i].key_name, expected[q][i]);
             CHECK(strcmp(p.steps[i].key_name, expected[q][i]) == 0);
         }
-        /* No barrier before the first step, before the clears of images no step has touched yet
-         * (the frame's start orders them), nor before the Q3 base pass (it reads the prepared
-         * depths and normals, which the barrier before classify already ordered, not the tiles).
-         * HIGHEST's clear of the blur's output waits for generate.q3, which read the base pass's
-         * AO there. Every other step depends on the one before. Clears are steps of their own, with
-         * no dispatch and no pipeline. */
+        /* No barrier before the first step, between the two fills (the AO and the blur's output),
+         * nor before the Q3 base pass (it reads the prepared depths and normals, which the barrier
+         * before classify already ordered, not the tiles); every other step depends on the one
+         * before. */
         CHECK(!p.steps[0].barrier_before);
         for (uint32_t i = 1; i < p.step_count; ++i) {
-            const bool clear = strncmp(p.steps[i].key_name, "clear.", 6) == 0;
-            CHECK(p.steps[i].clear == clear);
-            CHECK(!clear || (p.steps[i].dispatch[0] == 0 && p.steps[i].list == CACAO_LIST_NONE &&
-                             p.steps[i].binding_count >= 1 && p.steps[i].bindings[0].write));
-            const bool independent = (clear && strcmp(p.steps[i - 1].key_name, "generate.q3") != 0) ||
+            CHECK(!p.steps[i].clear);
+            const bool independent = (strcmp(p.steps[i].key_name, "fill") == 0 && !strcmp(p.steps[i - 1].key_name, "fill")) ||
                                      strcmp(p.steps[i].key_name, "generate.q3base") == 0;
             CHECK(p.steps[i].barrier_before == !independent);
         }
@@ -98,6 +92,35 @@ static void test_gpu_forms_skip_in_shader(void) {
         }
 }
 
+/* The horizon estimators' own images get the values of the tiles no pass computes from clears
+ * (docs/tiles.md): view z and normals before their prepare, the AO intermediates the denoise passes
+ * read before the estimator; the caller's output from a fill over the unneeded tiles. A clear is a
+ * step with no dispatch that writes only the images it clears, and the step after it that uses
+ * one waits for it. */
+static void test_horizon_clears(void) {
+    const char *expected[] = {"classify.horizon", "compact.horizon", "clear.view_depth", "horizon_prepare.depth",
+                              "clear.ao_raw", "clear.ao_pong", "horizon_main.gtao", "fill.output",
+                              "horizon_denoise.intermediate", "horizon_denoise.final"};
+    cacao_plan p = build((cacao_settings){.estimator = CACAO_ESTIMATOR_GTAO, .quality = CACAO_QUALITY_HIGH,
+                                          .blur_pass_count = 2, .generate_normals = true},
+                         640, 360);
+    CHECK(p.step_count == sizeof expected / sizeof expected[0]);
+    for (uint32_t i = 0; i < p.step_count && i < sizeof expected / sizeof expected[0]; ++i) {
+        const cacao_plan_step *st = &p.steps[i];
+        CHECK(strcmp(st->key_name, expected[i]) == 0);
+        CHECK(st->clear == (strncmp(expected[i], "clear.", 6) == 0));
+        if (!st->clear) continue;
+        CHECK(st->dispatch[0] == 0 && st->list == CACAO_LIST_NONE && st->binding_count >= 1);
+        for (uint32_t j = 0; j < st->binding_count; ++j) CHECK(st->bindings[j].write);
+    }
+    /* view z and normals in one clear; the prepare, then the estimator, wait for the clears */
+    CHECK(p.steps[2].binding_count == 2 && p.steps[2].bindings[0].resource == CACAO_RES_VIEW_DEPTH &&
+          p.steps[2].bindings[1].resource == CACAO_RES_VIEW_NORMALS);
+    CHECK(p.steps[3].barrier_before && (p.steps[3].barrier_resources & (1u << CACAO_RES_VIEW_DEPTH)));
+    CHECK(p.steps[6].barrier_before && (p.steps[6].barrier_resources & (1u << CACAO_RES_AO_RAW)));
+    CHECK(!p.steps[4].barrier_before && !p.steps[5].barrier_before); /* images nothing touched yet */
+}
+
 static void test_only_needed_resources(void) {
     cacao_plan low = build(
         (cacao_settings){.quality = CACAO_QUALITY_LOW, .blur_pass_count = CACAO_BLUR_NONE, .generate_normals = true},
@@ -107,9 +130,7 @@ static void test_only_needed_resources(void) {
     CHECK(!low.uses_load_counter);
     CHECK(find_image(&low, CACAO_RES_DEPTHS)->mips == 1); /* LOW reads no mips */
     CHECK(low.steps[0].dispatch[0] == 60 && low.steps[0].dispatch[1] == 34); /* prepare.full: 2x2 texels each */
-    CHECK(low.step_count == 6); /* prepare, classify, compact, clear, generate, apply: no blur, one clear */
-    CHECK(strcmp(low.steps[3].key_name, "clear.ssao_ping") == 0 && low.steps[3].binding_count == 1 &&
-          low.steps[3].bindings[0].resource == CACAO_RES_SSAO_PING); /* writes only the image it clears */
+    CHECK(low.step_count == 6); /* prepare, classify, compact, generate, fill, apply: no blur, one fill */
     /* apply.nonsmart: a 2x2 quad of output pixels per invocation, one per slice texel: ceil(960/8), ceil(540/8) */
     CHECK(strcmp(low.steps[5].key_name, "apply.nonsmart.fp32") == 0);
     CHECK(low.steps[5].dispatch[0] == 120 && low.steps[5].dispatch[1] == 68);
@@ -126,8 +147,8 @@ static void test_only_needed_resources(void) {
     CHECK(find_image(&medium, CACAO_RES_DEPTHS)->mips == 1); /* MEDIUM never reads mips: none built */
     cacao_plan lowest = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true}, 1920, 1080);
     CHECK(lowest.slice_count == 2 && find_image(&lowest, CACAO_RES_DEPTHS)->layers == 2);
-    CHECK(strcmp(lowest.steps[5].key_name, "generate.q0") == 0 && lowest.steps[5].dispatch[2] == 2); /* two slices */
-    CHECK(lowest.steps[5].list == CACAO_LIST_GENERATE); /* indirect, over the needed tiles */
+    CHECK(strcmp(lowest.steps[3].key_name, "generate.q0") == 0 && lowest.steps[3].dispatch[2] == 2); /* two slices */
+    CHECK(lowest.steps[3].list == CACAO_LIST_GENERATE); /* indirect, over the needed tiles */
     /* 1920x1080: slices 960x540, tiles of 8x8 texels 120x68; a blur group of 2 passes outputs
      * 64x32 texels (8x8 threads of 8x4 each, from their footprints). */
     CHECK(lowest.tiles_x == 120 && lowest.tiles_y == 68 && lowest.blur_groups_x == 15 && lowest.blur_groups_y == 17);
@@ -167,10 +188,10 @@ static void test_dispatch_sizes(void) {
     CHECK(p.steps[2].dispatch[0] == (120 * 68 + 15 * 17 + 63) / 64);         /* compact: tiles + blur groups */
     /* the Q3 base pass: an invocation per importance texel (its 2x2 slice texels in all 4 layers),
      * ceil(480/8), ceil(270/8), one z; the importance passes the same grid */
-    CHECK(strcmp(p.steps[4].key_name, "generate.q3base") == 0);
-    CHECK(p.steps[4].dispatch[0] == 60 && p.steps[4].dispatch[1] == 34 && p.steps[4].dispatch[2] == 1);
-    CHECK(p.steps[5].dispatch[0] == 60 && p.steps[5].dispatch[1] == 34);    /* importance_a */
-    CHECK(p.steps[7].dispatch[2] == 4);                                     /* generate.q3: 4 slices */
+    CHECK(strcmp(p.steps[3].key_name, "generate.q3base") == 0);
+    CHECK(p.steps[3].dispatch[0] == 60 && p.steps[3].dispatch[1] == 34 && p.steps[3].dispatch[2] == 1);
+    CHECK(p.steps[4].dispatch[0] == 60 && p.steps[4].dispatch[1] == 34);    /* importance_a */
+    CHECK(p.steps[6].dispatch[2] == 4);                                     /* generate.q3: 4 slices */
     CHECK(p.steps[9].dispatch[0] == 15 && p.steps[9].dispatch[1] == 17);    /* blur, N = 2: ceil(960/64), ceil(540/32) */
     /* past CACAO_BLUR_REGISTER_PASSES a group computes its 64x32 padded tile less N each side */
     cacao_plan b8 = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .blur_pass_count = 8, .generate_normals = true},
@@ -179,11 +200,10 @@ static void test_dispatch_sizes(void) {
     CHECK(b8.blur_groups_x == 20 && b8.blur_groups_y == 34); /* ceil(960/48), ceil(540/16) */
     CHECK(p.steps[10].dispatch[0] == 60 && p.steps[10].dispatch[1] == 34); /* smart apply: 4x4 per invocation */
     /* the list's indirect command takes its z from these: generate and the blur cover the four
-     * layers with z; the clears (steps 3 and 8) dispatch nothing */
-    CHECK(p.steps[7].list == CACAO_LIST_GENERATE && p.steps[9].list == CACAO_LIST_BLUR && p.steps[9].dispatch[2] == 4 &&
-          p.steps[10].list == CACAO_LIST_NONE && p.steps[4].list == CACAO_LIST_NONE);
-    CHECK(p.steps[3].clear && p.steps[8].clear && p.steps[8].barrier_before &&
-          p.steps[8].bindings[0].resource == CACAO_RES_SSAO_PONG);
+     * layers with z, a fill group loops over them */
+    CHECK(p.steps[7].dispatch[2] == 1 && p.steps[8].dispatch[2] == 1 && p.steps[9].dispatch[2] == 4);
+    CHECK(p.steps[6].list == CACAO_LIST_GENERATE && p.steps[7].list == CACAO_LIST_FILL_SLICES &&
+          p.steps[9].list == CACAO_LIST_BLUR && p.steps[10].list == CACAO_LIST_NONE && p.steps[3].list == CACAO_LIST_NONE);
     cacao_plan d =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true, .generate_normals = true}, 1001, 37);
     CHECK(d.slice_width == 251 && d.slice_height == 10); /* ceil(ceil(1001/2)/2), ceil(ceil(37/2)/2) */
@@ -255,6 +275,7 @@ static void test_invalid(void) {
 int main(void) {
     test_steps_per_quality();
     test_gpu_forms_skip_in_shader();
+    test_horizon_clears();
     test_only_needed_resources();
     test_dispatch_sizes();
     test_lists_agree_on_layers();

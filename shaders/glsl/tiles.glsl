@@ -212,9 +212,9 @@ void main()
 /* ---- fill ---- */
 #if CACAO_PASS == CACAO_PASS_FILL
 /* docs/tiles.md: AO 1, the value the full computation gives every texel of a tile that is not
- * needed, into the caller's output (a horizon estimator's last pass writes the needed tiles).
- * cacao's own images get theirs from a clear (cacao_plan_step.clear): no variant dispatches for
- * them. */
+ * needed (edges 1: nothing reads them there): the slices' AO (CACAO's CPU forms), or the caller's
+ * output (a horizon estimator's last pass writes the needed tiles). The horizon estimators' own
+ * images get theirs from a clear (cacao_plan_step.clear): no variant dispatches for them. */
 layout(local_size_x = CACAO_TILE, local_size_y = CACAO_TILE) in;
 
 void main()
@@ -222,6 +222,11 @@ void main()
     ivec2 group;
     if (!group_of(group)) return;
     ivec2 p = texel_of(group);
+#if CACAO_VARIANT == CACAO_FILL_OUTPUT
     if (in_rect(p, imageSize(output_image))) imageStore(output_image, p, vec4(1.0, 0.0, 0.0, 0.0));
+#else
+    if (in_rect(p, imageSize(ssao_image).xy))
+        for (int layer = 0; layer < CB.slice_count; ++layer) imageStore(ssao_image, ivec3(p, layer), vec4(1.0, 1.0, 0.0, 0.0));
+#endif
 }
 #endif /* FILL */

@@ -1,7 +1,7 @@
 # cacao-inspect plan --scene runs one frame of a scene on the device and prints, beside the plan,
 # the tile counts per class and the work each step skipped. Checked against facts known apart from
 # it: the classes add up to the tile grid the plan prints; generate runs + skips = every tile, the
-# clear's AO 1 is kept by exactly the skipped tiles, blur runs + skips = every blur group; and the counts are
+# fill writes exactly the skipped tiles, blur runs + skips = every blur group; and the counts are
 # the ones `cacao --timings --json` reports for the same frame. A horizon-slice estimator has no
 # classification and says so; --size with --scene and a missing scene are refused with a message
 # naming the flag. Inputs: CACAO, INSPECT, WORK, SCENES.
@@ -26,7 +26,7 @@ number_after("${out}" "faded \\([0-9.]+%\\), ([0-9]+) background" background)
 number_after("${out}" "generate\\.q2 +runs ([0-9]+) of" gen_run)
 number_after("${out}" "generate\\.q2 +runs [0-9]+ of ([0-9]+) tiles" gen_total)
 number_after("${out}" "generate\\.q2 +runs [0-9]+ of [0-9]+ tiles, skips ([0-9]+)" gen_skipped)
-number_after("${out}" "clear\\.ssao_ping +clears to AO 1; the ([0-9]+) skipped tiles keep it" filled)
+number_after("${out}" "fill +writes AO 1 into the ([0-9]+) skipped tiles" filled)
 number_after("${out}" "blur\\.2\\.fp32 +runs ([0-9]+) of" blur_run)
 number_after("${out}" "blur\\.2\\.fp32 +runs [0-9]+ of ([0-9]+) groups" blur_total)
 number_after("${out}" "blur\\.2\\.fp32 +runs [0-9]+ of [0-9]+ groups, skips ([0-9]+)" blur_skipped)

@@ -2,13 +2,12 @@
 # --json records settings, device, size, repeat, the per-pass times, the total and the output path.
 # At quality high, native resolution, 2 blur passes, fp32, with normals given, the plan is nine
 # steps (spec: prepare depths with mips, prepare normals from the input, generate Q2, blur, apply;
-# docs/tiles.md: classify and compact, then the clears of the AO and of the blur's output before
-# generate), which is
+# docs/tiles.md: classify and compact before generate, the two fills before the blur), which is
 # what the table and the report must list, in that order, followed by the tile counts.
 include(${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake)
 cacao_ok(run --scene ${ROOM} --quality high --validate --timings --repeat 3 --json ${WORK}/t.json -o ${WORK}/t.png)
-set(expected prepare_depths.mips.native prepare_normals.native classify compact clear.ssao_ping clear.ssao_pong
-    generate.q2 blur.2.fp32 apply.smart.fp32)
+set(expected prepare_depths.mips.native prepare_normals.native classify compact generate.q2 fill fill
+    blur.2.fp32 apply.smart.fp32)
 string(REGEX MATCHALL "\n[a-z_0-9.]+ +[0-9]+\\.[0-9]+" rows "${run_out}")
 set(names "")
 foreach(row ${rows})
