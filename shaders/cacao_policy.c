@@ -31,9 +31,11 @@ unsigned cacaoi_form_pass(unsigned pass, bool gpu_forms) {
 }
 
 bool cacaoi_key_in_forms(unsigned pass, unsigned variant, bool gpu_forms) {
-    /* CACAO's compact builds the lists only the CPU forms dispatch from (the GPU forms skip in the
-     * shader); the horizon estimators' compact serves both */
-    if (pass == CACAO_PASS_COMPACT && variant == CACAO_COMPACT_SLICES) return !gpu_forms;
+    /* CACAO's compact builds the lists only the CPU forms dispatch from, and fills the tiles they
+     * skip (the GPU forms skip in the shader); the horizon estimators' compact and fills serve both */
+    if ((pass == CACAO_PASS_COMPACT && variant == CACAO_COMPACT_SLICES) ||
+        (pass == CACAO_PASS_FILL && variant == CACAO_FILL_SLICES))
+        return !gpu_forms;
     for (unsigned q = 0; q < CACAO_PASS_COUNT; ++q)
         if (cacaoi_form_pass(q, !gpu_forms) == pass && cacaoi_form_pass(q, gpu_forms) != pass) return false;
     return true;

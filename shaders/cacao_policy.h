@@ -79,7 +79,7 @@ unsigned cacaoi_form_pass(unsigned pass, bool gpu_forms);
 
 /* True when configurations with these forms can dispatch the pass's variant (false for the other
  * forms' rows: the CPU blur, apply, prepare and generate under GPU forms, their GPU rows under CPU
- * forms; and CACAO's compact under GPU forms, which skip in the shader instead of from lists). */
+ * forms; and CACAO's compact and fill under GPU forms, which skip in the shader instead). */
 bool cacaoi_key_in_forms(unsigned pass, unsigned variant, bool gpu_forms);
 
 /* ---- The sequence ---- */
