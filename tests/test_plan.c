@@ -62,9 +62,8 @@ static void test_steps_per_quality(void) {
 }
 
 /* The GPU forms (docs/tiles.md): classify, then generate and the blur on direct grids that skip
- * by the classes in the shader; no compact, no lists, no clears (a group that is not needed
- * stores the 1 itself), at every quality and blur count. The tile buffer still holds the classes,
- * the counts and the needed flags classify marks. */
+ * by the flags classify marks, in the shader; no compact, no lists, no fills (a group that is not
+ * needed stores the 1 itself), at every quality and blur count. */
 static void test_gpu_forms_skip_in_shader(void) {
     for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
         for (uint32_t blur = 0; blur <= 8; blur += 4) {
@@ -74,17 +73,18 @@ static void test_gpu_forms_skip_in_shader(void) {
             bool classify = false, generate = false;
             for (uint32_t i = 0; i < p.step_count; ++i) {
                 const cacao_plan_step *st = &p.steps[i];
-                CHECK(st->list == CACAO_LIST_NONE && !st->clear && strcmp(st->key_name, "compact") != 0);
+                CHECK(st->list == CACAO_LIST_NONE && !st->clear && strcmp(st->key_name, "compact") != 0 &&
+                      strcmp(st->key_name, "fill") != 0);
                 classify |= strcmp(st->key_name, "classify") == 0;
                 const bool skips = strncmp(st->key_name, "blur_gpu.", 9) == 0 ||
                                    (strncmp(st->key_name, "generate_gpu.", 13) == 0 &&
                                     strcmp(st->key_name, "generate_gpu.q3base") != 0);
-                if (skips) { /* after classify; every group of the grid, and it writes the counts */
-                    CHECK(classify && st->dispatch[2] == p.slice_count);
-                    bool tiles_written = false;
+                if (skips) { /* after classify; every group of the grid, reading classify's flags */
+                    CHECK(classify && st->dispatch[2] == p.slice_count && st->barrier_before);
+                    bool tiles_read = false;
                     for (uint32_t j = 0; j < st->binding_count; ++j)
-                        tiles_written |= st->bindings[j].resource == CACAO_RES_TILES && st->bindings[j].write;
-                    CHECK(tiles_written);
+                        tiles_read |= st->bindings[j].resource == CACAO_RES_TILES && !st->bindings[j].write;
+                    CHECK(tiles_read);
                 }
                 generate |= skips && st->key_name[0] == 'g';
             }

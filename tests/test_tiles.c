@@ -81,6 +81,10 @@ static bool same_as_all_tiles(vkdev *dev, cacao_settings s, const vkdev_frame *f
     return ok;
 }
 
+/* The tiles generate ran per case of test_equal_everywhere with the CPU forms (compact's list),
+ * which the GPU forms (classify's count of the tiles it marked needed) must match. */
+static uint32_t cpu_generate_run[2][5][2][3];
+
 static void test_equal_everywhere(vkdev *dev, const scene_buffers *sb) {
     static const int blurs[] = {CACAO_BLUR_NONE, 2, 8};
     for (int rev = 0; rev < 2; ++rev) {
@@ -96,6 +100,9 @@ static void test_equal_everywhere(vkdev *dev, const scene_buffers *sb) {
                     if (!same_as_all_tiles(dev, s, &f, rev ? "embedded scene, reverse Z" : "embedded scene", &c))
                         continue;
                     CHECK(c.background > 0 && c.faded > 0 && c.active > 0);
+                    uint32_t *cpu_run = &cpu_generate_run[rev][q][ds][bl];
+                    if (forms == CACAO_SHADER_FORMS_CPU) *cpu_run = c.generate_run;
+                    else CHECK(c.generate_run == *cpu_run); /* the same needed tiles, counted two ways */
                     /* native: 16x16-pixel tiles, some far enough from every active one to skip;
                      * downsampled at this size has 8x5 tiles of 32x32, all within one of an
                      * active tile */

@@ -244,9 +244,8 @@ return at once), a workgroup-uniform branch, and ACO weighs everything under a u
 run half the time (below): its "Inverse Throughput" is half the body's. The estimate therefore
 doubles it for list-dispatched steps (the same horizon_main.gtao code: 7727 cycles per wave as a
 direct dispatch, 3863 from the list). The GPU forms of generate and the blur run every group and
-branch the same way on their group's needed flag (docs/tiles.md): doubled too, which also counts
-their skip side (the stores of AO 1 a skipped group makes) at full weight on every group, an
-overestimate where every tile is active. Estimates made before this correction (this report's
+branch the same way on their group's needed flag (docs/tiles.md): doubled too, which also
+doubles what the branch does not cover (the blur's stores, after it), an overestimate. Estimates made before this correction (this report's
 earlier versions, issue 31's table) counted cacao's generate and blur at half their weight. The
 per-permutation tables below print ACO's figure as it reports it. The tile fill and clear steps
 are left out (the fill dispatches nothing with every tile active; a clear runs no shader).
@@ -313,10 +312,12 @@ fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
   texels, chosen by what a real GPU measured (section "Measured on a real GPU").
 - `generate_gpu` and `blur_gpu` run on direct grids and skip by the tile classes themselves: a
   group reads its needed flag (classify marks them) and, when not needed, stores AO 1 and computes
-  nothing else; the CPU forms run from compact's lists with clears (docs/tiles.md). On navi21 at
-  LOWEST native the flag and the skip side cost the estimate 0.56 Mcycles in generate and 0.37 in
-  the blur, while the compact pass, the clears and two indirect dispatches, which the estimate does
-  not weigh, are gone: not yet timed on a GPU.
+  nothing else; the CPU forms run from compact's lists and fill the rest (docs/tiles.md). On
+  navi21 at LOWEST native the estimate of generate went from 5.94 to 6.23 Mcycles and the blur's
+  from 1.64 to 1.90 (against the lists), and the compact pass, two fill dispatches and their
+  barriers, which the estimate does not weigh, are gone. Most of the blur's difference is the
+  estimate's: its stores follow the flag's branch, where the list's entry check covered them, and
+  the doubling above counts them twice. Not yet timed on a GPU.
 
 ## Against issue 31's measurement
 

@@ -15,7 +15,8 @@ const char *cacao_resource_name(cacao_resource resource) {
 static uint32_t div_up(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
 
 _Static_assert(CACAO_TILE_COMMAND(CACAO_LIST_COUNT) + 3 <= CACAO_TILE_COUNT_ACTIVE &&
-                   CACAO_TILE_LIST_ENTRIES(CACAO_LIST_COUNT) < CACAO_TILE_HEADER,
+                   CACAO_TILE_LIST_ENTRIES(CACAO_LIST_COUNT) < CACAO_TILE_COUNT_NEEDED &&
+                   CACAO_TILE_COUNT_BLUR_NEEDED < CACAO_TILE_HEADER,
                "the tile header holds the lists' commands, the class counts and the entry counts");
 _Static_assert(CACAO_TILE_COUNTS_BYTES == CACAO_TILE_HEADER * sizeof(uint32_t), "the tile counts are the header");
 _Static_assert(CACAO_DEPTH_MIP_COUNT == 4 && CACAO_DEPTH_MIP_LEVELS(8) == 4 && CACAO_DEPTH_MIP_LEVELS(7) == 3,

@@ -312,14 +312,18 @@ cacao_result cacao_tile_counts_decode(const cacao_context *ctx, const void *byte
     memcpy(h, bytes, sizeof h);
     const cacao_plan *p = &ctx->plan;
 #define LIST_X(list) h[CACAO_TILE_LIST_ENTRIES(list)]
+    const bool skip_in_shader =
+        p->settings.estimator == CACAO_ESTIMATOR_CACAO && p->settings.shader_forms == CACAO_SHADER_FORMS_GPU;
     *out = (cacao_tile_counts){
         .tiles = p->tiles_x * p->tiles_y,
         .active = h[CACAO_TILE_COUNT_ACTIVE],
         .faded = h[CACAO_TILE_COUNT_FADED],
         .background = h[CACAO_TILE_COUNT_BACKGROUND],
-        .generate_run = LIST_X(CACAO_LIST_GENERATE),
+        /* the lists' entries; the GPU forms of CACAO have no lists: classify counted the tiles and
+         * blur groups it marked needed, the same sets (docs/tiles.md) */
+        .generate_run = skip_in_shader ? h[CACAO_TILE_COUNT_NEEDED] : LIST_X(CACAO_LIST_GENERATE),
         .generate_total = p->tiles_x * p->tiles_y,
-        .blur_run = LIST_X(CACAO_LIST_BLUR),
+        .blur_run = skip_in_shader ? h[CACAO_TILE_COUNT_BLUR_NEEDED] : LIST_X(CACAO_LIST_BLUR),
         .blur_total = p->blur_groups_x * p->blur_groups_y,
     };
 #undef LIST_X

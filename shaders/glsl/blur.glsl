@@ -177,9 +177,13 @@ void main()
     /* compact's test for the blur list (classify's flag), the same for the whole group (so are
      * the barriers under it): a group the list would leave out stores AO 1 and edges 1 (the
      * value the CPU forms' clear leaves there) where it stores, and computes nothing */
-    const bool run = group_needed(group);
-    if (run) count_group(CACAO_LIST_BLUR);
-    if (run) {
+    [[unroll]] for (int y = 0; y < BY; ++y) {
+        [[unroll]] for (int x = 0; x < BX; ++x) {
+            v[y][x] = rfloat(1.0);
+            packed[y][x] = 1.0;
+        }
+    }
+    if (group_needed(group)) {
 #endif
     [[unroll]] for (int y = 0; y < BY; ++y) {
         [[unroll]] for (int x = 0; x < BX; ++x) {
@@ -254,13 +258,6 @@ void main()
          * this buffer again only after that iteration's barrier */
     }
 #if CACAO_SKIPS_BY_CLASS
-    } else {
-        [[unroll]] for (int y = 0; y < BY; ++y) {
-            [[unroll]] for (int x = 0; x < BX; ++x) {
-                v[y][x] = rfloat(1.0);
-                packed[y][x] = 1.0;
-            }
-        }
     }
 #endif
 

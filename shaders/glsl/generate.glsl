@@ -337,14 +337,14 @@ void main()
     if (!group_of(group)) return;
     ivec2 xy = texel_of(group);
     ivec2 size = slice_size();
+    if (!in_rect(xy, size)) return; /* no LDS, no barriers: safe to leave */
 #if CACAO_SKIPS_BY_CLASS
-    if (!group_needed(group)) { /* a group is a tile (in one layer) */
-        if (in_rect(xy, size)) imageStore(ssao_image, ivec3(xy, int(gl_WorkGroupID.z)), vec4(1.0, 1.0, 0.0, 0.0));
+    /* a group is a tile (in one layer); one the list would leave out stores AO 1 and edges 1 */
+    if (!group_needed(group)) {
+        imageStore(ssao_image, ivec3(xy, int(gl_WorkGroupID.z)), vec4(1.0, 1.0, 0.0, 0.0));
         return;
     }
-    count_group(CACAO_LIST_GENERATE);
 #endif
-    if (!in_rect(xy, size)) return; /* no LDS, no barriers: safe to leave */
     init_atlas(size);
     generate_texel(xy, int(gl_WorkGroupID.z));
 }

@@ -60,7 +60,8 @@ uint blur_needed_base() { return uint(CACAO_TILE_BLUR_NEEDED(CB.tiles_x * CB.til
 
 #if CACAO_SKIPS_BY_CLASS
 /* Group g of generate (a tile) or of the blur is one the lists would hold (classify's flags:
- * compact's test, made from each active tile). One load per invocation, the same for the group. */
+ * compact's test, made from each active tile, which counted them). One load per invocation, the
+ * same for the group. */
 bool group_needed(ivec2 g)
 {
 #if CACAO_PASS == CACAO_PASS_BLUR_GPU
@@ -68,12 +69,6 @@ bool group_needed(ivec2 g)
 #else
     return tiles[needed_base() + g.y * CB.tiles_x + g.x] == 0u;
 #endif
-}
-
-/* A group that runs counts itself once (layer 0) where compact counts a list's entries. */
-void count_group(int list)
-{
-    if (gl_LocalInvocationIndex == 0u && gl_WorkGroupID.z == 0u) atomicAdd(tiles[CACAO_TILE_LIST_ENTRIES(list)], 1u);
 }
 #endif
 
@@ -90,18 +85,26 @@ layout(local_size_x = CACAO_WG_CLASSIFY, local_size_y = CACAO_WG_CLASSIFY) in;
 /* Active tile a makes needed the tiles within one tile of it, and the blur groups whose output
  * touches one of those: compact's tests, turned around (a group g, output texels g out .. g out +
  * out - 1, touches tiles a - 1 .. a + 1 when g out < (a + 2) TILE and g out + out > (a - 1) TILE).
- * Every mark stores the same 0 (the GPU forms' flags; the CPU forms run from compact's lists). */
+ * Every mark stores the same 0 (the GPU forms' flags; the CPU forms run from compact's lists);
+ * the mark that finds a flag still unset counts it, so each needed tile and group is counted once
+ * (cacao_tile_counts: what generate and the blur run, in either form). */
+void mark(uint flag, uint count)
+{
+    if (atomicAnd(tiles[flag], 0u) != 0u) atomicAdd(tiles[count], 1u);
+}
+
 void mark_needed(ivec2 a)
 {
     ivec2 last = ivec2(CB.tiles_x, CB.tiles_y) - 1;
     for (int y = max(a.y - 1, 0); y <= min(a.y + 1, last.y); ++y)
-        for (int x = max(a.x - 1, 0); x <= min(a.x + 1, last.x); ++x) atomicAnd(tiles[needed_base() + y * CB.tiles_x + x], 0u);
+        for (int x = max(a.x - 1, 0); x <= min(a.x + 1, last.x); ++x)
+            mark(needed_base() + uint(y * CB.tiles_x + x), CACAO_TILE_COUNT_NEEDED);
     if (CB.blur_groups_x == 0) return; /* no blur */
     ivec2 out_size = ivec2(CB.blur_out_x, CB.blur_out_y);
     ivec2 g0 = max(a - 1, ivec2(0)) * CACAO_TILE / out_size;
     ivec2 g1 = min(((a + 2) * CACAO_TILE - 1) / out_size, ivec2(CB.blur_groups_x, CB.blur_groups_y) - 1);
     for (int y = g0.y; y <= g1.y; ++y)
-        for (int x = g0.x; x <= g1.x; ++x) atomicAnd(tiles[blur_needed_base() + y * CB.blur_groups_x + x], 0u);
+        for (int x = g0.x; x <= g1.x; ++x) mark(blur_needed_base() + uint(y * CB.blur_groups_x + x), CACAO_TILE_COUNT_BLUR_NEEDED);
 }
 #endif
 
