@@ -274,13 +274,14 @@ typedef struct cacao_plan_step {
     uint8_t key[5];             /* permutation key: pass, variant, downsampled, blur passes, fp16 */
     uint32_t dispatch[3];       /* workgroups (an indirect step: the most it can dispatch) */
     uint8_t list;               /* 0: dispatched directly; else the tile list it dispatches
-                                   indirectly (1 generate, 2 fill, 3 blur: docs/tiles.md) */
+                                   indirectly (CACAO_LIST_*: 1 generate, 2 fill, 3 the horizon
+                                   prepare, 4 blur: docs/tiles.md) */
     bool clear;                 /* not a dispatch: vkCmdClearColorImage of every image the step
                                    writes (whole image) to the AO 1 / background value the tiles no
                                    pass computes keep (docs/tiles.md); no pipeline, dispatch 0 0 0 */
     uint32_t binding_count;
     cacao_plan_binding bindings[CACAO_PLAN_MAX_BINDINGS];
-    bool barrier_before;        /* a compute->compute barrier precedes this step */
+    bool barrier_before;        /* a barrier precedes this step (compute, and transfer for clears) */
     uint32_t barrier_resources; /* bit mask of cacao_resource the barrier orders */
 } cacao_plan_step;
 
