@@ -21,8 +21,9 @@ static unsigned max_fp16(const cacaoi_pass_row *a) { return a->has_precision ? 1
 bool cacaoi_key_is_valid(const cacao_key *key) {
     if (!key || key->pass >= CACAO_PASS_COUNT) return false;
     const cacaoi_pass_row *a = &cacaoi_passes[key->pass];
-    return key->variant < a->variants && !cacaoi_fill_is_clear(key->pass, key->variant) && key->downsampled <= max_downsampled(a) && key->blur_passes >= min_blur(a) &&
-           key->blur_passes <= max_blur(a) && key->fp16 <= max_fp16(a);
+    return key->variant < a->variants && !cacaoi_fill_is_clear(key->pass, key->variant) &&
+           key->downsampled <= max_downsampled(a) && key->blur_passes >= min_blur(a) && key->blur_passes <= max_blur(a) &&
+           key->fp16 <= max_fp16(a);
 }
 
 /* The first key of the key space (*key zeroed) or the one after *key, in canonical order; false
@@ -134,7 +135,9 @@ size_t cacaoi_key_defines(const cacao_key *key, char *buf, size_t buf_size) {
               append_number(buf, buf_size, &len, "#define CACAO_DOWNSAMPLED %u\n", key->downsampled) &&
               append_number(buf, buf_size, &len, "#define CACAO_BLUR_PASSES %u\n", key->blur_passes) &&
               append_number(buf, buf_size, &len, "#define CACAO_FP16 %u\n", key->fp16) &&
-              append_number(buf, buf_size, &len, "#define CACAO_LIST %u\n", cacaoi_passes[key->pass].lists[key->variant]);
+              append_number(buf, buf_size, &len, "#define CACAO_LIST %u\n", cacaoi_passes[key->pass].lists[key->variant]) &&
+              append_number(buf, buf_size, &len, "#define CACAO_SKIPS_BY_CLASS %u\n",
+                            cacaoi_skips_by_class(key->pass, key->variant) ? 1u : 0u);
     /* The slots the row binds: the GLSL declares exactly these (shaders/glsl/bindings.glsl). */
     for (unsigned slot = 0; ok && slot < CACAO_BINDING_COUNT; ++slot) {
         const uint8_t descriptor = expect.descriptor[slot];

@@ -263,15 +263,13 @@ bool cacaoi_fill_is_clear(unsigned pass, unsigned variant) {
     return pass == CACAO_PASS_FILL && (variant == CACAO_FILL_HORIZON || variant == CACAO_FILL_VIEW);
 }
 
-/* What the shaders would store there (tiles.glsl before clears): RG8 AO 1 with edges 1, R16F AO 1,
- * R32F view z -1, RGBA8_SNORM normal (0, 0, -1). */
+/* What the passes would store there (the horizon estimators' fill and prepare): R16F AO 1, R32F
+ * view z -1, RGBA8_SNORM normal (0, 0, -1). */
 bool cacaoi_clear_value(unsigned resource, float out[4]) {
-    static const float ao[4] = {1.0f, 1.0f, 0.0f, 0.0f}, view_z[4] = {-1.0f, 0.0f, 0.0f, 0.0f},
+    static const float ao[4] = {1.0f, 0.0f, 0.0f, 0.0f}, view_z[4] = {-1.0f, 0.0f, 0.0f, 0.0f},
                        normal[4] = {0.0f, 0.0f, -1.0f, 0.0f};
     const float *v = NULL;
     switch (resource) {
-    case CACAO_RES_SSAO_PING:
-    case CACAO_RES_SSAO_PONG:
     case CACAO_RES_AO_RAW:
     case CACAO_RES_AO_PONG: v = ao; break;
     case CACAO_RES_VIEW_DEPTH: v = view_z; break;

@@ -30,16 +30,6 @@ unsigned cacaoi_form_pass(unsigned pass, bool gpu_forms) {
     }
 }
 
-bool cacaoi_key_in_forms(unsigned pass, unsigned variant, bool gpu_forms) {
-    /* CACAO's compact builds the lists only the CPU forms dispatch from, and fills the tiles they
-     * skip (the GPU forms skip in the shader); the horizon estimators' compact and fills serve both */
-    if ((pass == CACAO_PASS_COMPACT && variant == CACAO_COMPACT_SLICES) ||
-        (pass == CACAO_PASS_FILL && variant == CACAO_FILL_SLICES))
-        return !gpu_forms;
-    for (unsigned q = 0; q < CACAO_PASS_COUNT; ++q)
-        if (cacaoi_form_pass(q, !gpu_forms) == pass && cacaoi_form_pass(q, gpu_forms) != pass) return false;
-    return true;
-}
 
 size_t cacaoi_step_bindings(const cacaoi_step *step, cacaoi_pass_binding out[CACAO_PLAN_MAX_BINDINGS]) {
     const size_t n = cacaoi_variant_bindings(step->key.pass, step->key.variant, out);
@@ -56,7 +46,6 @@ static cacaoi_step *push(cacaoi_step *out, size_t *n, unsigned pass, unsigned va
     cacaoi_step *s = &out[(*n)++];
     memset(s, 0, sizeof *s);
     s->key = (cacao_key){(uint8_t)pass, (uint8_t)variant, (uint8_t)ds, (uint8_t)blur, (uint8_t)fp16};
-    s->clear = cacaoi_fill_is_clear(pass, variant);
     return s;
 }
 
@@ -169,7 +158,7 @@ size_t cacaoi_keys_for_config(const cacao_key_config *c, cacao_key out[CACAO_KEY
     const size_t count = cacaoi_sequence(c, steps);
     size_t n = 0;
     for (size_t i = 0; i < count; ++i) {
-        if (steps[i].clear) continue; /* no module */
+        if (cacaoi_fill_is_clear(steps[i].key.pass, steps[i].key.variant)) continue; /* a clear: no module */
         size_t j = 0;
         while (j < n && cacaoi_key_compare(&out[j], &steps[i].key) != 0) ++j;
         if (j == n) out[n++] = steps[i].key;
@@ -177,7 +166,8 @@ size_t cacaoi_keys_for_config(const cacao_key_config *c, cacao_key out[CACAO_KEY
     return n;
 }
 
-bool cacaoi_key_in_subset(const cacao_key *key, const cacao_key_subset *subset) {
+/* Some configuration of the subset, with forms in forms_mask (bit 0 CPU, bit 1 GPU), dispatches key. */
+static bool key_dispatched(const cacao_key *key, const cacao_key_subset *subset, unsigned forms_mask) {
     for (unsigned q = 0; q < CACAO_KEY_QUALITY_COUNT; ++q) {
         if (!(subset->quality_mask & (1u << q))) continue;
         for (unsigned ds = 0; ds < 2; ++ds) {
@@ -187,7 +177,8 @@ bool cacaoi_key_in_subset(const cacao_key *key, const cacao_key_subset *subset) 
                 for (unsigned ni = 0; ni < 2; ++ni)
                     for (unsigned blur = 0; blur <= CACAO_KEY_MAX_BLUR_PASSES; ++blur)
                         for (unsigned est = 0; est < CACAO_KEY_ESTIMATOR_COUNT; ++est)
-                            for (unsigned gpu = 0; gpu < 2; ++gpu) { /* both forms: the device decides */
+                            for (unsigned gpu = 0; gpu < 2; ++gpu) {
+                                if (!(forms_mask & (1u << gpu))) continue;
                                 cacao_key_config c = {q, ds != 0, fp != 0, ni != 0, blur, est, gpu != 0};
                                 cacao_key keys[CACAO_KEY_CONFIG_MAX];
                                 size_t n = cacaoi_keys_for_config(&c, keys);
@@ -198,6 +189,15 @@ bool cacaoi_key_in_subset(const cacao_key *key, const cacao_key_subset *subset) 
         }
     }
     return false;
+}
+
+bool cacaoi_key_in_subset(const cacao_key *key, const cacao_key_subset *subset) {
+    return key_dispatched(key, subset, 3u); /* both forms: the device decides */
+}
+
+bool cacaoi_key_in_forms(const cacao_key *key, bool gpu_forms) {
+    const cacao_key_subset all = CACAO_KEY_SUBSET_ALL;
+    return key_dispatched(key, &all, gpu_forms ? 2u : 1u);
 }
 
 /* Parses a ';' or ',' separated list of words into a bit mask using `words[0..count)`. */

@@ -77,10 +77,10 @@ typedef struct cacao_key_config {
  * other pass, the upsample included, is itself). */
 unsigned cacaoi_form_pass(unsigned pass, bool gpu_forms);
 
-/* True when configurations with these forms can dispatch the pass's variant (false for the other
- * forms' rows: the CPU blur, apply, prepare and generate under GPU forms, their GPU rows under CPU
- * forms; and CACAO's compact and fill under GPU forms, which skip in the shader instead). */
-bool cacaoi_key_in_forms(unsigned pass, unsigned variant, bool gpu_forms);
+/* True when some configuration with these forms dispatches the key (cacaoi_sequence): false for
+ * the other forms' rows (the CPU blur, apply, prepare and generate under GPU forms, their GPU rows
+ * under CPU forms) and for CACAO's compact and fill under GPU forms, which skip in the shader. */
+bool cacaoi_key_in_forms(const cacao_key *key, bool gpu_forms);
 
 /* ---- The sequence ---- */
 
@@ -88,7 +88,6 @@ bool cacaoi_key_in_forms(unsigned pass, unsigned variant, bool gpu_forms);
  * (ping-pong buffers), that resource. */
 typedef struct cacaoi_step {
     cacao_key key;
-    bool clear; /* a clear of the images it writes, not a dispatch (cacao_plan_step.clear) */
     uint8_t override_count;
     uint8_t override_slot[2];
     uint8_t override_resource[2];

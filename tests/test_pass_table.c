@@ -187,7 +187,7 @@ static void check_config(const cacao_settings *s) {
         const cacao_plan_step *st = &plan.steps[i];
         const cacao_key key = cacaoi_plan_step_key(st);
         CHECK(cacaoi_key_compare(&key, &steps[i].key) == 0);
-        CHECK(st->clear == steps[i].clear);
+        CHECK(st->clear == cacaoi_fill_is_clear(steps[i].key.pass, steps[i].key.variant));
         /* a step reading the tile buffer is a list dispatch, classify or compact, or a GPU form
          * that skips by the classes itself (and then writes its count there) */
         if (cacaoi_skips_by_class(st->key[0], st->key[1]))

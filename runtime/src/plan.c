@@ -227,7 +227,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
         st->key[2] = key->downsampled;
         st->key[3] = key->blur_passes;
         st->key[4] = key->fp16;
-        st->clear = steps[i].clear;
+        st->clear = cacaoi_fill_is_clear(key->pass, key->variant);
         if (!st->clear) {
             dispatch_size(plan, key, st->dispatch);
             st->list = cacaoi_passes[key->pass].lists[key->variant];

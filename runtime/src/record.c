@@ -205,13 +205,14 @@ static VkPipelineStageFlags step_stage(const cacao_plan_step *step) {
     return step->clear ? VK_PIPELINE_STAGE_TRANSFER_BIT : VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 }
 
-static void record_step(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in, uint32_t index) {
+/* `clears`: the plan has clear steps (plan_has_clears). */
+static void record_step(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in, uint32_t index, bool clears) {
     const cacao_plan_step *step = &ctx->plan.steps[index];
     if (step->barrier_before) {
         /* With tiles, every barrier also makes the compact pass's commands visible to the
          * indirect dispatches after it. Clears are transfers: a barrier orders them too where the
          * plan has any (before a clear: the passes that read the image; after: its writes). */
-        const bool tiles = ctx->plan.uses_tiles, clears = plan_has_clears(&ctx->plan);
+        const bool tiles = ctx->plan.uses_tiles;
         const VkMemoryBarrier memory = {
             .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
             .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT |
@@ -266,8 +267,9 @@ cacao_result cacao_record(cacao_context *ctx, VkCommandBuffer cmd, const cacao_i
     const VkQueryPool timer = in->timestamp_query_pool;
     if (timer)
         ctx->vk.CmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timer, in->timestamp_first_query);
+    const bool clears = plan_has_clears(&ctx->plan);
     for (uint32_t i = 0; i < ctx->plan.step_count; ++i) {
-        record_step(ctx, cmd, in, i);
+        record_step(ctx, cmd, in, i, clears);
         if (timer)
             ctx->vk.CmdWriteTimestamp(cmd, step_stage(&ctx->plan.steps[i]), timer, in->timestamp_first_query + i + 1);
     }
@@ -312,8 +314,9 @@ cacao_result cacao_tile_counts_decode(const cacao_context *ctx, const void *byte
     memcpy(h, bytes, sizeof h);
     const cacao_plan *p = &ctx->plan;
 #define LIST_X(list) h[CACAO_TILE_LIST_ENTRIES(list)]
-    const bool skip_in_shader =
-        p->settings.estimator == CACAO_ESTIMATOR_CACAO && p->settings.shader_forms == CACAO_SHADER_FORMS_GPU;
+    bool skip_in_shader = false; /* the plan's generate skips by classify's flags, not a list */
+    for (uint32_t i = 0; i < p->step_count; ++i)
+        skip_in_shader = skip_in_shader || cacaoi_skips_by_class(p->steps[i].key[0], p->steps[i].key[1]);
     *out = (cacao_tile_counts){
         .tiles = p->tiles_x * p->tiles_y,
         .active = h[CACAO_TILE_COUNT_ACTIVE],

@@ -29,15 +29,11 @@ bool group_of(out ivec2 g)
  * pass declares its local size (glslang takes 1 x 1 x 1 before). */
 #define texel_of(g) ((g) * ivec2(gl_WorkGroupSize.xy) + ivec2(gl_LocalInvocationID.xy))
 
-/* The GPU forms of generate and the blur run every group of a direct grid and skip by the tile
- * classes (cacaoi_skips_by_class): a group the lists would leave out stores the AO 1 the CPU
- * forms' clear stores there and returns, a workgroup-uniform branch a GPU skips (lavapipe runs
- * both sides: the CPU forms keep the lists). */
-#if (CACAO_PASS == CACAO_PASS_GENERATE_GPU && CACAO_VARIANT != CACAO_GENERATE_Q3_BASE) || CACAO_PASS == CACAO_PASS_BLUR_GPU
-#define CACAO_SKIPS_BY_CLASS 1
-#else
-#define CACAO_SKIPS_BY_CLASS 0
-#endif
+/* CACAO_SKIPS_BY_CLASS (the generator's define, cacaoi_skips_by_class): the GPU forms of
+ * generate and the blur run every group of a direct grid and skip by classify's flags: a group
+ * the lists would leave out stores the AO 1 the CPU forms' fill stores there and computes nothing
+ * else, a workgroup-uniform branch a GPU skips (lavapipe runs both sides: the CPU forms keep the
+ * lists). */
 
 #if CACAO_PASS == CACAO_PASS_COMPACT
 /* Some tile within one tile of the tiles [t0, t1] is active: a needed tile lies in [t0, t1]. */

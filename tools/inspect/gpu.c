@@ -486,8 +486,7 @@ static void print_value(double v, int width, int decimals) {
 
 /* A permutation of the forms this run compiles (the other forms' a context here never runs). */
 static bool of_these_forms(const gpu_session *s, uint32_t p) {
-    return cacaoi_key_in_forms(table->permutations[p].key.pass, table->permutations[p].key.variant,
-                               s->forms == CACAO_SHADER_FORMS_GPU);
+    return cacaoi_key_in_forms(&table->permutations[p].key, s->forms == CACAO_SHADER_FORMS_GPU);
 }
 
 static void print_permutations(const gpu_session *s) {
