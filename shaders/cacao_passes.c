@@ -77,17 +77,17 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
  * tile list: the CPU form runs over the needed tiles' list; the GPU form over every tile, a group
  * whose tile is not needed (classify's flag) storing AO 1 and returning (docs/tiles.md: a
  * workgroup-uniform branch). */
-#define GENERATE_ROW(name, taps, list)                                                             \
+#define GENERATE_ROW(name, taps, list, base_grid, tiles)                                                \
     {name, {"q0", "q1", "q2", "q3", "q3base"}, 5, false, false, false, WG(GENERATE), CACAOI_GRID_SLICE_LAYERS, 11, \
      {CONSTANTS, R(LOAD_COUNTER, LOAD_COUNTER, V(CACAO_GENERATE_Q3)), R(DEPTHS, DEPTHS, ALL),               \
       /* the normals' single texels: imageLoad (cacao.comp) */                                     \
       R(DEPTHS_IMAGE, DEPTHS, taps), R(NORMALS_IMAGE, NORMALS, ALL), R(SSAO_BASE, SSAO_PONG, V(CACAO_GENERATE_Q3)), \
       R(IMPORTANCE_MAP, IMPORTANCE, V(CACAO_GENERATE_Q3)), W(SSAO_IMAGE, SSAO_PING, ALL & ~V(CACAO_GENERATE_Q3_BASE)), \
       W(SSAO_IMAGE, SSAO_PONG, V(CACAO_GENERATE_Q3_BASE)), W(IMPORTANCE_MAP_IMAGE, IMPORTANCE, V(CACAO_GENERATE_Q3_BASE)), \
-      R(TILES, TILES, ALL & ~V(CACAO_GENERATE_Q3_BASE))},                                          \
+      tiles(TILES, TILES, ALL & ~V(CACAO_GENERATE_Q3_BASE))},                                      \
      /* the Q3 base pass covers every tile: its values feed the importance map and the load     \
       * counter, which steer the adaptive pass everywhere */                                    \
-     .lists = {list, list, list, list, CACAO_LIST_NONE}, .grids = {[CACAO_GENERATE_Q3_BASE] = CACAOI_GRID_IMPORTANCE}}
+     .lists = {list, list, list, list, CACAO_LIST_NONE}, .grids = {[CACAO_GENERATE_Q3_BASE] = base_grid}}
 /* The fused prepare (normals from depth) and its GPU form's row. */
 #define PREPARE_ROW(name)                                                                          \
     {name, {"half", "full", "mips"}, 3, true, false, false, WG(PREPARE), CACAOI_GRID_SLICE, 5,          \
@@ -113,7 +113,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * load counter; the Q3 base pass writes the second AO buffer and the importance map
      * (importance.md "GenerateImportanceMap"): an invocation per importance texel computes the
      * 2x2 slice texels of every layer that texel reads. */
-    PASS(GENERATE) = GENERATE_ROW("generate", ALL, GEN),
+    PASS(GENERATE) = GENERATE_ROW("generate", ALL, GEN, CACAOI_GRID_IMPORTANCE, R),
     /* spec: importance.md: two smoothing passes (ping-pong) of the map the Q3 base pass wrote. */
     PASS(IMPORTANCE_A) = {"importance_a", {NULL}, 1, false, false, false, WG(IMPORTANCE), CACAOI_GRID_IMPORTANCE, 3,
                           {CONSTANTS, R(IMPORTANCE_MAP, IMPORTANCE, ALL), W(IMPORTANCE_MAP_IMAGE, IMPORTANCE_PONG, ALL)}},
@@ -181,18 +181,22 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * a 2x2 quad of slice texels per invocation sharing one block of depths. */
     PASS(PREPARE) = PREPARE_ROW("prepare"),
     /* The GPU forms (cacao_shader_forms): the rows above, other shapes. The blur: every n in
-     * shared memory, 4x3 texels per thread (CACAO_BLUR_GPU_OUT_X, _Y); apply: one pixel per invocation
-     * through the sampler. */
+     * shared memory, 4x3 texels per thread (CACAO_BLUR_GPU_OUT_X, _Y); apply: 2x2 pixels per invocation,
+     * each read through the sampler. Generate's GPU form runs its Q3 base pass one texel per
+     * invocation (the CPU form: 16), over the slice's grid. The GPU forms of generate and the blur
+     * write the tile buffer's header: they count the needed groups they run. */
     /* Both GPU forms run every group: one that touches no needed tile (classify's flag) stores AO
      * 1 and computes nothing else (a workgroup-uniform branch a GPU skips). */
     PASS(BLUR_GPU) = {"blur_gpu", {NULL}, 1, false, true, true, WG(BLUR_GPU), CACAOI_GRID_BLUR, 4,
-                      {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(SSAO_IMAGE, SSAO_PONG, ALL), R(TILES, TILES, ALL)}},
+                      {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(SSAO_IMAGE, SSAO_PONG, ALL), W(TILES, TILES, ALL)}},
     PASS(APPLY_GPU) = {"apply_gpu", {"smart", "nonsmart", "half"}, 3, false, false, true, WG(APPLY), CACAOI_GRID_OUTPUT,
-                       3, {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL)}},
+                       3, {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL)},
+                       .quad = {[CACAO_OUTPUT_SMART] = 2, [CACAO_OUTPUT_NON_SMART] = 2, [CACAO_OUTPUT_HALF] = 2}},
     /* prepare: each direction between two neighbouring depths normalised once for the two
      * normals that use it; generate: the tap's atlas level in integers. */
     PASS(PREPARE_GPU) = PREPARE_ROW("prepare_gpu"),
-    PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu", V(CACAO_GENERATE_Q3) | V(CACAO_GENERATE_Q3_BASE), CACAO_LIST_NONE),
+    PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu", V(CACAO_GENERATE_Q3) | V(CACAO_GENERATE_Q3_BASE), CACAO_LIST_NONE,
+                                      CACAOI_GRID_SLICE, W),
     /* The value of the tiles no pass computes: AO 1 over the unneeded tiles into the slices' AO
      * and the blur's output (CACAO's CPU forms, a step rebinding SSAO_IMAGE) and into the caller's
      * output (dispatches); into the horizon estimators' AO intermediates, and their view z and

@@ -137,8 +137,8 @@
 #define CACAO_TILE_COUNT_FADED 16
 #define CACAO_TILE_COUNT_BACKGROUND 17
 #define CACAO_TILE_LIST_ENTRIES(list) (CACAO_TILE_COUNT_BACKGROUND + (list)) /* header: entries in list */
-#define CACAO_TILE_COUNT_NEEDED 22       /* header: needed tiles and blur groups (classify's flags, */
-#define CACAO_TILE_COUNT_BLUR_NEEDED 23  /* each counted by the mark that sets it) */
+#define CACAO_TILE_COUNT_NEEDED 22       /* header: needed tiles and blur groups (classify's flags), */
+#define CACAO_TILE_COUNT_BLUR_NEEDED 23  /* counted by the GPU forms' generate and blur as they run them */
 #define CACAO_TILE_CLASSES CACAO_TILE_HEADER /* first tile class */
 /* First entry of list 1..4 (tiles: tiles_x tiles_y); the uints of the whole buffer. */
 #define CACAO_TILE_LIST_BASE(list, tiles) (CACAO_TILE_CLASSES + (tiles) * (list))

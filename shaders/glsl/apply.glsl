@@ -181,25 +181,31 @@ void main()
 
 /* ============================== APPLY, GPU form ============================== */
 #if CACAO_PASS == CACAO_PASS_APPLY_GPU
-/* spec: apply.md. One output pixel per invocation, its reads through the hardware sampler: the
- * arithmetic the CPU form above reproduces by hand from gathers (which on lavapipe saves sampler
- * calls, and on a GPU costs registers and instructions the sampler does for free). */
+/* spec: apply.md. A 2x2 quad of output pixels per invocation, each pixel's reads through the
+ * hardware sampler: the arithmetic the CPU form above reproduces by hand from gathers (which on
+ * lavapipe saves sampler calls, and on a GPU costs registers and instructions the sampler does for
+ * free). Four pixels per invocation, a quarter of the workgroups of one each: measured faster on
+ * a GPU (docs/gpu.md, "Measured on a real GPU"). */
 layout(local_size_x = CACAO_WG_APPLY_X, local_size_y = CACAO_WG_APPLY_Y) in;
 
 void main()
 {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (!in_rect(p, imageSize(output_image))) return;
+    ivec2 q = 2 * ivec2(gl_GlobalInvocationID.xy);
+    ivec2 osize = imageSize(output_image);
+    if (!in_rect(q, osize)) return;
+    [[unroll]] for (int i = 0; i < 4; ++i) {
+        ivec2 p = q + ivec2(i & 1, i >> 1);
 #if CACAO_VARIANT == CACAO_OUTPUT_SMART
-    rfloat ao = smart_apply(p);
+        rfloat ao = smart_apply(p);
 #elif CACAO_VARIANT == CACAO_OUTPUT_NON_SMART
-    vec2 uv = vec2(p) * CB.output_buffer_inverse_dimensions; /* no +0.5, as AMD */
-    rfloat ao = (ao_bilinear(uv, 0) + ao_bilinear(uv, 1) + ao_bilinear(uv, 2) + ao_bilinear(uv, 3)) / rfloat(4.0);
+        vec2 uv = vec2(p) * CB.output_buffer_inverse_dimensions; /* no +0.5, as AMD */
+        rfloat ao = (ao_bilinear(uv, 0) + ao_bilinear(uv, 1) + ao_bilinear(uv, 2) + ao_bilinear(uv, 3)) / rfloat(4.0);
 #else
-    vec2 uv = vec2(p) * CB.output_buffer_inverse_dimensions;
-    rfloat ao = (ao_bilinear(uv, 0) + ao_bilinear(uv, 1)) / rfloat(2.0); /* layers 0,1 = slices 0,3 */
+        vec2 uv = vec2(p) * CB.output_buffer_inverse_dimensions;
+        rfloat ao = (ao_bilinear(uv, 0) + ao_bilinear(uv, 1)) / rfloat(2.0); /* layers 0,1 = slices 0,3 */
 #endif
-    imageStore(output_image, p, vec4(float(ao), 0.0, 0.0, 0.0));
+        if (in_rect(p, osize)) imageStore(output_image, p, vec4(float(ao), 0.0, 0.0, 0.0));
+    }
 }
 #endif /* APPLY_GPU */
 

@@ -350,13 +350,64 @@ void main()
 }
 #else
 /* The Q3 base pass and the importance map (importance.md "GenerateImportanceMap") in one
- * dispatch: invocation t computes the 2x2 slice texels 2t .. 2t + 1 of all four layers, which are
- * exactly the texels importance texel t reads, and so writes that texel too (one dispatch less:
- * lavapipe pays a fixed cost per dispatch). The map reads the base AO as stored, in 8
- * bits: the stored value is re-made here with the store's rounding (round to nearest even) and
- * the load's scale. A texel past the slice's edge reads the edge's (the sampler's clamp), which
- * the same invocation computes, so it is skipped. HIGHEST always has four slices. The 16 texels
- * are unrolled, which was faster than a loop (docs/speed-notes.md). */
+ * dispatch. The map reads the base AO as stored, in 8 bits: the stored value is re-made here with
+ * the store's rounding (round to nearest even) and the load's scale. A texel past the slice's edge
+ * reads the edge's (the sampler's clamp), which the same invocation or group computes, so it is
+ * skipped. HIGHEST always has four slices. The per-texel shaping pow(sat(1 - strength v), power)
+ * (no clamp, no fade) is monotone in v (strength and power are >= 0), so the max and min of the
+ * shaped values are the shaped min and max of the raw ones: 2 pow calls per map texel. */
+void store_importance(ivec2 t, float vmin, float vmax)
+{
+    float mx = max(pow(sat(1.0 - CB.effect_shadow_strength * vmin), CB.effect_shadow_pow), 0.0);
+    float mn = min(pow(sat(1.0 - CB.effect_shadow_strength * vmax), CB.effect_shadow_pow), 1.0);
+    imageStore(importance_map_image, t, vec4(pow(sat(2.0 * (mx - mn)), CACAO_IMPORTANCE_POWER)));
+}
+
+#if GEN_GPU
+/* The GPU form: an invocation per slice texel, its four layers; a group of 8x8 texels reduces
+ * the 2x2 quads of its texels in shared memory into 4x4 map texels. Sixteen texels per
+ * invocation (the CPU form) leave a GPU a sixteenth of the invocations to hide latency with. */
+shared vec2 g_quad_range[CACAO_WG_GENERATE_X * CACAO_WG_GENERATE_Y];
+
+void main()
+{
+    hoist_constants();
+    ivec2 xy = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = slice_size();
+    float vmin = 1.0e30, vmax = -1.0e30;
+    if (in_rect(xy, size)) { /* no return: every invocation reaches the barrier */
+        init_atlas(size);
+        g_pattern_row = (2 * xy.y + xy.x) % 5;
+        [[unroll]] for (int layer = 0; layer < 4; ++layer) {
+            g_base = vec4(texelFetch(depths, ivec3(xy, layer), 0).r);
+            /* roundEven's result is already the integer 0..255 the store's conversion makes */
+            float v = roundEven(sat(generate_texel(xy, layer)) * 255.0) * (1.0 / 255.0);
+            vmin = min(vmin, v);
+            vmax = max(vmax, v);
+        }
+    }
+    ivec2 l = ivec2(gl_LocalInvocationID.xy);
+    g_quad_range[l.y * CACAO_WG_GENERATE_X + l.x] = vec2(vmin, vmax);
+    barrier();
+    if (l.x < CACAO_WG_GENERATE_X / 2 && l.y < CACAO_WG_GENERATE_Y / 2) {
+        ivec2 t = ivec2(gl_WorkGroupID.xy) * ivec2(CACAO_WG_GENERATE_X / 2, CACAO_WG_GENERATE_Y / 2) + l;
+        if (in_rect(t, imageSize(importance_map_image))) {
+            vmin = 1.0e30;
+            vmax = -1.0e30;
+            [[unroll]] for (int q = 0; q < 4; ++q) {
+                vec2 r = g_quad_range[(2 * l.y + (q >> 1)) * CACAO_WG_GENERATE_X + 2 * l.x + (q & 1)];
+                vmin = min(vmin, r.x);
+                vmax = max(vmax, r.y);
+            }
+            store_importance(t, vmin, vmax);
+        }
+    }
+}
+#else
+/* Invocation t computes the 2x2 slice texels 2t .. 2t + 1 of all four layers, which are exactly
+ * the texels importance texel t reads, and so writes that texel too (one dispatch less: lavapipe
+ * pays a fixed cost per dispatch). The 16 texels are unrolled, which was faster than a loop
+ * (docs/speed-notes.md). */
 void main()
 {
     hoist_constants();
@@ -365,41 +416,18 @@ void main()
     if (!in_rect(t, imageSize(importance_map_image))) return;
     init_atlas(size);
     float vmin = 1.0e30, vmax = -1.0e30;
-#if GEN_GPU
-    /* texel 2t + (q & 1, q >> 1) has row (4 t.y + 2 t.x + (q & 1) + 2 (q >> 1)) % 5 */
-    int row0 = (4 * t.y + 2 * t.x) % 5;
-#endif
     [[unroll]] for (int layer = 0; layer < 4; ++layer) {
-#if GEN_GPU
-        /* the quad's texels 2t .. 2t + 1 from one gather at their shared corner (exact, as the
-         * shared form's gathers); order x = (0,1), y = (1,1), z = (1,0), w = (0,0) */
-        vec4 quad_z = textureGather(depths, vec3(vec2(2 * t + 1) * g_inv_d, float(layer)), 0).wzxy;
-#endif
         [[unroll]] for (int q = 0; q < 4; ++q) {
             ivec2 xy = quad_texel(t, q);
             if (!in_rect(xy, size)) continue;
-#if GEN_GPU
-            g_pattern_row = row0 + (q & 1) + 2 * (q >> 1);
-            if (g_pattern_row >= 5) g_pattern_row -= 5;
-            g_base = vec4(quad_z[q]);
-#endif
-#if GEN_GPU
-            /* roundEven's result is already the integer 0..255 the store's conversion makes */
-            float v = roundEven(sat(generate_texel(xy, layer)) * 255.0) * (1.0 / 255.0);
-#else
             float v = float(uint(roundEven(sat(generate_texel(xy, layer)) * 255.0))) * (1.0 / 255.0);
-#endif
             vmin = min(vmin, v);
             vmax = max(vmax, v);
         }
     }
-    /* The per-texel shaping pow(sat(1 - strength v), power) (no clamp, no fade) is monotone in v
-     * (strength and power are >= 0), so the max and min of the shaped values are the shaped
-     * min and max of the raw ones: 2 pow calls per texel instead of 16. */
-    float mx = max(pow(sat(1.0 - CB.effect_shadow_strength * vmin), CB.effect_shadow_pow), 0.0);
-    float mn = min(pow(sat(1.0 - CB.effect_shadow_strength * vmax), CB.effect_shadow_pow), 1.0);
-    imageStore(importance_map_image, t, vec4(pow(sat(2.0 * (mx - mn)), CACAO_IMPORTANCE_POWER)));
+    store_importance(t, vmin, vmax);
 }
+#endif
 #endif
 #endif /* GENERATE, GENERATE_GPU */
 

@@ -61,10 +61,15 @@ uint blur_needed_base() { return uint(CACAO_TILE_BLUR_NEEDED(CB.tiles_x * CB.til
 bool group_needed(ivec2 g)
 {
 #if CACAO_PASS == CACAO_PASS_BLUR_GPU
-    return tiles[blur_needed_base() + g.y * CB.blur_groups_x + g.x] == 0u;
+    bool needed = tiles[blur_needed_base() + g.y * CB.blur_groups_x + g.x] == 0u;
+    const uint count = CACAO_TILE_COUNT_BLUR_NEEDED;
 #else
-    return tiles[needed_base() + g.y * CB.tiles_x + g.x] == 0u;
+    bool needed = tiles[needed_base() + g.y * CB.tiles_x + g.x] == 0u;
+    const uint count = CACAO_TILE_COUNT_NEEDED;
 #endif
+    /* counted once per group of the first layer (cacao_tile_counts) */
+    if (needed && gl_WorkGroupID.z == 0u && gl_LocalInvocationIndex == 0u) atomicAdd(tiles[count], 1u);
+    return needed;
 }
 #endif
 
@@ -81,26 +86,24 @@ layout(local_size_x = CACAO_WG_CLASSIFY, local_size_y = CACAO_WG_CLASSIFY) in;
 /* Active tile a makes needed the tiles within one tile of it, and the blur groups whose output
  * touches one of those: compact's tests, turned around (a group g, output texels g out .. g out +
  * out - 1, touches tiles a - 1 .. a + 1 when g out < (a + 2) TILE and g out + out > (a - 1) TILE).
- * Every mark stores the same 0 (the GPU forms' flags; the CPU forms run from compact's lists);
- * the mark that finds a flag still unset counts it, so each needed tile and group is counted once
- * (cacao_tile_counts: what generate and the blur run, in either form). */
-void mark(uint flag, uint count)
-{
-    if (atomicAnd(tiles[flag], 0u) != 0u) atomicAdd(tiles[count], 1u);
-}
+ * Every mark stores the same 0 (the GPU forms' flags; the CPU forms run from compact's lists), an
+ * atomic whose result nothing waits for: counting here (the mark that found the flag unset) made
+ * each active tile wait on a chain of atomics, 3 microseconds of an H200's frame (docs/gpu.md).
+ * The GPU forms' generate and blur count the needed groups they run instead (group_needed). */
+void mark(uint flag) { atomicAnd(tiles[flag], 0u); }
 
 void mark_needed(ivec2 a)
 {
     ivec2 last = ivec2(CB.tiles_x, CB.tiles_y) - 1;
     for (int y = max(a.y - 1, 0); y <= min(a.y + 1, last.y); ++y)
         for (int x = max(a.x - 1, 0); x <= min(a.x + 1, last.x); ++x)
-            mark(needed_base() + uint(y * CB.tiles_x + x), CACAO_TILE_COUNT_NEEDED);
+            mark(needed_base() + uint(y * CB.tiles_x + x));
     if (CB.blur_groups_x == 0) return; /* no blur */
     ivec2 out_size = ivec2(CB.blur_out_x, CB.blur_out_y);
     ivec2 g0 = max(a - 1, ivec2(0)) * CACAO_TILE / out_size;
     ivec2 g1 = min(((a + 2) * CACAO_TILE - 1) / out_size, ivec2(CB.blur_groups_x, CB.blur_groups_y) - 1);
     for (int y = g0.y; y <= g1.y; ++y)
-        for (int x = g0.x; x <= g1.x; ++x) mark(blur_needed_base() + uint(y * CB.blur_groups_x + x), CACAO_TILE_COUNT_BLUR_NEEDED);
+        for (int x = g0.x; x <= g1.x; ++x) mark(blur_needed_base() + uint(y * CB.blur_groups_x + x));
 }
 #endif
 
