@@ -49,18 +49,24 @@ ISSUE_31 = {'lowest_native': 0.78, 'low_native': 0.60, 'medium_native': 0.50, 'h
 
 
 # The runs on a real GPU (tools/device-sidebyside.py --merge writes one file per run), by role:
-# 'final' is the code as it stands; 'before' the same run with the code before the last change it
-# measured; 'forms' another run, whose cpuforms and estimators parts serve (the passes they time
-# are unchanged since), with 'forms_before' beside it; 'atomics' and 'atomics_before' a run of an
-# experiment not kept (classify and compact with their atomics gathered per workgroup).
-MEASURED = {'final': 'h200-final.json', 'before': 'h200-before.json',
+# 'final' is the code as it stands, and in the same run 'before' the previous main and 'lists' the
+# GPU forms with tile lists (an older main), 'diag' a diagnostic build (generate's taps all from
+# level 0: wrong output, a timing only); 'upsample'/'upsample_before' and 'counting'/
+# 'counting_before' two earlier runs of this session's experiments, each against its own baseline;
+# 'tf_final'/'tf_before' an earlier session's run of generate's taps through the sampled view,
+# 'forms'/'forms_before' and 'atomics'/'atomics_before' that session's other runs.
+MEASURED = {'final': 'h200-final.json', 'before': 'h200-before.json', 'lists': 'h200-lists.json',
+            'diag': 'h200-diag-level0.json',
+            'upsample': 'h200-run-upsample.json', 'upsample_before': 'h200-run-upsample-before.json',
+            'counting': 'h200-run-counting.json', 'counting_before': 'h200-run-counting-before.json',
+            'tf_final': 'h200-texelfetch-final.json', 'tf_before': 'h200-texelfetch-before.json',
             'forms': 'h200-run-texelfetch.json', 'forms_before': 'h200-run-texelfetch-before.json',
             'atomics': 'h200-run-atomics.json', 'atomics_before': 'h200-run-atomics-before.json'}
-# What the runs are of, and what changed after them (said with the tables: a run measures its code).
-MEASURED_CODE = ('The final run is of commit 8ba0da9, its "before" of 6588704 (the previous main); the changes made '
-                 'after them were not measured on this GPU: the fills with one workgroup per tile instead of one per '
-                 'tile and layer (9d4d565), then no fills at all: on a GPU generate and the blur skip the groups '
-                 'that are not needed in the shader, with no compact pass, list or clear (docs/tiles.md, "What runs").')
+# What the runs are of (said with the tables: a run measures its code).
+MEASURED_CODE = ('The final run is of commit 349c7a2; in the same run, interleaved with it, its "before" is '
+                 'commit abd0c77 (the previous main: generate and the blur skip unneeded groups in the shader, '
+                 'classify counting with its marks) and "lists" commit 0c7a571 (the GPU forms over tile lists: '
+                 'classify, compact, two fills, indirect dispatches).')
 SCENES = ['interior_fzkhaus', 'statues_scanned', 'street_track']
 AMD_CONFIGS = ['%s_%s' % (q.upper(), r) for r in ('native', 'downsampled') for q in QUALITIES]
 MEASURED_STAGES = ['prepare', 'other', 'base', 'importance', 'generate', 'blur', 'apply', 'upsample']
@@ -214,8 +220,10 @@ SIMDs at the tail of a small dispatch).
 
 **Where the estimate and a real GPU disagree, the real GPU wins.** One real GPU has timed cacao
 against AMD's code so far (an NVIDIA H200: section "Measured on a real GPU", after the overview):
-there cacao takes more time than AMD in every configuration, where this estimate puts it at about or
-under AMD's cost. Read the estimate for registers, spills and occupancy, not for speed.
+there cacao takes %(measured)s AMD's time, more than AMD in most configurations, where this estimate
+puts it at about or under AMD's cost; and two of the changes that made it faster there (the Q3 base
+pass one texel per invocation, classify's counting moved) cost a little in this estimate. Read the
+estimate for registers, spills and occupancy, not for speed.
 
 Regenerate with `tools/gpu-report.py` (needs a build, `../shared/amd-cacao` and mesa-vulkan-drivers;
 it takes seconds and no GPU). Device and driver: %(driver)s. Size 1920x1080; both sides fp32,
@@ -290,7 +298,9 @@ fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
   navi21, a quarter of the shader): 988 (1.50 per texel written), 0.91 of AMD's
   `EdgeSensitiveBlur2` (1,090 on the same grid), and 0.89 to 0.94 of AMD's at every pass count.
   Measured before the table and not kept: 4x2 texels (1.17x AMD's) and 4x4 (1.09x; 168 VGPRs,
-  6 waves per SIMD). `apply_gpu`: one pixel per invocation through the sampler.
+  6 waves per SIMD). `apply_gpu`: 2x2 pixels per invocation, each read through the sampler (one pixel
+  per invocation until the H200 timed the quad at half the time: section "Measured on a real GPU"; on
+  navi21 the estimate of apply at LOWEST native went from 1.43 to 0.63 Mcycles, AMD's 1.49).
 - `prepare_gpu` (normals from depth): ACO estimates the fused prepare as VALU-bound, about 125
   instructions per normal, as AMD's `PrepareNormals` is. The GPU form normalises each direction
   between two neighbouring depths once, for the two normals that use it (the other takes its
@@ -304,10 +314,12 @@ fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
   slice texel per invocation.
 - `generate_gpu`: the tap's atlas level, extent and place as integers (the CPU form selects among
   four float vec4s and converts them, 25 instructions of a tap's 110 on navi21); the Q3 base pass
-  takes a quad's four centre depths from one gather and steps the pattern's row from texel to texel.
-  Q3 base on navi21: 12,001 cycles per wave (11,463 instructions) in the CPU form, 10,781 (10,294)
-  in the GPU form, whose 16 texels of 5 taps x 2 samples each are the instructions: no loop is left
-  rolled. At Q0..Q2 the GPU form fetches its taps' depths through the sampled view of the atlas
+  computes one slice texel (its four layers) per invocation and reduces the importance map's 2x2
+  quads in shared memory (the CPU form: 16 texels per invocation, 2x2 of each layer). The H200
+  timed it faster (HIGHEST's generate stage 233 -> 226 microseconds native, 81 -> 73 downsampled);
+  this estimate puts it 1.3x dearer per texel than the 16-texel GPU form it replaced (navi21,
+  HIGHEST native: base 21.99 -> 29.18 Mcycles, AMD's 22.06), which loses the gather of a quad's
+  four centre depths. The real GPU's timing decided; a GPU of AMD's has not timed either. At Q0..Q2 the GPU form fetches its taps' depths through the sampled view of the atlas
   (`texelFetch`; the CPU form, Q3 and its base pass load them from the storage image): the same
   texels, chosen by what a real GPU measured (section "Measured on a real GPU").
 - `generate_gpu` and `blur_gpu` run on direct grids and skip by the tile classes themselves: a
@@ -317,7 +329,9 @@ fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
   from 1.64 to 1.90 (against the lists), and the compact pass, two fill dispatches and their
   barriers, which the estimate does not weigh, are gone. Most of the blur's difference is the
   estimate's: its stores follow the flag's branch, where the list's entry check covered them, and
-  the doubling above counts them twice. Not yet timed on a GPU.
+  the doubling above counts them twice. On the H200 the tiles stage went from 16.8-36.7 to
+  10.5-14.7 microseconds (section "Measured on a real GPU"). Since then classify's marks do not
+  count (generate and the blur count the groups they run): 0.94 -> 0.91 Mcycles for classify here.
 
 ## Against issue 31's measurement
 
@@ -422,6 +436,16 @@ def stage_ranges(fin):
     return ratios, tiles
 
 
+def stage_of(parts, scene, cfg, stage):
+    r = results_of(parts, 'cacao', scene).get(cfg)
+    return r['cacao']['stages'].get(stage) if r else None
+
+
+def us_range(values):
+    values = [v for v in values if v is not None]
+    return '%s-%s' % (us(min(values)), us(max(values))) if values else '-'
+
+
 def measured_section(runs, results):
     """The real GPU's timings as markdown lines (none without the 'final' run)."""
     if 'final' not in runs:
@@ -441,9 +465,9 @@ def measured_section(runs, results):
            'scene\'s depth; AMD\'s reference settings of each scene on both sides (fp32, normals reconstructed from '
            'depth, blur 2). The GPU\'s clocks are its driver\'s own (this workplace leaves the GPU\'s settings as they '
            'are): `nvidia-smi` read an SM clock of %s before the run and %s after it; both sides ran under the '
-           'same conditions, interleaved. In frames this short (0.06-0.35 ms) the fixed costs of each dispatch, barrier and workgroup '
-           'weigh heavily (the tables below), and no compiler statistic shows them. %s' % (proc['reps'], proc['frames'], proc['warmup_frames'],
-                                  clocks[0], clocks[1], MEASURED_CODE),
+           'same conditions, interleaved. In frames this short (0.06-0.35 ms) the fixed costs of each dispatch, barrier '
+           'and workgroup weigh heavily (the tables below), and no compiler statistic shows them. %s' % (
+               proc['reps'], proc['frames'], proc['warmup_frames'], clocks[0], clocks[1], MEASURED_CODE),
            '', '### Totals: cacao / AMD', '',
            '| configuration | AMD ms (interior) | cacao ms (interior) | cacao/AMD interior | statues | street | '
            'navi21 estimate (RADV, below) |', '|---|---:|---:|---:|---:|---:|---:|']
@@ -460,16 +484,19 @@ def measured_section(runs, results):
     ests = [navi[c.lower()]['cacao']['total_cycles'] / navi[c.lower()]['amd']['total_cycles']
             for c in AMD_CONFIGS if c.lower() in navi and navi[c.lower()]['amd']['total_cycles']]
     if ratios:
-        out += ['', '**On this GPU cacao takes %.2f-%.2fx AMD\'s time** (all 30 scene x configuration pairs): slower '
-                'than AMD everywhere, where the RADV estimate below (navi21) puts it at %s of AMD\'s cost. The '
-                'estimate counts issued instructions; what it leaves out (the fixed cost of each dispatch and '
-                'barrier, workgroup launches, memory) decides frames this short.' % (
-                    min(ratios), max(ratios), '%.2f-%.2f' % (min(ests), max(ests)) if ests else '(not run)')]
+        below = ['%s %s' % (sc.split('_')[0], cfg) for cfg in AMD_CONFIGS for sc in SCENES
+                 if (results_of(fin, 'cacao', sc).get(cfg) or {}).get('ratio', 9.0) < 1.0]
+        out += ['', '**On this GPU cacao takes %.2f-%.2fx AMD\'s time** over the %d scene x configuration pairs, '
+                'less than AMD\'s in %d of them (%s), where the RADV estimate below (navi21) puts it at %s of '
+                'AMD\'s cost. The estimate counts issued instructions; what it leaves out (the fixed cost of each '
+                'dispatch and barrier, workgroup launches, memory) decides frames this short.' % (
+                    min(ratios), max(ratios), len(ratios), len(below), ', '.join(below) or 'none',
+                    '%.2f-%.2f' % (min(ests), max(ests)) if ests else '(not run)')]
     # per stage
     out += ['', '### Per stage (interior_fzkhaus, microseconds, AMD / cacao)', '',
-            'Stages as sidebyside.py groups the passes. cacao\'s "tiles" are its tile classification and lists '
-            '(classify, compact, and the two fills of tiles no pass computes: four dispatches); its GPU form of the Q3 '
-            'base pass is counted in generate (AMD\'s base pass has a column of its own: compare their sum).', '',
+            'Stages as sidebyside.py groups the passes. cacao\'s "tiles" stage is its tile classification '
+            '(`classify`: one dispatch, which AMD does not have); its GPU form of the Q3 base pass is counted in '
+            'generate (AMD\'s base pass has a column of its own: compare their sum).', '',
             '| configuration | ' + ' | '.join('tiles' if s == 'other' else s for s in MEASURED_STAGES) + ' |',
             '|---|' + '---:|' * len(MEASURED_STAGES)]
     for cfg, r in results_of(fin, 'cacao', SCENES[0]).items():
@@ -477,71 +504,118 @@ def measured_section(runs, results):
         out.append('| %s | %s |' % (cfg, ' | '.join(
             '' if s not in a and s not in c else '%s / %s' % (us(a.get(s)), us(c.get(s))) for s in MEASURED_STAGES)))
     ratios, tiles = stage_ranges(fin)
-    exp = []
-    if 'atomics' in runs and 'atomics_before' in runs:
-        for cfg, b in results_of(runs['atomics_before'], 'cacao', SCENES[0]).items():
-            f = results_of(runs['atomics'], 'cacao', SCENES[0]).get(cfg)
-            if f and 'other' in f['cacao']['stages'] and 'other' in b['cacao']['stages']:
-                exp.append(f['cacao']['stages']['other'] / b['cacao']['stages']['other'])
-    atomics = ('was measured (`%s`: interior_fzkhaus, the tiles stage after / before %.2f-%.2f over the ten '
-               'configurations) and not kept' % (MEASURED['atomics'], min(exp), max(exp))) if exp else \
-        'was measured in an earlier run and not kept'
     if ratios:
-        out += ['', 'Over the 30 scene x configuration pairs, cacao/AMD per stage: %s; and cacao\'s tiles stage, which '
-                'AMD does not have, takes %s-%s microseconds: four dispatches, each a barrier the next waits for, '
-                'the least where every tile is computed (interior_fzkhaus: the fills have nothing to fill), the most '
-                'where the fills fill (the scenes with background or faded tiles), although a fill only writes 1s: one workgroup of 64 '
-                'invocations per tile and layer. With the apply forms below, this points at the number of workgroups '
-                'as a cost of its own on this GPU. Gathering the classification\'s and the compaction\'s atomic '
-                'additions per workgroup (one global atomic per group instead of one per tile) %s: the atomics are '
-                'not where the time goes.' % (
-                    '; '.join('%s %.2f-%.2f' % (st, min(v), max(v)) for st, v in ratios.items()),
-                    us(min(tiles)), us(max(tiles)), atomics)]
-    # the change measured in the final run
+        out += ['', 'Over the 30 scene x configuration pairs, cacao/AMD per stage: %s; and cacao\'s tiles stage '
+                'takes %s-%s microseconds.' % ('; '.join('%s %.2f-%.2f' % (st, min(v), max(v)) for st, v in ratios.items()),
+                                               us(min(tiles)), us(max(tiles)))]
+    # the changes measured in the final run
     if 'before' in runs:
-        out += ['', '### The last change, measured: generate\'s taps through the sampled view', '',
-                'The GPU form of generate at Q0..Q2 fetches its taps\' depths through the sampled view of the '
-                'depth atlas (`texelFetch`), where the CPU form, and Q3 and its base pass, load them from the '
-                'storage image (`imageLoad`: lavapipe runs that faster). Same texels, same output. The generate '
-                'stage in microseconds, before / after, same run:', '',
+        bef, lists = runs['before'], runs.get('lists', {})
+        out += ['', '### The changes, measured in the same run', '',
+                'cacao/AMD of the three builds, interleaved with AMD in one run: "lists" (0c7a571) / "before" '
+                '(abd0c77) / final (349c7a2).', '',
                 '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
-        totals = []
         for cfg in AMD_CONFIGS:
             cells = []
             for sc in SCENES:
-                b, f = results_of(runs['before'], 'cacao', sc).get(cfg), results_of(fin, 'cacao', sc).get(cfg)
-                if b and f:
-                    cells.append('%s / %s' % (us(b['cacao']['stages'].get('generate')),
-                                              us(f['cacao']['stages'].get('generate'))))
-                    totals.append(f['cacao']['total_ms'] / b['cacao']['total_ms'])
-                else:
-                    cells.append('-')
+                rs = [results_of(x, 'cacao', sc).get(cfg) for x in (lists, bef, fin)]
+                cells.append(' / '.join('%.2f' % r['ratio'] if r else '-' for r in rs))
             out.append('| %s | %s |' % (cfg, ' | '.join(cells)))
-        if totals:
-            totals.sort()
-            out += ['', 'cacao\'s total after / before: median %.3f (%.3f-%.3f over the 30 pairs).'
-                    % (totals[len(totals) // 2], totals[0], totals[-1])]
+        def stage_values(parts, stage, cfgs=AMD_CONFIGS):
+            return [stage_of(parts, sc, c, stage) for sc in SCENES for c in cfgs]
+        native = [c for c in AMD_CONFIGS if c.endswith('native')]
+        out += ['',
+                '- **Skipping in the shader instead of tile lists** ("lists" -> "before"): the tiles stage went '
+                'from %s to %s microseconds (classify, compact, two fills and indirect dispatches -> classify '
+                'alone); most on the scenes whose fills had work (street_track LOWEST native: %s -> %s).' % (
+                    us_range(stage_values(lists, 'other')), us_range(stage_values(bef, 'other')),
+                    us(stage_of(lists, 'street_track', 'LOWEST_native', 'other')),
+                    us(stage_of(bef, 'street_track', 'LOWEST_native', 'other'))),
+                '- **`apply_gpu` with 2x2 pixels per invocation** (each through the sampler, as before): apply %s '
+                '-> %s microseconds over the native configurations (AMD\'s: %s). A quarter of the workgroups; '
+                'the same reads per pixel. On navi21 the RADV estimate of the stage falls too (below).' % (
+                    us_range(stage_values(bef, 'apply', native)), us_range(stage_values(fin, 'apply', native)),
+                    us_range([(results_of(fin, 'cacao', sc).get(c) or {}).get('amd', {}).get('stages', {}).get('apply')
+                              for sc in SCENES for c in native])),
+                '- **The Q3 base pass one slice texel per invocation** (the importance map reduced in shared '
+                'memory; the CPU form computes 16 texels per invocation): HIGHEST\'s generate stage (base pass '
+                'and Q3) %s -> %s native, %s -> %s downsampled (interior_fzkhaus).' % (
+                    us(stage_of(bef, SCENES[0], 'HIGHEST_native', 'generate')),
+                    us(stage_of(fin, SCENES[0], 'HIGHEST_native', 'generate')),
+                    us(stage_of(bef, SCENES[0], 'HIGHEST_downsampled', 'generate')),
+                    us(stage_of(fin, SCENES[0], 'HIGHEST_downsampled', 'generate'))),
+                '- **classify\'s marks as atomics nothing waits for**, the needed groups counted by generate and '
+                'the blur as they run them: tiles stage %s -> %s microseconds; generate pays about a microsecond '
+                'for the count (interior_fzkhaus LOWEST native: %s -> %s).' % (
+                    us_range(stage_values(bef, 'other')), us_range(stage_values(fin, 'other')),
+                    us(stage_of(bef, SCENES[0], 'LOWEST_native', 'generate')),
+                    us(stage_of(fin, SCENES[0], 'LOWEST_native', 'generate')))]
+    # experiments
+    exp = []
+    if 'upsample' in runs and 'upsample_before' in runs:
+        pairs = [(stage_of(runs['upsample_before'], sc, c, 'upsample'), stage_of(runs['upsample'], sc, c, 'upsample'))
+                 for sc in SCENES for c in AMD_CONFIGS if c.endswith('downsampled')]
+        pairs = [p for p in pairs if p[0] and p[1]]
+        if pairs:
+            q = sorted(b / a for a, b in pairs)
+            exp.append('- The upsample with 16x16 threads of one half-resolution position each (today: 8x8 threads '
+                       'of 2x2 positions, 110-127 registers on this GPU) (`%s`): upsample stage after / before '
+                       '%.3f-%.3f over %d pairs. Not kept: the registers are not what it waits on.' % (
+                           MEASURED['upsample'], q[0], q[-1], len(q)))
+    if 'diag' in runs:
+        pairs = [(stage_of(fin, SCENES[0], c, 'generate'), stage_of(runs['diag'], SCENES[0], c, 'generate'))
+                 for c in AMD_CONFIGS]
+        pairs = [(c, p) for c, p in zip(AMD_CONFIGS, pairs) if p[0] and p[1]]
+        if pairs:
+            exp.append('- Where generate\'s time goes (it is 1.0-1.9x AMD\'s at HIGH and HIGHEST, where the RADV '
+                       'estimate puts it below AMD\'s): a diagnostic build that reads every tap at level 0 of the '
+                       'depths, without the atlas level, extent and place arithmetic (`%s`, same run): %s '
+                       'microseconds, final / diagnostic. The per-tap address arithmetic is not the cost.' % (
+                           MEASURED['diag'], '; '.join('%s %s / %s' % (c, us(p[0]), us(p[1])) for c, p in pairs)))
+    if 'atomics' in runs and 'atomics_before' in runs:
+        ratios_a = []
+        for cfg, b in results_of(runs['atomics_before'], 'cacao', SCENES[0]).items():
+            f = results_of(runs['atomics'], 'cacao', SCENES[0]).get(cfg)
+            if f and 'other' in f['cacao']['stages'] and 'other' in b['cacao']['stages']:
+                ratios_a.append(f['cacao']['stages']['other'] / b['cacao']['stages']['other'])
+        if ratios_a:
+            exp.append('- An earlier session gathered classify\'s and compact\'s atomic additions per workgroup '
+                       '(`%s`): the tiles stage after / before %.2f-%.2f; not kept. What paid this session was '
+                       'the chain of atomics each active tile waited on (above).' % (
+                           MEASURED['atomics'], min(ratios_a), max(ratios_a)))
+    if exp:
+        out += ['', '### Tried and not kept, or diagnostic', ''] + exp
+    # an earlier change
+    if 'tf_final' in runs and 'tf_before' in runs:
+        out += ['', '### An earlier change, measured: generate\'s taps through the sampled view', '',
+                'The GPU form of generate at Q0..Q2 fetches its taps\' depths through the sampled view of the '
+                'depth atlas (`texelFetch`), where the CPU form, and Q3 and its base pass, load them from the '
+                'storage image (`imageLoad`: lavapipe runs that faster). Same texels, same output. The generate '
+                'stage in microseconds, before / after, in an earlier session\'s run (commits 6588704 / 8ba0da9):', '',
+                '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
+        for cfg in AMD_CONFIGS:
+            cells = []
+            for sc in SCENES:
+                b, f = stage_of(runs['tf_before'], sc, cfg, 'generate'), stage_of(runs['tf_final'], sc, cfg, 'generate')
+                cells.append('%s / %s' % (us(b), us(f)) if b and f else '-')
+            out.append('| %s | %s |' % (cfg, ' | '.join(cells)))
         if 'forms' in runs and 'forms_before' in runs:
             cells = []
             for sc in SCENES:
-                b = results_of(runs['forms_before'], 'cacao', sc).get('HIGHEST_native')
-                f = results_of(runs['forms'], 'cacao', sc).get('HIGHEST_native')
+                b = stage_of(runs['forms_before'], sc, 'HIGHEST_native', 'generate')
+                f = stage_of(runs['forms'], sc, 'HIGHEST_native', 'generate')
                 if b and f:
-                    cells.append('%s: %s -> %s' % (sc, us(b['cacao']['stages']['generate']),
-                                                   us(f['cacao']['stages']['generate'])))
-            out += ['', 'Why Q3 keeps `imageLoad`: an earlier run with `texelFetch` in every variant (%s) made '
-                    'HIGHEST native\'s generate stage (the Q3 base pass and Q3) slower: %s microseconds, before -> '
-                    'after.' % (MEASURED['forms'], '; '.join(cells))]
+                    cells.append('%s: %s -> %s' % (sc, us(b), us(f)))
+            out += ['', 'Why Q3 keeps `imageLoad`: a run with `texelFetch` in every variant (%s) made HIGHEST '
+                    'native\'s generate stage (the Q3 base pass and Q3) slower: %s microseconds, before -> after.'
+                    % (MEASURED['forms'], '; '.join(cells))]
     # the shader forms
-    forms = runs.get('forms', {})
-    cpu = results_of(forms, 'cpuforms', SCENES[0])
-    gpu = results_of(forms, 'cacao', SCENES[0])
+    cpu = results_of(fin, 'cpuforms', SCENES[0])
+    gpu = results_of(fin, 'cacao', SCENES[0])
     if cpu and gpu:
-        out += ['', '### The shader forms on this GPU (interior_fzkhaus, one run)', '',
-                'A context on a GPU runs the GPU forms; `--shader-forms cpu` runs lavapipe\'s. Both timed in the '
-                'run of `%s` against AMD (there, generate\'s GPU form fetched every variant\'s taps through the '
-                'sampled view; the blur and apply forms are today\'s). Microseconds, AMD / GPU form / CPU form:'
-                % MEASURED['forms'], '',
+        out += ['', '### The shader forms on this GPU (interior_fzkhaus, the final run)', '',
+                'A context on a GPU runs the GPU forms; `--shader-forms cpu` runs lavapipe\'s. Microseconds, '
+                'AMD / GPU form / CPU form:', '',
                 '| configuration | cacao/AMD, GPU forms | cacao/AMD, CPU forms | blur | apply or upsample | generate |',
                 '|---|---:|---:|---:|---:|---:|']
         for cfg in AMD_CONFIGS:
@@ -553,21 +627,32 @@ def measured_section(runs, results):
                                                us(c['cacao']['stages'].get(s)))
             out.append('| %s | %.2f | %.2f | %s | %s | %s |' % (cfg, g['ratio'], c['ratio'], cell('blur'),
                                                                cell(fin_stage), cell('generate')))
-        out += ['', 'The GPU form of the blur (shared memory, 16x16 threads) is the faster one here too. The apply is '
-                'not: at LOWEST and LOW the CPU form (2x2 texels per invocation, a quarter of the workgroups) takes '
-                'half the GPU form\'s time and half AMD\'s, against the RADV estimate, which counts the CPU form\'s '
-                'instructions and puts it above AMD\'s (`cacao-inspect gpu --shader-forms cpu --config '
-                'lowest_native,low_native --amd ...`). Both apply forms are kept as they are until a GPU of each '
-                'vendor has timed them: the AMD estimate and the NVIDIA timing disagree. The upsample has one form.']
+        out += ['', 'The GPU forms are the faster ones here. One exception: the non-smart apply (LOW) of the CPU '
+                'form, 2x2 pixels filtered by hand from one gather per layer, is faster on this GPU than the GPU '
+                'form\'s 2x2 pixels through the sampler, where the RADV estimate puts the CPU form at several '
+                'times the GPU form\'s cost on AMD\'s GPUs; the GPU form keeps the sampler. The CPU forms\' '
+                'tiles stage is classify, compact and fills over lists. The upsample has one form.']
     # the horizon estimators
-    rows = estimator_results(forms)
+    rows = estimator_results(fin)
     if rows:
-        out += ['', '### The horizon-slice estimators against AMD HIGH (same run as the forms)', '',
+        out += ['', '### The horizon-slice estimators against AMD HIGH (the final run)', '',
                 '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
         for n, per in rows:
             out.append('| %s (1 denoise pass) | %s |' % (n, ' | '.join(
                 '%.3f ms / %.3f ms = %.2f' % (r['cacao']['total_ms'], r['amd']['total_ms'], r['ratio']) if r else '-'
                 for r in per)))
+    steps = os.path.join(ROOT, 'docs', 'gpu-measured', 'h200-horizon-steps.txt')
+    if rows and os.path.isfile(steps):
+        with open(steps) as f:
+            body = [l.rstrip('\n') for l in f if not l.startswith('#')]
+        out += ['', '**These frames take about twice what they took before commit 97cb2c7**, which gave the '
+                'horizon estimators clear steps (`vkCmdClearColorImage`) where fill dispatches wrote their '
+                'intermediates: on this GPU a clear of the view z costs 90 microseconds and one of the AO 41 at '
+                '960x540, where the fills took 4 each (`docs/gpu-measured/h200-horizon-steps.txt`, per-pass '
+                '`--timings` of this build and of 0c7a571, median ms, min, max):', '', '```'] + body + ['```', '',
+                'On lavapipe the clears are the cheaper (docs/tiles.md); on this GPU a dispatch that writes the '
+                'value is. Not yet changed: the next step is a fill dispatch over the whole image in the GPU '
+                'forms, the clear in the CPU forms.']
     # the driver's statistics
     text = text_part(fin, 'stats.cacao')
     if text:
@@ -605,11 +690,14 @@ def main():
         for family in a.families.split(','):
             results[family] = measure(a, family, work)
     first = next(iter(results.values()))
-    doc = HEADER % {'driver': first['driver'], 'issue': '\n'.join(issue_comparison(results['navi21']))
+    runs = load_measured(a.measured)
+    timed = [r['ratio'] for sc in SCENES for r in results_of(runs.get('final', {}), 'cacao', sc).values()]
+    doc = HEADER % {'driver': first['driver'],
+                    'measured': '%.2f-%.2fx' % (min(timed), max(timed)) if timed else '(not measured)', 'issue': '\n'.join(issue_comparison(results['navi21']))
                     if 'navi21' in results else '(navi21 not measured)',
                     'overview': '\n'.join(overview(results))}
     parts = [doc.rstrip('\n')]
-    measured = measured_section(load_measured(a.measured), results)
+    measured = measured_section(runs, results)
     if measured:
         parts += [''] + measured
     for family, result in results.items():
