@@ -441,6 +441,11 @@ def stage_of(parts, scene, cfg, stage):
     return r['cacao']['stages'].get(stage) if r else None
 
 
+def scene_rows(cell):
+    """One table row per configuration of AMD_CONFIGS: cell(scene, config) per scene of SCENES."""
+    return ['| %s | %s |' % (cfg, ' | '.join(cell(sc, cfg) for sc in SCENES)) for cfg in AMD_CONFIGS]
+
+
 def us_range(values):
     values = [v for v in values if v is not None]
     return '%s-%s' % (us(min(values)), us(max(values))) if values else '-'
@@ -515,12 +520,8 @@ def measured_section(runs, results):
                 'cacao/AMD of the three builds, interleaved with AMD in one run: "lists" (0c7a571) / "before" '
                 '(abd0c77) / final (349c7a2).', '',
                 '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
-        for cfg in AMD_CONFIGS:
-            cells = []
-            for sc in SCENES:
-                rs = [results_of(x, 'cacao', sc).get(cfg) for x in (lists, bef, fin)]
-                cells.append(' / '.join('%.2f' % r['ratio'] if r else '-' for r in rs))
-            out.append('| %s | %s |' % (cfg, ' | '.join(cells)))
+        out += scene_rows(lambda sc, cfg: ' / '.join(
+            '%.2f' % r['ratio'] if r else '-' for r in (results_of(x, 'cacao', sc).get(cfg) for x in (lists, bef, fin))))
         def stage_values(parts, stage, cfgs=AMD_CONFIGS):
             return [stage_of(parts, sc, c, stage) for sc in SCENES for c in cfgs]
         native = [c for c in AMD_CONFIGS if c.endswith('native')]
@@ -593,12 +594,10 @@ def measured_section(runs, results):
                 'storage image (`imageLoad`: lavapipe runs that faster). Same texels, same output. The generate '
                 'stage in microseconds, before / after, in an earlier session\'s run (commits 6588704 / 8ba0da9):', '',
                 '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
-        for cfg in AMD_CONFIGS:
-            cells = []
-            for sc in SCENES:
-                b, f = stage_of(runs['tf_before'], sc, cfg, 'generate'), stage_of(runs['tf_final'], sc, cfg, 'generate')
-                cells.append('%s / %s' % (us(b), us(f)) if b and f else '-')
-            out.append('| %s | %s |' % (cfg, ' | '.join(cells)))
+        def generate_cell(sc, cfg):
+            b, f = stage_of(runs['tf_before'], sc, cfg, 'generate'), stage_of(runs['tf_final'], sc, cfg, 'generate')
+            return '%s / %s' % (us(b), us(f)) if b and f else '-'
+        out += scene_rows(generate_cell)
         if 'forms' in runs and 'forms_before' in runs:
             cells = []
             for sc in SCENES:
