@@ -93,7 +93,8 @@ if 'final' in runs:
     lines = report.measured_section(runs, {})
     text = '\n'.join(lines)
     for heading in ('## Measured on a real GPU', '### Totals: cacao / AMD', '### Per stage',
-                    '### The last change, measured', '### The shader forms on this GPU',
+                    '### The changes, measured in the same run', '### Tried and not kept',
+                    '### The shader forms on this GPU',
                     '### The horizon-slice estimators', '### What the driver reports'):
         check(heading in text, 'report lacks %r' % heading)
     ratios = [r['ratio'] for sc in report.SCENES for r in report.results_of(runs['final'], 'cacao', sc).values()]
