@@ -203,13 +203,20 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * normals for background: clears of the whole image before the passes that write the needed
      * tiles (on lavapipe a clear of a 16-bit image costs a full frame of CACAO about 4%, a fill
      * over an empty list nothing: docs/tiles.md). */
-    PASS(FILL) = {"fill", {NULL, "horizon", "output", "view"}, 4, false, false, false, {CACAO_TILE, CACAO_TILE},
-                  CACAOI_GRID_SLICE, 7,
-                  {CONSTANTS, R(TILES, TILES, V(CACAO_FILL_SLICES) | V(CACAO_FILL_OUTPUT)), W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),
-                   W(HORIZON_AO_OUT, AO_RAW, V(CACAO_FILL_HORIZON)), W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT)),
-                   W(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_FILL_VIEW)), W(VIEW_NORMALS, VIEW_NORMALS, V(CACAO_FILL_VIEW))},
+    PASS(FILL) = {"fill", {NULL, "horizon", "output", "view", "horizon_all", "view_all"}, 6, false, false, false,
+                  {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE, 7,
+                  {CONSTANTS,
+                   R(TILES, TILES, V(CACAO_FILL_SLICES) | V(CACAO_FILL_OUTPUT) | V(CACAO_FILL_HORIZON_ALL) | V(CACAO_FILL_VIEW_ALL)),
+                   W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),
+                   W(HORIZON_AO_OUT, AO_RAW, V(CACAO_FILL_HORIZON) | V(CACAO_FILL_HORIZON_ALL)),
+                   W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT)),
+                   W(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_FILL_VIEW) | V(CACAO_FILL_VIEW_ALL)),
+                   W(VIEW_NORMALS, VIEW_NORMALS, V(CACAO_FILL_VIEW) | V(CACAO_FILL_VIEW_ALL))},
                   /* the horizon estimators' own images are cleared (cacao_plan_step.clear) */
-                  .lists = {[CACAO_FILL_SLICES] = CACAO_LIST_FILL_SLICES, [CACAO_FILL_OUTPUT] = CACAO_LIST_FILL_SLICES}},
+                  .lists = {[CACAO_FILL_SLICES] = CACAO_LIST_FILL_SLICES, [CACAO_FILL_OUTPUT] = CACAO_LIST_FILL_SLICES},
+                  /* the GPU forms' whole-image fills: a clear costs an H200 about 20x a dispatch
+                   * (docs/gpu.md); lavapipe the other way round (docs/tiles.md) */
+                  .grids = {[CACAO_FILL_HORIZON_ALL] = CACAOI_GRID_OUTPUT, [CACAO_FILL_VIEW_ALL] = CACAOI_GRID_OUTPUT}},
 };
 #undef R
 #undef W

@@ -77,7 +77,8 @@ static void push_denoise_passes(cacaoi_step *out, size_t *n, unsigned first, uns
 
 /* Horizon estimators: classification from the caller's depth (docs/tiles.md), prepare over the
  * tiles that are not all background (a clear before it gives the others the view z and normal
- * the prepare would store there). Native: the intermediates the denoise passes read cleared to AO
+ * the prepare would store there; in the GPU forms a fill dispatch, which a GPU runs in a twentieth
+ * of a clear's time, docs/gpu.md: every "clear" below). Native: the intermediates the denoise passes read cleared to AO
  * 1, the estimator over the needed tiles (into the output when no denoise pass runs), the fill
  * of the output's other tiles with AO 1, then the denoise passes over the needed tiles.
  * Downsampled: the estimator at one pixel of each 2x2 block (a direct grid of half the size, into
@@ -91,13 +92,16 @@ static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI
     const bool gtao = c->estimator == CACAO_KEY_ESTIMATOR_GTAO;
     push(out, &n, CACAO_PASS_CLASSIFY, CACAO_CLASSIFY_HORIZON, 0, 0, 0);
     push(out, &n, CACAO_PASS_COMPACT, CACAO_COMPACT_HORIZON, 0, 0, 0);
-    push(out, &n, CACAO_PASS_FILL, CACAO_FILL_VIEW, 0, 0, 0); /* a clear */
+    /* a clear in the CPU forms, a dispatch over every pixel in the GPU forms (docs/gpu.md) */
+    const unsigned fill_view = c->gpu_forms ? CACAO_FILL_VIEW_ALL : CACAO_FILL_VIEW;
+    const unsigned fill_ao = c->gpu_forms ? CACAO_FILL_HORIZON_ALL : CACAO_FILL_HORIZON;
+    push(out, &n, CACAO_PASS_FILL, fill_view, 0, 0, 0);
     push(out, &n, CACAO_PASS_HORIZON_PREPARE, c->normals_from_input ? CACAO_HORIZON_NORMALS_INPUT : CACAO_HORIZON_NORMALS_DEPTH,
          0, 0, 0);
     /* the AO intermediates the denoise passes read, cleared to AO 1 (AO_RAW, AO_PONG) */
     const bool raw = half ? blur >= 3 : blur >= 1, pong = blur >= 2;
-    if (raw) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0);
-    if (pong) rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0), CACAO_BINDING_HORIZON_AO_OUT,
+    if (raw) push(out, &n, CACAO_PASS_FILL, fill_ao, 0, 0, 0);
+    if (pong) rebind(push(out, &n, CACAO_PASS_FILL, fill_ao, 0, 0, 0), CACAO_BINDING_HORIZON_AO_OUT,
                      CACAO_RES_AO_PONG);
     if (half) {
         push(out, &n, CACAO_PASS_HORIZON_MAIN, gtao ? CACAO_HORIZON_GTAO_HALF : CACAO_HORIZON_BITMASK_HALF, 0, 0, 0);

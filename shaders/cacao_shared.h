@@ -99,6 +99,8 @@
 #define CACAO_FILL_HORIZON 1
 #define CACAO_FILL_OUTPUT 2
 #define CACAO_FILL_VIEW 3
+#define CACAO_FILL_HORIZON_ALL 4 /* the GPU forms: HORIZON's and VIEW's values by a dispatch over */
+#define CACAO_FILL_VIEW_ALL 5    /* every pixel, where the CPU forms clear (docs/gpu.md) */
 
 /* Compact variants: CACAO's lists, or the horizon estimators' (also prepare and background). */
 #define CACAO_COMPACT_SLICES 0

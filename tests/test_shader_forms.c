@@ -10,7 +10,8 @@
  *   - the choice: a context on lavapipe (a CPU device) plans the CPU forms by default; with
  *     cacao_context_desc.shader_forms = GPU it plans the GPU passes (blur_gpu, apply_gpu,
  *     prepare_gpu with normals from depth, generate_gpu; the upsample has one form) and no CPU
- *     form; the settings' own shader_forms wins over the desc's.
+ *     form; the settings' own shader_forms wins over the desc's;
+ *   - the horizon estimators: fills (GPU forms) where the CPU forms clear, the output bit-identical.
  * The prepare's and generate's intermediates (depths, mips, normals, AO and edges, the importance
  * map and load counter) feed every later pass, so an output identical at every quality, from
  * depth and from given normals, checks them; the GPU prepare runs only with normals from depth. */
@@ -94,6 +95,41 @@ static void compare_forms(vkdev *dev, uint32_t w, uint32_t h, unsigned *runs, do
     scene_buffers_free(&sb);
 }
 
+/* The horizon estimators: the CPU forms clear their intermediates, the GPU forms fill them with a
+ * dispatch (fill.view_all, fill.horizon_all) that skips the tiles later passes write; the output
+ * is the same to the bit, with tiles of every class (a fade-out that fades part of the scene),
+ * every estimator, native and downsampled, and the blur counts that use AO_RAW and AO_PONG. */
+static void compare_horizon_forms(vkdev *dev, uint32_t w, uint32_t h, unsigned *runs) {
+    scene_buffers sb;
+    scene_buffers_default(w, h, &sb);
+    const size_t n = (size_t)w * h;
+    float *cpu = malloc(sizeof(float) * n), *gpu = malloc(sizeof(float) * n);
+    const vkdev_frame f = scene_frame(&sb, false, false);
+    for (int e = CACAO_ESTIMATOR_GTAO; e <= CACAO_ESTIMATOR_BITMASK; ++e)
+        for (int ds = 0; ds < 2; ++ds)
+            for (int blur = 0; blur <= 3; ++blur)
+                for (int fade = 0; fade < 2; ++fade) {
+                    const cacao_settings s = {.estimator = (cacao_estimator)e, .quality = CACAO_QUALITY_LOW,
+                                              .downsample = ds != 0, .generate_normals = true,
+                                              .blur_pass_count = blur == 0 ? CACAO_BLUR_NONE : blur,
+                                              .fade_out_from = fade ? 2.0f : 0.0f, .fade_out_to = fade ? 4.0f : 0.0f};
+                    cacao_plan pc, pg;
+                    if (!run_forms(dev, CACAO_SHADER_FORMS_CPU, &s, &f, cpu, &pc) ||
+                        !run_forms(dev, CACAO_SHADER_FORMS_GPU, &s, &f, gpu, &pg))
+                        continue;
+                    ++*runs;
+                    CHECK(plan_has(&pc, "clear.view_depth") && !plan_has(&pc, "fill.view_all"));
+                    CHECK(plan_has(&pg, "fill.view_all") && !plan_has(&pg, "clear."));
+                    if (memcmp(cpu, gpu, sizeof(float) * n) != 0)
+                        fprintf(stderr, "%ux%u estimator %d ds%d blur %d fade %d: the GPU forms differ\n", w, h, e, ds,
+                                blur, fade);
+                    CHECK(memcmp(cpu, gpu, sizeof(float) * n) == 0);
+                }
+    free(cpu);
+    free(gpu);
+    scene_buffers_free(&sb);
+}
+
 static void test_choice(vkdev *dev) {
     scene_buffers sb;
     scene_buffers_default(64, 48, &sb);
@@ -146,6 +182,11 @@ int main(void) {
     const uint32_t sizes[][2] = {{131, 77}, {7, 5}, {1, 1}};
     for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; ++i)
         compare_forms(&dev, sizes[i][0], sizes[i][1], &runs, &fp16_mean, &fp16_max);
+    unsigned horizon_runs = 0;
+    compare_horizon_forms(&dev, 131, 77, &horizon_runs);
+    compare_horizon_forms(&dev, 7, 5, &horizon_runs);
+    CHECK(horizon_runs == 64);
+    printf("%u horizon estimator configurations: GPU forms bit-identical to the CPU forms\n", horizon_runs);
     printf("%u configurations: GPU forms bit-identical to the CPU forms in fp32; fp16 worst mean |diff| %.6f "
            "(%.3f/255), worst max %.6f (%.2f/255)\n",
            runs, fp16_mean, fp16_mean * 255.0, fp16_max, fp16_max * 255.0);

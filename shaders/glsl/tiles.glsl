@@ -226,6 +226,22 @@ void main()
     ivec2 p = texel_of(group);
 #if CACAO_VARIANT == CACAO_FILL_OUTPUT
     if (in_rect(p, imageSize(output_image))) imageStore(output_image, p, vec4(1.0, 0.0, 0.0, 0.0));
+#elif CACAO_VARIANT == CACAO_FILL_HORIZON_ALL || CACAO_VARIANT == CACAO_FILL_VIEW_ALL
+    /* The GPU forms' fills of the horizon estimators' images (a group is a tile of the direct grid),
+     * with the values cacaoi_clear_value gives the CPU forms' clears, where a later pass does not
+     * write them: prepare writes every pixel of the tiles that are not all background (its list),
+     * the estimator and the denoise passes every pixel of the needed tiles, which hold every
+     * active tile. The test is the same for the whole group. */
+    uint cls = tiles[CACAO_TILE_CLASSES + gl_WorkGroupID.y * CB.tiles_x + gl_WorkGroupID.x];
+#if CACAO_VARIANT == CACAO_FILL_HORIZON_ALL
+    if (cls != CACAO_TILE_CLASS_ACTIVE && in_rect(p, imageSize(horizon_ao_out)))
+        imageStore(horizon_ao_out, p, vec4(1.0, 0.0, 0.0, 0.0));
+#else
+    if (cls == CACAO_TILE_CLASS_BACKGROUND && in_rect(p, imageSize(view_depth))) {
+        imageStore(view_depth, p, vec4(-1.0, 0.0, 0.0, 0.0));
+        imageStore(view_normals, p, vec4(0.0, 0.0, -1.0, 0.0));
+    }
+#endif
 #else
     if (in_rect(p, imageSize(ssao_image).xy))
         for (int layer = 0; layer < CB.slice_count; ++layer) imageStore(ssao_image, ivec3(p, layer), vec4(1.0, 1.0, 0.0, 0.0));
