@@ -53,10 +53,11 @@ ISSUE_31 = {'lowest_native': 0.78, 'low_native': 0.60, 'medium_native': 0.50, 'h
 # GPU forms with tile lists (an older main), 'diag' a diagnostic build (generate's taps all from
 # level 0: wrong output, a timing only); 'upsample'/'upsample_before' and 'counting'/
 # 'counting_before' two earlier runs of this session's experiments, each against its own baseline;
+# 'horizon' a later run of the horizon estimators against AMD HIGH, after their GPU forms' fills;
 # 'tf_final'/'tf_before' an earlier session's run of generate's taps through the sampled view,
 # 'forms'/'forms_before' and 'atomics'/'atomics_before' that session's other runs.
 MEASURED = {'final': 'h200-final.json', 'before': 'h200-before.json', 'lists': 'h200-lists.json',
-            'diag': 'h200-diag-level0.json',
+            'diag': 'h200-diag-level0.json', 'horizon': 'h200-horizon.json',
             'upsample': 'h200-run-upsample.json', 'upsample_before': 'h200-run-upsample-before.json',
             'counting': 'h200-run-counting.json', 'counting_before': 'h200-run-counting-before.json',
             'tf_final': 'h200-texelfetch-final.json', 'tf_before': 'h200-texelfetch-before.json',
@@ -631,10 +632,12 @@ def measured_section(runs, results):
                 'form\'s 2x2 pixels through the sampler, where the RADV estimate puts the CPU form at several '
                 'times the GPU form\'s cost on AMD\'s GPUs; the GPU form keeps the sampler. The CPU forms\' '
                 'tiles stage is classify, compact and fills over lists. The upsample has one form.']
-    # the horizon estimators
-    rows = estimator_results(fin)
+    # the horizon estimators (the later run after their fix, else the final run's)
+    hor = runs['horizon'] if estimator_results(runs.get('horizon', {})) else fin
+    rows = estimator_results(hor)
     if rows:
-        out += ['', '### The horizon-slice estimators against AMD HIGH (the final run)', '',
+        out += ['', '### The horizon-slice estimators against AMD HIGH (%s)' % (
+            'a later run, commit 1065bc3' if hor is not fin else 'the final run'), '',
                 '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
         for n, per in rows:
             out.append('| %s (1 denoise pass) | %s |' % (n, ' | '.join(
@@ -644,14 +647,14 @@ def measured_section(runs, results):
     if rows and os.path.isfile(steps):
         with open(steps) as f:
             body = [l.rstrip('\n') for l in f if not l.startswith('#')]
-        out += ['', '**These frames take about twice what they took before commit 97cb2c7**, which gave the '
+        out += ['', '**Commit 97cb2c7 had made these frames about twice as long on this GPU**: it gave the '
                 'horizon estimators clear steps (`vkCmdClearColorImage`) where fill dispatches wrote their '
-                'intermediates: on this GPU a clear of the view z costs 90 microseconds and one of the AO 41 at '
-                '960x540, where the fills took 4 each (`docs/gpu-measured/h200-horizon-steps.txt`, per-pass '
-                '`--timings` of this build and of 0c7a571, median ms, min, max):', '', '```'] + body + ['```', '',
-                'On lavapipe the clears are the cheaper (docs/tiles.md); on this GPU a dispatch that writes the '
-                'value is. Not yet changed: the next step is a fill dispatch over the whole image in the GPU '
-                'forms, the clear in the CPU forms.']
+                'intermediates, and on this GPU a clear of the view z costs 90 microseconds and one of the AO 41 '
+                'at 960x540, where the fills took 4 each. Since commit 1065bc3 the GPU forms fill with a dispatch '
+                'over every tile that skips the tiles a later pass writes (`fill.view_all`, `fill.horizon_all`); '
+                'the CPU forms keep the clears, which lavapipe runs faster (docs/tiles.md). Per-pass `--timings` '
+                '(`docs/gpu-measured/h200-horizon-steps.txt`: median ms, min, max; "final" 349c7a2, "fixed" '
+                '1065bc3, "old" 0c7a571):', '', '```'] + body + ['```']
     # the driver's statistics
     text = text_part(fin, 'stats.cacao')
     if text:
