@@ -68,7 +68,8 @@ os.makedirs(run_dir)
 side = {'total_ms': 0.1, 'stages': {'generate': 0.05}}
 result = {'config': 'HIGH_native', 'ratio': 1.5, 'amd': dict(side), 'cacao': dict(side),
           'runs': {'amd': [{'total_ms': 0.1, 'frames_total_ms': [0.1] * 30}],
-                   'cacao': [{'total_ms': 0.15, 'steps': {'generate_gpu.q2': 0.05}}]}}
+                   'cacao': [{'total_ms': 0.15, 'steps': {'generate_gpu.q2': 0.05, 'classify': 0.01}},
+                             {'total_ms': 0.17, 'steps': {'generate_gpu.q2': 0.07, 'classify': 0.01}}]}}
 json.dump({'procedure': {'reps': 1}, 'results': [result]}, open(os.path.join(run_dir, 'cacao.sceneA.json'), 'w'))
 json.dump({'configurations': []}, open(os.path.join(run_dir, 'stats.cacao.json'), 'w'))
 open(os.path.join(run_dir, 'stats.cacao.txt'), 'w').write('key wave\n')
@@ -81,8 +82,13 @@ parts = json.load(open(merged))['parts']
 check(sorted(parts) == ['cacao.sceneA', 'machine.txt', 'stats.amd', 'stats.cacao', 'stats.cacao.txt'],
       'merged parts %s' % sorted(parts))
 check(parts.get('stats.amd') == [{'entry': 'A'}, {'entry': 'B'}], 'JSON lines merged as a list, other lines left out')
-check(parts['cacao.sceneA']['results'][0]['runs'] == {'amd': [{'total_ms': 0.1}], 'cacao': [{'total_ms': 0.15}]},
+check(parts['cacao.sceneA']['results'][0]['runs'] == {'amd': [{'total_ms': 0.1}],
+                                                      'cacao': [{'total_ms': 0.15}, {'total_ms': 0.17}]},
       'per-run details reduced to totals')
+steps = parts['cacao.sceneA']['results'][0].get('cacao_steps', {})
+check(sorted(steps) == ['classify', 'generate_gpu.q2'] and abs(steps['generate_gpu.q2'] - 0.06) < 1e-12 and
+      steps['classify'] == 0.01,
+      "cacao's passes kept as the median over the runs")
 
 # The report of the committed runs: every table present, every ratio the runs' own.
 report = load('gpu_report', os.path.join(SRC, 'tools', 'gpu-report.py'))

@@ -6,14 +6,19 @@
 # parts and merges the results into $OUT (or the folder given to it). The bundle is ignored by git
 # (.git/info/exclude) and travels with the device tool's `carry` (run.sh prints the list).
 #
-# usage: tools/device-bundle.sh [--out DIR] [--build DIR] [--old-build DIR]
-#   --out DIR        the bundle (default .gpu, in the repository)
-#   --build DIR      the build whose cacao, cacao-bench and cacao-inspect run there (default build)
-#   --old-build DIR  a second build to time in the same run (its tools/cli/cacao and
-#                    tools/inspect/cacao-inspect are copied into DIR/old): the A/B of a change
+# usage: tools/device-bundle.sh [--out DIR] [--build DIR] [--old-build DIR] [--also NAME=DIR ...]
+#   --out DIR          the bundle (default .gpu, in the repository)
+#   --build DIR        the build whose cacao, cacao-bench and cacao-inspect run there (default build)
+#   --also NAME=DIR    another build to time in the same run (its tools/cli/cacao and
+#                      tools/inspect/cacao-inspect are copied into the bundle's builds/NAME):
+#                      the A/B of a change, or several candidates; repeatable
+#   --old-build DIR    the same as --also old=DIR
 # On the GPU machine, from the repository's root:  bash .gpu/run.sh [PARTS] [SCENES] [REPS]
-# (defaults: stats,cacao,estimators,cpuforms; the three shared scenes; 3), results in $OUT/measured.json
-# (and measured_old.json with --old-build): copy them to docs/gpu-measured/ and name them in
+# (defaults: stats,cacao,estimators,cpuforms; the three shared scenes; 3), results in
+# $OUT/measured.json and one measured_NAME.json per other build. The `cacao` part runs scene by
+# scene, every build's after the main one's (each beside AMD), so that drift reaches them alike;
+# the other builds run the `cacao` and `stats` parts only. Each merged result keeps cacao's passes
+# one by one (cacao_steps). Copy the files to docs/gpu-measured/ and name them in
 # tools/gpu-report.py's MEASURED.
 # CACAO_SHARED_DIR (default ../shared) holds amd-cacao/, scenes/ and reference-amd/.
 set -euo pipefail
@@ -23,21 +28,30 @@ die() { echo "device-bundle.sh: $*" >&2; exit 1; }
 
 out=.gpu
 build=build
-old=
+also=()
 while [ $# -gt 0 ]; do
     case "$1" in
-    --out | --build | --old-build)
+    --out | --build | --old-build | --also)
         [ $# -ge 2 ] || die "$1 needs a value"
-        case "$1" in --out) out=$2 ;; --build) build=$2 ;; --old-build) old=$2 ;; esac
+        case "$1" in
+        --out) out=$2 ;;
+        --build) build=$2 ;;
+        --old-build) also+=("old=$2") ;;
+        --also)
+            [[ "$2" =~ ^[A-Za-z0-9_-]+=.+ ]] || die "--also '$2': give NAME=DIR (NAME: letters, digits, _ and -)"
+            also+=("$2") ;;
+        esac
         shift 2 ;;
-    -h | --help) sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h | --help) sed -n '2,24p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) die "unknown option '$1' (see --help)" ;;
     esac
 done
 shared=${CACAO_SHARED_DIR:-$(pwd)/../shared}
 bins=("$build/tools/cli/cacao" "$build/tools/bench/cacao-bench" "$build/tools/inspect/cacao-inspect")
 for b in "${bins[@]}"; do [ -x "$b" ] || die "no $b (build first, or give --build)"; done
-[ -z "$old" ] || [ -x "$old/tools/cli/cacao" ] || die "no $old/tools/cli/cacao (--old-build)"
+for a in "${also[@]+"${also[@]}"}"; do
+    [ -x "${a#*=}/tools/cli/cacao" ] || die "no ${a#*=}/tools/cli/cacao (--also ${a%%=*}=...)"
+done
 [ -x "$shared/amd-cacao/amd_cacao" ] || die "no AMD program under $shared/amd-cacao (set CACAO_SHARED_DIR)"
 
 rm -rf "$out"
@@ -61,11 +75,13 @@ for s in "$shared"/reference-amd/*/; do
     cp "$shared/scenes/$name/depth.pfm" "$shared/scenes/$name/camera.json" "$out/shared/scenes/$name/"
     cp "$s/settings.json" "$out/shared/reference-amd/$name/"
 done
-if [ -n "$old" ]; then
-    mkdir -p "$out/old/tools/cli" "$out/old/tools/inspect"
-    cp "$old/tools/cli/cacao" "$out/old/tools/cli/"
-    [ -x "$old/tools/inspect/cacao-inspect" ] && cp "$old/tools/inspect/cacao-inspect" "$out/old/tools/inspect/"
-fi
+for a in "${also[@]+"${also[@]}"}"; do
+    name=${a%%=*} dir=${a#*=}
+    [ ! -d "$out/builds/$name" ] || die "--also $name given twice"
+    mkdir -p "$out/builds/$name/tools/cli" "$out/builds/$name/tools/inspect"
+    cp "$dir/tools/cli/cacao" "$out/builds/$name/tools/cli/"
+    [ -x "$dir/tools/inspect/cacao-inspect" ] && cp "$dir/tools/inspect/cacao-inspect" "$out/builds/$name/tools/inspect/"
+done
 cat >"$out/run.sh" <<'EOF'
 #!/bin/bash
 # Made by tools/device-bundle.sh. From the repository's root on the GPU machine:
@@ -82,7 +98,7 @@ for icd in /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json /usr/share/vulka
            /etc/vulkan/icd.d/nvidia_icd.json; do
     [ -f "$icd" ] && { export VK_DRIVER_FILES=$icd VK_ICD_FILENAMES=$icd; break; }
 done
-R=/tmp/device-run; rm -rf "$R" "$R-old"; mkdir -p "$R"
+R=/tmp/device-run; rm -rf "$R" "$R"-*; mkdir -p "$R"
 { date; uptime; nproc; nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm,clocks.mem,pstate,temperature.gpu --format=csv; } >"$R/machine.txt" 2>&1
 build/tools/cli/cacao --list-devices >"$R/devices.txt" 2>&1
 cat "$R/devices.txt"
@@ -90,14 +106,26 @@ cat "$R/devices.txt"
 device=${DEVICE:-$(sed -n 's/^[0-9]*: \(.*\) (\(discrete\|integrated\|virtual\) GPU).*/\1/p' "$R/devices.txt" | head -1)}
 [ -n "$device" ] || { echo "no GPU among the Vulkan devices (ICD: ${VK_DRIVER_FILES:-none})"; exit 3; }
 D=(python3 tools/device-sidebyside.py --device "$device" --shared "$here/shared" --reps "$reps" --frames "${FRAMES:-30}" --scenes "$scenes")
-if [ -d "$here/old" ]; then
-    mkdir -p "$R-old"; cp "$R/machine.txt" "$R/devices.txt" "$R-old/"
-    "${D[@]}" --build "$here/old" --out "$R-old" --parts "$(echo "$parts" | tr , '\n' | grep -x 'cacao\|stats' | paste -sd, -)"
+builds=$(ls "$here/builds" 2>/dev/null || true)
+has() { echo ",$parts," | grep -q ",$1,"; }
+for b in $builds; do mkdir -p "$R-$b"; cp "$R/machine.txt" "$R/devices.txt" "$R-$b/"; done
+if has stats; then
+    "${D[@]}" --out "$R" --parts stats
+    for b in $builds; do "${D[@]}" --build "$here/builds/$b" --out "$R-$b" --parts stats; done
 fi
-"${D[@]}" --out "$R" --parts "$parts"
+if has cacao; then # scene by scene, every build after the main one
+    for s in $(echo "$scenes" | tr , ' '); do
+        "${D[@]}" --out "$R" --parts cacao --scenes "$s"
+        for b in $builds; do "${D[@]}" --build "$here/builds/$b" --out "$R-$b" --parts cacao --scenes "$s"; done
+    done
+fi
+rest=$(echo "$parts" | tr , '\n' | grep -vx 'cacao\|stats' | paste -sd, -)
+[ -z "$rest" ] || "${D[@]}" --out "$R" --parts "$rest"
 { date; uptime; nvidia-smi --query-gpu=name,clocks.sm,clocks.mem,pstate,temperature.gpu --format=csv; } >"$R/machine_after.txt" 2>&1
 python3 tools/device-sidebyside.py --merge "$R" --out "$dest/measured.json"
-[ -d "$R-old" ] && cp "$R/machine_after.txt" "$R-old/" && python3 tools/device-sidebyside.py --merge "$R-old" --out "$dest/measured_old.json"
+for b in $builds; do
+    cp "$R/machine_after.txt" "$R-$b/" && python3 tools/device-sidebyside.py --merge "$R-$b" --out "$dest/measured_$b.json"
+done
 exit 0
 EOF
 chmod +x "$out/run.sh"

@@ -45,6 +45,7 @@ import argparse
 import json
 import os
 import shlex
+import statistics
 import subprocess
 import sys
 
@@ -147,7 +148,12 @@ def merge(folder, out):
             doc['parts'][name] = open(p).read()
     for res in (r for k, v in doc['parts'].items() if k.startswith(('cacao.', 'cpuforms.', 'estimators.'))
                 for r in v['results']):
-        for side in ('amd', 'cacao'):  # per-run details stay in the run folder
+        # cacao's passes one by one (the stages group them): the median over the runs of each pass
+        steps = [r['steps'] for r in res['runs']['cacao'] if 'steps' in r]
+        if steps:
+            res['cacao_steps'] = {n: statistics.median(s[n] for s in steps if n in s)
+                                  for n in sorted({n for s in steps for n in s})}
+        for side in ('amd', 'cacao'):  # other per-run details stay in the run folder
             res['runs'][side] = [{'total_ms': r['total_ms']} for r in res['runs'][side]]
     json.dump(doc, open(out, 'w'), indent=1, sort_keys=True)
     print('wrote %s (%d parts)' % (out, len(doc['parts'])))
