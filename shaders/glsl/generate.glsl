@@ -66,10 +66,6 @@ vec4 g_level[4];
 float g_top_level;
 vec2 g_inv_d;
 #if GEN_GPU
-/* The Q3 base pass's GPU form: what main gives the texel it computes: the pattern's row
- * (2 y + x) % 5, and its view z in .y (the texels' depths come four in one gather). */
-int g_pattern_row;
-vec4 g_base;
 /* The GPU form's atlas: the slice's size and the rows where levels 2 and 3 start (level l's
  * extent and place follow from them in integers, cacao_shared.h). */
 ivec2 g_s0;
@@ -165,7 +161,7 @@ float generate_texel(ivec2 xy, int layer)
      * atlas can continue past the slice, so the clamp is done here. Gather order: x = (0,1),
      * y = (1,1), z = (1,0), w = (0,0). */
 #if GEN_GPU && GEN_BASE
-    float zc = g_base.y; /* the base pass reads no neighbour: main gathers the centres of a quad */
+    float zc = texelFetch(depths, ivec3(xy, layer), 0).r; /* the base pass reads no neighbour */
     float zl = zc, zt = zc;
     vec4 g_br = vec4(zc);
 #elif GEN_GPU
@@ -199,11 +195,7 @@ float generate_texel(ivec2 xy, int layer)
     float falloff = -1.0 / (r_eff * r_eff);
 
     /* 3. per-pixel rotation/scale of the pattern */
-#if GEN_GPU && GEN_BASE
-    int ri = g_pattern_row; /* main steps it from texel to texel */
-#else
     int ri = (2 * xy.y + xy.x) % 5;
-#endif
     vec4 rot_scale = cb.pattern_rot_scale[slice * 5 + ri] * radius_px;
 
     /* 4. self-occlusion guard for the R16F depths */
@@ -377,9 +369,7 @@ void main()
     float vmin = 1.0e30, vmax = -1.0e30;
     if (in_rect(xy, size)) { /* no return: every invocation reaches the barrier */
         init_atlas(size);
-        g_pattern_row = (2 * xy.y + xy.x) % 5;
         [[unroll]] for (int layer = 0; layer < 4; ++layer) {
-            g_base = vec4(texelFetch(depths, ivec3(xy, layer), 0).r);
             /* roundEven's result is already the integer 0..255 the store's conversion makes */
             float v = roundEven(sat(generate_texel(xy, layer)) * 255.0) * (1.0 / 255.0);
             vmin = min(vmin, v);

@@ -25,6 +25,11 @@ bool group_of(out ivec2 g)
 #endif
 }
 
+#if CACAO_PASS == CACAO_PASS_CLASSIFY || CACAO_PASS == CACAO_PASS_COMPACT || CACAO_PASS == CACAO_PASS_FILL
+/* Where tile t's class is (cacao_shared.h). */
+uint class_index(ivec2 t) { return uint(CACAO_TILE_CLASSES + t.y * CB.tiles_x + t.x); }
+#endif
+
 /* The invocation's texel in group g: a macro, since gl_WorkGroupSize is only known after each
  * pass declares its local size (glslang takes 1 x 1 x 1 before). */
 #define texel_of(g) ((g) * ivec2(gl_WorkGroupSize.xy) + ivec2(gl_LocalInvocationID.xy))
@@ -44,7 +49,7 @@ bool touches_needed(ivec2 t0, ivec2 t1)
     t1 = clamp(t1 + 1, ivec2(0), last);
     for (int y = t0.y; y <= t1.y; ++y)
         for (int x = t0.x; x <= t1.x; ++x)
-            if (tiles[CACAO_TILE_CLASSES + y * CB.tiles_x + x] == CACAO_TILE_CLASS_ACTIVE) return true;
+            if (tiles[class_index(ivec2(x, y))] == CACAO_TILE_CLASS_ACTIVE) return true;
     return false;
 }
 #endif
@@ -167,7 +172,7 @@ void main()
 #endif
     uint cls = (flags & 1u) != 0u ? CACAO_TILE_CLASS_ACTIVE
              : (flags & 2u) != 0u ? CACAO_TILE_CLASS_FADED : CACAO_TILE_CLASS_BACKGROUND;
-    tiles[CACAO_TILE_CLASSES + t.y * CB.tiles_x + t.x] = cls;
+    tiles[class_index(t)] = cls;
     atomicAdd(tiles[CACAO_TILE_COUNT_ACTIVE + cls], 1u);
 #if CACAO_VARIANT == CACAO_CLASSIFY_SLICES
     if (cls == CACAO_TILE_CLASS_ACTIVE) mark_needed(t);
@@ -232,7 +237,7 @@ void main()
      * write them: prepare writes every pixel of the tiles that are not all background (its list),
      * the estimator and the denoise passes every pixel of the needed tiles, which hold every
      * active tile. The test is the same for the whole group. */
-    uint cls = tiles[CACAO_TILE_CLASSES + gl_WorkGroupID.y * CB.tiles_x + gl_WorkGroupID.x];
+    uint cls = tiles[class_index(group)];
 #if CACAO_VARIANT == CACAO_FILL_HORIZON_ALL
     if (cls != CACAO_TILE_CLASS_ACTIVE && in_rect(p, imageSize(horizon_ao_out)))
         imageStore(horizon_ao_out, p, vec4(1.0, 0.0, 0.0, 0.0));
