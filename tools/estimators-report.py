@@ -271,7 +271,7 @@ def real_gpu():
     g = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(g)
     runs = g.load_measured(os.path.join(ROOT, 'docs', 'gpu-measured'))
-    forms = next((runs[r] for r in ('horizon', 'final', 'forms') if g.estimator_results(runs.get(r, {}))), {})
+    forms = g.horizon_run(runs)
     rows = g.estimator_results(forms)
     if not rows:
         return []

@@ -63,11 +63,14 @@ MEASURED = {'final': 'h200-final.json', 'before': 'h200-before.json', 'lists': '
             'tf_final': 'h200-texelfetch-final.json', 'tf_before': 'h200-texelfetch-before.json',
             'forms': 'h200-run-texelfetch.json', 'forms_before': 'h200-run-texelfetch-before.json',
             'atomics': 'h200-run-atomics.json', 'atomics_before': 'h200-run-atomics-before.json'}
-# What the runs are of (said with the tables: a run measures its code).
-MEASURED_CODE = ('The final run is of commit 349c7a2; in the same run, interleaved with it, its "before" is '
-                 'commit abd0c77 (the previous main: generate and the blur skip unneeded groups in the shader, '
-                 'classify counting with its marks) and "lists" commit 0c7a571 (the GPU forms over tile lists: '
-                 'classify, compact, two fills, indirect dispatches).')
+# The commit each role's build was (said with the tables: a run measures its code).
+MEASURED_COMMITS = {'final': '349c7a2', 'before': 'abd0c77', 'lists': '0c7a571', 'horizon': '1065bc3',
+                    'tf_before': '6588704', 'tf_final': '8ba0da9'}
+C = MEASURED_COMMITS
+MEASURED_CODE = ('The final run is of commit %s; in the same run, interleaved with it, its "before" is '
+                 'commit %s (the previous main: generate and the blur skip unneeded groups in the shader, '
+                 'classify counting with its marks) and "lists" commit %s (the GPU forms over tile lists: '
+                 'classify, compact, two fills, indirect dispatches).') % (C['final'], C['before'], C['lists'])
 SCENES = ['interior_fzkhaus', 'statues_scanned', 'street_track']
 AMD_CONFIGS = ['%s_%s' % (q.upper(), r) for r in ('native', 'downsampled') for q in QUALITIES]
 MEASURED_STAGES = ['prepare', 'other', 'base', 'importance', 'generate', 'blur', 'apply', 'upsample']
@@ -409,6 +412,12 @@ def estimator_results(parts):
                  for sc in SCENES]) for n in names]
 
 
+def horizon_run(runs):
+    """The run whose estimators part reports the horizon estimators: the later run made after their
+    GPU fills ('horizon'), else the final run's, else the older 'forms' run's ({} without any)."""
+    return next((runs[r] for r in ('horizon', 'final', 'forms') if estimator_results(runs.get(r, {}))), {})
+
+
 def sm_clock(text):
     """The SM clock of an `nvidia-smi --query-gpu=...,clocks.sm,... --format=csv` reading."""
     lines = text.splitlines()
@@ -518,8 +527,8 @@ def measured_section(runs, results):
     if 'before' in runs:
         bef, lists = runs['before'], runs.get('lists', {})
         out += ['', '### The changes, measured in the same run', '',
-                'cacao/AMD of the three builds, interleaved with AMD in one run: "lists" (0c7a571) / "before" '
-                '(abd0c77) / final (349c7a2).', '',
+                'cacao/AMD of the three builds, interleaved with AMD in one run: "lists" (%s) / "before" '
+                '(%s) / final (%s).' % (C['lists'], C['before'], C['final']), '',
                 '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
         out += scene_rows(lambda sc, cfg: ' / '.join(
             '%.2f' % r['ratio'] if r else '-' for r in (results_of(x, 'cacao', sc).get(cfg) for x in (lists, bef, fin))))
@@ -593,7 +602,7 @@ def measured_section(runs, results):
                 'The GPU form of generate at Q0..Q2 fetches its taps\' depths through the sampled view of the '
                 'depth atlas (`texelFetch`), where the CPU form, and Q3 and its base pass, load them from the '
                 'storage image (`imageLoad`: lavapipe runs that faster). Same texels, same output. The generate '
-                'stage in microseconds, before / after, in an earlier session\'s run (commits 6588704 / 8ba0da9):', '',
+                'stage in microseconds, before / after, in an earlier session\'s run (commits %s / %s):' % (C['tf_before'], C['tf_final']), '',
                 '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
         def generate_cell(sc, cfg):
             b, f = stage_of(runs['tf_before'], sc, cfg, 'generate'), stage_of(runs['tf_final'], sc, cfg, 'generate')
@@ -633,11 +642,11 @@ def measured_section(runs, results):
                 'times the GPU form\'s cost on AMD\'s GPUs; the GPU form keeps the sampler. The CPU forms\' '
                 'tiles stage is classify, compact and fills over lists. The upsample has one form.']
     # the horizon estimators (the later run after their fix, else the final run's)
-    hor = runs['horizon'] if estimator_results(runs.get('horizon', {})) else fin
+    hor = horizon_run(runs)
     rows = estimator_results(hor)
     if rows:
         out += ['', '### The horizon-slice estimators against AMD HIGH (%s)' % (
-            'a later run, commit 1065bc3' if hor is not fin else 'the final run'), '',
+            'a later run, commit %s' % C['horizon'] if hor is not fin else 'the final run'), '',
                 '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
         for n, per in rows:
             out.append('| %s (1 denoise pass) | %s |' % (n, ' | '.join(
@@ -650,11 +659,11 @@ def measured_section(runs, results):
         out += ['', '**Commit 97cb2c7 had made these frames about twice as long on this GPU**: it gave the '
                 'horizon estimators clear steps (`vkCmdClearColorImage`) where fill dispatches wrote their '
                 'intermediates, and on this GPU a clear of the view z costs 90 microseconds and one of the AO 41 '
-                'at 960x540, where the fills took 4 each. Since commit 1065bc3 the GPU forms fill with a dispatch '
+                'at 960x540, where the fills took 4 each. Since commit %s the GPU forms fill with a dispatch '
                 'over every tile that skips the tiles a later pass writes (`fill.view_all`, `fill.horizon_all`); '
                 'the CPU forms keep the clears, which lavapipe runs faster (docs/tiles.md). Per-pass `--timings` '
-                '(`docs/gpu-measured/h200-horizon-steps.txt`: median ms, min, max; "final" 349c7a2, "fixed" '
-                '1065bc3, "old" 0c7a571):', '', '```'] + body + ['```']
+                '(`docs/gpu-measured/h200-horizon-steps.txt`: median ms, min, max; "final" %s, "fixed" '
+                '%s, "old" %s):' % (C['horizon'], C['final'], C['horizon'], C['lists']), '', '```'] + body + ['```']
     # the driver's statistics
     text = text_part(fin, 'stats.cacao')
     if text:
