@@ -22,6 +22,7 @@ const cacaoi_slot_row cacaoi_slots[CACAO_BINDING_COUNT] = {
     SLOT(IMPORTANCE_MAP_IMAGE, STORAGE_IMAGE, NONE), SLOT(VIEW_DEPTH, STORAGE_IMAGE, NONE),
     SLOT(VIEW_NORMALS, STORAGE_IMAGE, NONE),    SLOT(HORIZON_AO, STORAGE_IMAGE, NONE),
     SLOT(HORIZON_AO_OUT, STORAGE_IMAGE, NONE),  SLOT(OUTPUT, STORAGE_IMAGE, NONE),
+    SLOT(DEPTH_HISTORY, STORAGE_IMAGE, NONE),   SLOT(NORMALS_HISTORY, STORAGE_IMAGE, NONE),
 };
 #undef SLOT
 
@@ -53,6 +54,9 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
     IMAGE(AO_RAW,          "ao_raw",          FULL,       false, false, R16_SFLOAT,     "r16f",        2),
     IMAGE(AO_PONG,         "ao_pong",         FULL,       false, false, R16_SFLOAT,     "r16f",        2),
     IMAGE(AO_HALF,         "ao_half",         HALF,       false, false, R16_SFLOAT,     "r16f",        2),
+    /* reuse: 2x2 pixels a texel (tiles.glsl) */
+    IMAGE(DEPTH_HISTORY,   "depth_history",   HALF,       false, false, R32G32B32A32_SFLOAT, "rgba32f", 16),
+    IMAGE(NORMALS_HISTORY, "normals_history", HALF_X3,    false, false, R32G32B32A32_SFLOAT, "rgba32f", 16),
 };
 #undef CALLER
 #undef BUFFER
@@ -217,6 +221,17 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                   /* the GPU forms' whole-image fills: a clear costs an H200 about 20x a dispatch
                    * (docs/gpu.md); lavapipe the other way round (docs/tiles.md) */
                   .grids = {[CACAO_FILL_HORIZON_ALL] = CACAOI_GRID_OUTPUT, [CACAO_FILL_VIEW_ALL] = CACAOI_GRID_OUTPUT}},
+    /* docs/tiles.md "Reusing the previous frame": the diff, one invocation per tile, compares the
+     * caller's depth (and normals) with the copies the previous frame kept and updates them; the
+     * prefix sums each row of tiles' changed flags (one invocation per row); the reach marks the
+     * tiles whose output a change can reach, one invocation per tile. */
+    PASS(REUSE) = {"reuse", {"diff", "diff_normals", "prefix", "reach"}, 4, false, false, false,
+                   {CACAO_WG_CLASSIFY, CACAO_WG_CLASSIFY}, CACAOI_GRID_TILES, 6,
+                   {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, V(CACAO_REUSE_DIFF) | V(CACAO_REUSE_DIFF_NORMALS)),
+                    R(SRC_NORMALS, NORMALS_INPUT, V(CACAO_REUSE_DIFF_NORMALS)),
+                    W(DEPTH_HISTORY, DEPTH_HISTORY, V(CACAO_REUSE_DIFF) | V(CACAO_REUSE_DIFF_NORMALS)),
+                    W(NORMALS_HISTORY, NORMALS_HISTORY, V(CACAO_REUSE_DIFF_NORMALS)), W(TILES, TILES, ALL)},
+                   .grids = {[CACAO_REUSE_PREFIX] = CACAOI_GRID_TILE_ROWS}},
 };
 #undef R
 #undef W

@@ -65,6 +65,7 @@ extern const cacaoi_slot_row cacaoi_slots[CACAO_BINDING_COUNT];
 #define CACAOI_SIZE_FULL 4       /* the output's size */
 #define CACAOI_SIZE_TILES 5      /* the tile buffer: header, classes and lists (cacao_plan.tile_buffer_bytes) */
 #define CACAOI_SIZE_HALF 6       /* half the output's size, rounded up */
+#define CACAOI_SIZE_HALF_X3 7    /* as HALF, three times as wide (three texels per 2x2 pixels) */
 
 typedef struct cacaoi_resource_row {
     const char *name;        /* cacao_resource_name() */
@@ -92,6 +93,7 @@ extern const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT];
 #define CACAOI_GRID_COMPACT 7      /* one invocation per tile, blur group and apply group */
 #define CACAOI_GRID_TILES 8        /* one invocation per tile */
 #define CACAOI_GRID_HALF 9         /* half the output size (rounded up) / workgroup */
+#define CACAOI_GRID_TILE_ROWS 10   /* one invocation per row of tiles (x only) */
 
 #define CACAOI_ALL_VARIANTS 0xffu
 #define CACAOI_VARIANT(v) (1u << (v))

@@ -57,7 +57,7 @@ static void rebind(cacaoi_step *s, unsigned slot, cacao_resource resource) {
 /* The longest sequences: CACAO with the caller's normals at HIGHEST with a blur (prepare twice,
  * classify, compact, Q3 base, importance twice, generate, fill twice, blur, apply), and the
  * horizon estimators with the most denoise passes. */
-_Static_assert(12 <= CACAOI_SEQUENCE_MAX && 8 + CACAO_KEY_MAX_BLUR_PASSES <= CACAOI_SEQUENCE_MAX,
+_Static_assert(15 <= CACAOI_SEQUENCE_MAX && 8 + CACAO_KEY_MAX_BLUR_PASSES <= CACAOI_SEQUENCE_MAX,
                "a plan holds every step of the longest sequence");
 _Static_assert(CACAO_WG_HORIZON_X == CACAO_TILE && CACAO_WG_HORIZON_Y == CACAO_TILE,
                "a horizon estimator's group is one tile of the list it runs over");
@@ -122,6 +122,11 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     size_t n = 0;
     const unsigned ds = c->downsampled ? 1 : 0, fp = c->fp16 ? 1 : 0;
     const unsigned depths = cacaoi_qualities[c->quality].depths_variant;
+    if (c->reuse) { /* docs/tiles.md "Reusing the previous frame" */
+        push(out, &n, CACAO_PASS_REUSE, c->normals_from_input ? CACAO_REUSE_DIFF_NORMALS : CACAO_REUSE_DIFF, 0, 0, 0);
+        push(out, &n, CACAO_PASS_REUSE, CACAO_REUSE_PREFIX, 0, 0, 0);
+        push(out, &n, CACAO_PASS_REUSE, CACAO_REUSE_REACH, 0, 0, 0);
+    }
     if (c->normals_from_input) {
         push(out, &n, CACAO_PASS_PREPARE_DEPTHS, depths, ds, 0, 0);
         push(out, &n, CACAO_PASS_PREPARE_NORMALS, 0, ds, 0, 0);
@@ -181,14 +186,15 @@ static bool key_dispatched(const cacao_key *key, const cacao_key_subset *subset,
                 for (unsigned ni = 0; ni < 2; ++ni)
                     for (unsigned blur = 0; blur <= CACAO_KEY_MAX_BLUR_PASSES; ++blur)
                         for (unsigned est = 0; est < CACAO_KEY_ESTIMATOR_COUNT; ++est)
-                            for (unsigned gpu = 0; gpu < 2; ++gpu) {
-                                if (!(forms_mask & (1u << gpu))) continue;
-                                cacao_key_config c = {q, ds != 0, fp != 0, ni != 0, blur, est, gpu != 0};
-                                cacao_key keys[CACAO_KEY_CONFIG_MAX];
-                                size_t n = cacaoi_keys_for_config(&c, keys);
-                                for (size_t i = 0; i < n; ++i)
-                                    if (cacaoi_key_compare(&keys[i], key) == 0) return true;
-                            }
+                            for (unsigned gpu = 0; gpu < 2; ++gpu)
+                                for (unsigned reuse = 0; reuse < (est == CACAO_KEY_ESTIMATOR_CACAO ? 2u : 1u); ++reuse) {
+                                    if (!(forms_mask & (1u << gpu))) continue;
+                                    cacao_key_config c = {q, ds != 0, fp != 0, ni != 0, blur, est, gpu != 0, reuse != 0};
+                                    cacao_key keys[CACAO_KEY_CONFIG_MAX];
+                                    size_t n = cacaoi_keys_for_config(&c, keys);
+                                    for (size_t i = 0; i < n; ++i)
+                                        if (cacaoi_key_compare(&keys[i], key) == 0) return true;
+                                }
             }
         }
     }

@@ -43,7 +43,10 @@
  * arithmetic per texel (docs/gpu.md "The GPU forms of prepare and generate"). */
 #define CACAO_PASS_PREPARE_GPU 17
 #define CACAO_PASS_GENERATE_GPU 18
-#define CACAO_PASS_COUNT 19
+/* Reuse of the previous frame (cacao_settings.reuse_unchanged, docs/tiles.md "Reusing the previous
+ * frame"): which tiles' inputs changed, and which tiles' output a change can reach. */
+#define CACAO_PASS_REUSE 19
+#define CACAO_PASS_COUNT 20
 
 /* Depth-prepare variants (spec: prepare.md). HALF = slices 0 and 3 only (LOWEST), FULL = four
  * slices, MIPS = four slices plus mips 1..3 (HIGH and HIGHEST; MEDIUM never reads mips). */
@@ -102,6 +105,13 @@
 #define CACAO_FILL_HORIZON_ALL 4 /* the GPU forms: HORIZON's and VIEW's values by a dispatch over */
 #define CACAO_FILL_VIEW_ALL 5    /* every pixel, where the CPU forms clear (docs/gpu.md) */
 
+/* Reuse variants: compare the caller's depth (and normals) with the copy the previous frame kept,
+ * per tile; sum the changed tiles along each row of tiles; mark the tiles to recompute. */
+#define CACAO_REUSE_DIFF 0
+#define CACAO_REUSE_DIFF_NORMALS 1
+#define CACAO_REUSE_PREFIX 2
+#define CACAO_REUSE_REACH 3
+
 /* Compact variants: CACAO's lists, or the horizon estimators' (also prepare and background). */
 #define CACAO_COMPACT_SLICES 0
 #define CACAO_COMPACT_HORIZON 1
@@ -121,7 +131,13 @@
  *   classes  one uint per tile, from CACAO_TILE_CLASSES;
  *   lists    the generate, fill and prepare lists hold up to one entry per tile, the
  *            blur list (the last) one per blur group; list l starts at CACAO_TILE_LIST_BASE(l, tiles);
- *   needed   a flag per tile, then one per blur group (CACAO_TILE_NEEDED, CACAO_TILE_BLUR_NEEDED).
+ *   needed   a flag per tile, then one per blur group (CACAO_TILE_NEEDED, CACAO_TILE_BLUR_NEEDED);
+ *   reuse    per tile: its changed flag, its least view z (as uint bits), the changed tiles of its
+ *            row up to it, its recompute flag; then a recompute flag per blur group
+ *            (CACAO_TILE_CHANGED .. CACAO_TILE_BLUR_RECOMPUTE: only with reuse_unchanged, which
+ *            the flags' readers check);
+ *   gates    one VkDispatchIndirectCommand per step (CACAO_TILE_GATE): a step that runs over the
+ *            whole image whether one tile or all changed, and not at all when none did.
  * A list is dispatched as a grid x wide (tiles_x, or blur_groups_x for the blur) and as many rows
  * as its entries fill (lavapipe runs a 1D grid of the same groups slower); group (x, y)
  * takes entry y width + x, and a group past the last entry finds CACAO_TILE_NO_ENTRY (the host
@@ -141,6 +157,8 @@
 #define CACAO_TILE_LIST_ENTRIES(list) (CACAO_TILE_COUNT_BACKGROUND + (list)) /* header: entries in list */
 #define CACAO_TILE_COUNT_NEEDED 22       /* header: needed tiles and blur groups (classify's flags), */
 #define CACAO_TILE_COUNT_BLUR_NEEDED 23  /* counted by the GPU forms' generate and blur as they run them */
+#define CACAO_TILE_COUNT_CHANGED 24      /* header, reuse: tiles whose depth (or normals) changed */
+#define CACAO_TILE_COUNT_RECOMPUTE 25    /* header, reuse: tiles whose output a change can reach */
 #define CACAO_TILE_CLASSES CACAO_TILE_HEADER /* first tile class */
 /* First entry of list 1..4 (tiles: tiles_x tiles_y); the uints of the whole buffer. */
 #define CACAO_TILE_LIST_BASE(list, tiles) (CACAO_TILE_CLASSES + (tiles) * (list))
@@ -150,7 +168,14 @@
  * GPU forms of generate and the blur read their group's (cacaoi_skips_by_class). */
 #define CACAO_TILE_NEEDED(tiles, blur_groups) (CACAO_TILE_LIST_BASE(CACAO_LIST_BLUR, tiles) + (blur_groups))
 #define CACAO_TILE_BLUR_NEEDED(tiles, blur_groups) (CACAO_TILE_NEEDED(tiles, blur_groups) + (tiles))
-#define CACAO_TILE_BUFFER_UINTS(tiles, blur_groups) (CACAO_TILE_BLUR_NEEDED(tiles, blur_groups) + (blur_groups))
+#define CACAO_TILE_CHANGED(tiles, blur_groups) (CACAO_TILE_BLUR_NEEDED(tiles, blur_groups) + (blur_groups))
+#define CACAO_TILE_ZMIN(tiles, blur_groups) (CACAO_TILE_CHANGED(tiles, blur_groups) + (tiles))
+#define CACAO_TILE_ROW_SUM(tiles, blur_groups) (CACAO_TILE_ZMIN(tiles, blur_groups) + (tiles))
+#define CACAO_TILE_RECOMPUTE(tiles, blur_groups) (CACAO_TILE_ROW_SUM(tiles, blur_groups) + (tiles))
+#define CACAO_TILE_BLUR_RECOMPUTE(tiles, blur_groups) (CACAO_TILE_RECOMPUTE(tiles, blur_groups) + (tiles))
+#define CACAO_TILE_GATES(tiles, blur_groups) (CACAO_TILE_BLUR_RECOMPUTE(tiles, blur_groups) + (blur_groups))
+#define CACAO_TILE_GATE_MAX 16           /* gate commands (cacao.h's CACAO_PLAN_MAX_STEPS) */
+#define CACAO_TILE_BUFFER_UINTS(tiles, blur_groups) (CACAO_TILE_GATES(tiles, blur_groups) + 3 * CACAO_TILE_GATE_MAX)
 #define CACAO_TILE_NO_ENTRY 0xffffffffu  /* list slots past the last entry (the host fills them) */
 #define CACAO_TILE_CLASS_ACTIVE 0
 #define CACAO_TILE_CLASS_FADED 1
@@ -182,7 +207,9 @@
 #define CACAO_BINDING_HORIZON_AO 15      /* horizon estimators: visibility to denoise, image2D r16f (read) */
 #define CACAO_BINDING_HORIZON_AO_OUT 16  /* horizon estimators: visibility, image2D r16f (written) */
 #define CACAO_BINDING_OUTPUT 17          /* caller's output, image2D, written without format */
-#define CACAO_BINDING_COUNT 18
+#define CACAO_BINDING_DEPTH_HISTORY 18   /* reuse: the depth the last frame read, image2D rgba32f, 2x2 pixels a texel */
+#define CACAO_BINDING_NORMALS_HISTORY 19 /* reuse: the input normals it read, image2D rgba32f (read and written) */
+#define CACAO_BINDING_COUNT 20
 
 /* ---- Workgroup sizes (x, y); z is always 1 ---- */
 #define CACAO_WG_PREPARE_X 8
@@ -390,7 +417,14 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(INT, blur_out_x)                                                                             \
     M(INT, blur_out_y)                                                                             \
     M(INT, slice_width)                 /* the slice (deinterleaved image, level 0) in texels */   \
-    M(INT, slice_height)
+    M(INT, slice_height)                                                                           \
+    M(INT, reuse)                       /* 0 off; 1 reuse the previous frame's; 2 a full frame */  \
+    M(INT, reuse_all_or_nothing)        /* 1: any change recomputes every tile (HIGHEST's counter) */ \
+    M(INT, reuse_tile_pixels)           /* output pixels per tile side (16 native, 32 downsampled) */ \
+    M(INT, reuse_margin)                /* slice texels a change reaches besides the taps */      \
+    M(FLOAT, reuse_tap_reach)           /* farthest tap offset, in units of the lookup radius */   \
+    M(FLOAT, reuse_near_k)              /* largest |view position| / z over the image's pixels */  \
+    M(INT, gate_count)                  /* gate commands a frame with no change zeroes */
 
 #ifdef CACAO_GLSL
 #ifdef CACAO_BIND_CONSTANTS /* every pass row binds it (glsl/bindings.glsl declares the other slots) */

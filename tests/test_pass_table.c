@@ -44,7 +44,7 @@ static void test_rows(void) {
             CHECK(row->quad[v] <= 4 && (v < row->variants || row->quad[v] == 0));
             if (row->quad[v] > 1)
                 CHECK((grid == CACAOI_GRID_SLICE || grid == CACAOI_GRID_OUTPUT) && row->lists[v] == CACAO_LIST_NONE);
-            CHECK(row->grids[v] <= CACAOI_GRID_HALF && (v < row->variants || row->grids[v] == CACAOI_GRID_ROW));
+            CHECK(row->grids[v] <= CACAOI_GRID_TILE_ROWS && (v < row->variants || row->grids[v] == CACAOI_GRID_ROW));
             if (row->grids[v] != CACAOI_GRID_ROW) CHECK(row->lists[v] == CACAO_LIST_NONE);
         }
         for (unsigned v = 0; v < row->variants; ++v) {

@@ -204,6 +204,18 @@ typedef struct cacao_settings {
                                        only slower. For measurement and tests. */
     cacao_shader_forms shader_forms; /* 0 = the context's choice (see cacao_shader_forms); resolving
                                         keeps 0 */
+    /* CACAO: reuse what did not change (docs/tiles.md "Reusing the previous frame"). The context
+     * keeps a copy of the depth (and of the input normals) and its intermediates from frame to
+     * frame; a frame recomputes only the tiles whose output a changed depth or normal can reach
+     * (the AO radius projected to pixels, the depth mips, the blur and apply footprints; a tile
+     * nearer than that bound allows recomputes whenever anything changed), and nothing at all
+     * when nothing changed. The output is bit for bit that of a full computation of the frame.
+     * A change of camera, settings or size recomputes everything (so does
+     * cacao_inputs.force_full_frame). HIGHEST recomputes every tile when anything changed (its
+     * adaptive pass depends on the whole frame's importance). Frames must reach the GPU in the
+     * order they were recorded: after a recorded frame that was not submitted, force a full frame.
+     * Costs 4 bytes per pixel (plus 16 with input normals). GTAO/BITMASK: refused. */
+    bool reuse_unchanged;
 } cacao_settings;
 
 /* Fills every defaulted field of *in into *out and checks every field. An explicit zero keeps its
@@ -234,6 +246,8 @@ typedef enum cacao_resource {
     CACAO_RES_AO_PONG,          /* GTAO/BITMASK: denoise ping-pong, R16F */
     CACAO_RES_AO_HALF,          /* GTAO/BITMASK downsampled: the 2x2 blocks' visibility, R16F, half size */
     CACAO_RES_TILES,            /* storage + indirect buffer: tile classes, lists, dispatch commands */
+    CACAO_RES_DEPTH_HISTORY,    /* reuse_unchanged: the caller's depth as the last frame read it, RGBA32F, 2x2 pixels a texel */
+    CACAO_RES_NORMALS_HISTORY,  /* reuse_unchanged with input normals: the caller's normals, RGBA32F */
     CACAO_RES_COUNT
 } cacao_resource;
 
@@ -250,7 +264,7 @@ typedef struct cacao_plan_image {
     uint64_t bytes;             /* tightly packed size, all layers */
 } cacao_plan_image;
 
-#define CACAO_PLAN_MAX_STEPS 16     /* steps of any configuration (the longest has 12) */
+#define CACAO_PLAN_MAX_STEPS 16     /* steps of any configuration (the longest has 15) */
 #define CACAO_PLAN_MAX_BINDINGS 10  /* bindings of any step (the most one makes: 9) */
 #define CACAO_PLAN_KEY_NAME_MAX 48  /* a step's key name, with its terminating zero */
 
@@ -281,6 +295,9 @@ typedef struct cacao_plan_step {
                                    pass computes keep (docs/tiles.md); no pipeline, dispatch 0 0 0 */
     uint32_t binding_count;
     cacao_plan_binding bindings[CACAO_PLAN_MAX_BINDINGS];
+    uint8_t gate;               /* reuse_unchanged: 0 none; else a direct step dispatched indirectly
+                                   from gate command gate - 1, which a frame with nothing changed
+                                   zeroes (the full grid otherwise) */
     bool barrier_before;        /* a barrier precedes this step (compute, and transfer for clears) */
     uint32_t barrier_resources; /* bit mask of cacao_resource the barrier orders */
 } cacao_plan_step;
@@ -462,6 +479,12 @@ typedef struct cacao_inputs {
     /* GTAO/BITMASK: frame number for temporal accumulation; it decorrelates the sample pattern of
      * successive frames (64 distinct patterns). 0 for a deterministic frame. */
     uint32_t frame_index;
+    /* settings.reuse_unchanged only. force_full_frame: compute every tile this frame (as the first
+     * frame after a resize does). output_holds_previous: the output image holds what this context
+     * wrote into it last frame, untouched since (an engine's persistent AO target); a frame with
+     * nothing changed then writes nothing (without it, apply runs over the whole output). */
+    bool force_full_frame;
+    bool output_holds_previous;
 } cacao_inputs;
 
 /* Records one frame: constant update, barriers and dispatches. cacao orders itself against the
@@ -489,6 +512,12 @@ typedef struct cacao_tile_counts {
     uint32_t tiles, active, faded, background;   /* the frame's tiles by class */
     uint32_t generate_run, generate_total;       /* generate groups (tiles) run, of the full grid */
     uint32_t blur_run, blur_total;               /* blur groups (0 of 0 without a blur) */
+    uint32_t changed;                            /* reuse_unchanged: tiles whose inputs changed
+                                                    (every tile on a full frame) */
+    uint32_t recomputed;                         /* reuse_unchanged: tiles whose output a change
+                                                    can reach (generate and the blur run over these
+                                                    and one tile around them); 0 when nothing
+                                                    changed. Without reuse both are 0. */
 } cacao_tile_counts;
 
 #define CACAO_TILE_COUNTS_BYTES 128

@@ -255,6 +255,38 @@ static void fill_tile_constants(const cacao_plan *plan, const projection_view *v
     c->blur_out_y = (int)blur_out[1];
 }
 
+/* Reuse of the previous frame (docs/tiles.md "Reusing the previous frame"): how far a changed
+ * depth can move the output, in slice texels. A tap lies at most reuse_tap_reach times the lookup
+ * radius from its texel (the longest pattern entry times the largest per-slice scale; the radius
+ * in texels is bounded in the shader by the tile's least view z); besides the taps: the depth
+ * mips' texel footprint (8 texels at level 3, HIGH and HIGHEST), the tap's rounding (1), depth and normal edges and
+ * normals from depth (2), the blur's passes, the apply's or upsample's footprint (2) and one
+ * texel to spare. cacao_record sets reuse (1 or 2) and gate_count per frame. Orthographic (no
+ * perspective scale of xy with z): near_k only enters the near limit, which is 1 there. */
+static void fill_reuse_constants(const cacao_plan *plan, cacao_constants *c) {
+    if (!plan->settings.reuse_unchanged || plan->settings.estimator != CACAO_ESTIMATOR_CACAO) return;
+    float longest = 0.0f, scale = 0.0f;
+    for (int i = 0; i < 32; ++i) {
+        const cacao_vec4 e = c->sample_pattern[i];
+        longest = fmaxf(longest, sqrtf(e.x * e.x + e.y * e.y));
+    }
+    for (int i = 0; i < 20; ++i) { /* (cs, -sn, -sn, -cs): a reflection times its scale */
+        const cacao_vec4 m = c->pattern_rot_scale[i];
+        scale = fmaxf(scale, sqrtf(m.x * m.x + m.y * m.y));
+    }
+    c->reuse_tap_reach = longest * scale * 1.01f; /* 1%: the R16F z the taps see is rounded */
+    const int blur = plan->settings.blur_pass_count == CACAO_BLUR_NONE ? 0 : plan->settings.blur_pass_count;
+    const bool mips = plan->settings.quality >= CACAO_QUALITY_HIGH; /* Q2 and Q3 read the depth mips */
+    c->reuse_margin = (mips ? 8 : 0) + 1 + 2 + blur + 2 + 1;
+    c->reuse_all_or_nothing = plan->settings.quality == CACAO_QUALITY_HIGHEST ? 1 : 0;
+    c->reuse_tile_pixels = (int)(CACAO_TILE * (plan->settings.downsample ? 4 : 2));
+    /* the near limit scales the radius by sat(|p| near_limit_rec) 0.8 + 0.2, and |p| <= z near_k,
+     * near_k the length of (ndc_to_view xy, 1) at the image's farthest corner */
+    const float ax = fmaxf(fabsf(c->ndc_to_view_add.x), fabsf(c->ndc_to_view_mul.x + c->ndc_to_view_add.x));
+    const float ay = fmaxf(fabsf(c->ndc_to_view_add.y), fabsf(c->ndc_to_view_mul.y + c->ndc_to_view_add.y));
+    c->reuse_near_k = sqrtf(1.0f + ax * ax + ay * ay) * 1.01f;
+}
+
 void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao_constants *c) {
     cacao_settings literal;
     cacaoi_settings_literal(&plan->settings, &literal);
@@ -341,4 +373,5 @@ void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao
             c->normals_to_view.m[4 * col + row] =
                 identity ? (row == col ? 1.0f : 0.0f) : mat_at(in->normals_to_view, rm, row, col);
     if (s->estimator != CACAO_ESTIMATOR_CACAO) fill_horizon_constants(s, &v, k, plan, in, c);
+    fill_reuse_constants(plan, c);
 }

@@ -31,7 +31,8 @@ typedef struct plan_builder {
 /* Decides whether the step needs a barrier before it (read-after-write, write-after-read or
  * write-after-write on any intermediate since the last barrier), then records its accesses. */
 static void finish_step(plan_builder *b, cacao_plan_step *s) {
-    uint32_t reads = 0, writes = 0;
+    uint32_t reads = s->gate ? 1u << CACAO_RES_TILES : 0u; /* a gated step's command is in the tile buffer */
+    uint32_t writes = 0;
     for (uint32_t i = 0; i < s->binding_count; ++i) {
         uint32_t bit = 1u << s->bindings[i].resource;
         if (s->bindings[i].write)
@@ -60,6 +61,7 @@ cacao_key_config cacaoi_key_config_of(const cacao_settings *s) {
         .blur_passes = s->blur_pass_count == CACAO_BLUR_NONE ? 0 : (unsigned)s->blur_pass_count,
         .estimator = (unsigned)s->estimator - 1u,
         .gpu_forms = s->shader_forms == CACAO_SHADER_FORMS_GPU,
+        .reuse = s->reuse_unchanged && s->estimator == CACAO_ESTIMATOR_CACAO,
     };
 }
 
@@ -99,6 +101,10 @@ static void dispatch_size(const cacao_plan *p, const cacao_key *key, uint32_t ou
         out[0] = div_up(p->tiles_x, wx);
         out[1] = div_up(p->tiles_y, wy);
         return;
+    case CACAOI_GRID_TILE_ROWS:
+        out[0] = div_up(p->tiles_y, wx * wy);
+        out[1] = 1;
+        return;
     case CACAOI_GRID_HALF:
         out[0] = div_up(div_up(p->width, 2), wx);
         out[1] = div_up(div_up(p->height, 2), wy);
@@ -120,6 +126,7 @@ static void add_image(cacao_plan *p, cacao_resource res, uint32_t levels_bound) 
     if (row->size == CACAOI_SIZE_SLICE) w = p->slice_width, h = p->slice_height;
     if (row->size == CACAOI_SIZE_IMPORTANCE) w = p->importance_width, h = p->importance_height;
     if (row->size == CACAOI_SIZE_HALF) w = div_up(p->width, 2), h = div_up(p->height, 2);
+    if (row->size == CACAOI_SIZE_HALF_X3) w = 3 * div_up(p->width, 2), h = div_up(p->height, 2);
     if (row->layered) layers = p->slice_count;
     const uint32_t chain = CACAO_DEPTH_MIP_LEVELS(w > h ? w : h);
     const uint32_t mips = levels_bound < chain ? levels_bound : chain;
@@ -218,6 +225,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     plan->uses_load_counter = mips[CACAO_RES_LOAD_COUNTER] != 0;
 
     plan_builder b = {plan, 0, 0};
+    unsigned gates = 0;
     for (size_t i = 0; i < count; ++i) {
         cacao_plan_step *st = &plan->steps[plan->step_count++];
         const cacao_key *key = &steps[i].key;
@@ -231,6 +239,10 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
         if (!st->clear) {
             dispatch_size(plan, key, st->dispatch);
             st->list = cacaoi_passes[key->pass].lists[key->variant];
+            /* reuse: every direct step after the reuse passes runs from a gate command (the
+             * frame with nothing changed zeroes it); gates are numbered in step order, so
+             * apply's, the last step's, is the last */
+            if (config.reuse && !st->list && key->pass != CACAO_PASS_REUSE) st->gate = (uint8_t)++gates;
         }
         for (size_t j = 0; j < binding_count[i]; ++j) {
             const cacaoi_pass_binding *b = &bindings[i][j];

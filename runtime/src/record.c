@@ -96,14 +96,15 @@ static VkImageMemoryBarrier image_barrier(VkImage image, VkImageAspectFlags aspe
 }
 
 /* Frame start: previous frames' accesses to our intermediates end before this frame overwrites
- * them (their contents are discarded: UNDEFINED -> GENERAL), the caller's earlier writes to its
+ * them (their contents are discarded: UNDEFINED -> GENERAL, unless reuse keeps them), the caller's earlier writes to its
  * inputs become visible, and the output goes to GENERAL for storage writes. */
-static void record_frame_start(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in) {
+static void record_frame_start(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in, bool keep) {
     VkImageMemoryBarrier barriers[CACAO_RES_COUNT + 3];
     uint32_t n = 0;
+    /* `keep` (reuse: the frame may keep tiles of the previous one): contents stay, in GENERAL */
     for (uint32_t i = 0; i < ctx->plan.image_count; ++i)
         barriers[n++] = image_barrier(ctx->images[ctx->plan.images[i].resource].image, VK_IMAGE_ASPECT_COLOR_BIT,
-                                      VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                                      keep ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                                       VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
                                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
                                           VK_ACCESS_TRANSFER_WRITE_BIT);
@@ -123,10 +124,28 @@ static void record_frame_start(cacao_context *ctx, VkCommandBuffer cmd, const ca
                          n, barriers);
 }
 
-static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in) {
-    cacao_constants constants;
-    cacaoi_fill_constants(&ctx->plan, in, &constants);
-    ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_CONSTANTS], 0, sizeof constants, &constants);
+/* Reuse (docs/tiles.md "Reusing the previous frame"): whether this frame may keep tiles of the
+ * previous one (the settings ask for it, a frame was recorded since the resize, the caller does
+ * not force a full frame, and the constants, so camera, settings and size, are the same), and
+ * the per-frame constants that say it. Remembers this frame's constants. */
+static bool reuse_frame(cacao_context *ctx, const cacao_inputs *in, cacao_constants *c) {
+    const cacao_plan *p = &ctx->plan;
+    if (!p->settings.reuse_unchanged || p->settings.estimator != CACAO_ESTIMATOR_CACAO) return false;
+    const bool keep = ctx->reuse_primed && !in->force_full_frame &&
+                      memcmp(&ctx->reuse_constants, c, sizeof *c) == 0;
+    ctx->reuse_constants = *c;
+    ctx->reuse_primed = true;
+    uint32_t gates = 0;
+    for (uint32_t i = 0; i < p->step_count; ++i)
+        if (p->steps[i].gate > gates) gates = p->steps[i].gate;
+    c->reuse = keep ? 1 : 2;
+    /* the last gate is apply's (or the upsample's): kept only where the output holds the last frame's */
+    c->gate_count = (int)gates - (in->output_holds_previous ? 0 : 1);
+    return keep;
+}
+
+static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const cacao_constants *constants) {
+    ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_CONSTANTS], 0, sizeof *constants, constants);
     if (ctx->plan.uses_load_counter)
         ctx->vk.CmdFillBuffer(cmd, ctx->buffers[CACAO_RES_LOAD_COUNTER], 0, sizeof(uint32_t), 0);
     if (ctx->plan.uses_tiles) { /* empty lists; the compact pass appends (docs/tiles.md) */
@@ -142,9 +161,19 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
         for (uint32_t i = 0; i < p->step_count; ++i)
             if (p->steps[i].list) header[CACAO_TILE_COMMAND(p->steps[i].list) + 2] = p->steps[i].dispatch[2];
         ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], 0, sizeof header, header);
-        const VkDeviceSize lists =
-            sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_LIST_BASE(CACAO_LIST_GENERATE, (VkDeviceSize)p->tiles_x * p->tiles_y);
-        ctx->vk.CmdFillBuffer(cmd, ctx->buffers[CACAO_RES_TILES], lists, VK_WHOLE_SIZE, CACAO_TILE_NO_ENTRY);
+        const VkDeviceSize tiles = (VkDeviceSize)p->tiles_x * p->tiles_y, groups = (VkDeviceSize)p->blur_groups_x * p->blur_groups_y;
+        const VkDeviceSize lists = sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_LIST_BASE(CACAO_LIST_GENERATE, tiles);
+        const VkDeviceSize gates = sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_GATES(tiles, groups);
+        ctx->vk.CmdFillBuffer(cmd, ctx->buffers[CACAO_RES_TILES], lists, gates - lists, CACAO_TILE_NO_ENTRY);
+        /* reuse: each gated step's full grid (the reach pass zeroes x when nothing changed) */
+        uint32_t commands[3 * CACAO_TILE_GATE_MAX];
+        uint32_t count = 0;
+        for (uint32_t i = 0; i < p->step_count; ++i) {
+            if (!p->steps[i].gate) continue;
+            memcpy(&commands[3 * (p->steps[i].gate - 1)], p->steps[i].dispatch, sizeof p->steps[i].dispatch);
+            if (p->steps[i].gate > count) count = p->steps[i].gate;
+        }
+        if (count) ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], gates, sizeof(uint32_t) * 3 * count, commands);
     }
     const VkMemoryBarrier memory = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
@@ -249,6 +278,12 @@ static void record_step(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inp
     ctx->vk.CmdPushDescriptorSetKHR(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->pipeline_layout, 0, step->binding_count, writes);
     if (step->list)
         ctx->vk.CmdDispatchIndirect(cmd, ctx->buffers[CACAO_RES_TILES], sizeof(uint32_t) * CACAO_TILE_COMMAND(step->list));
+    else if (step->gate) {
+        const cacao_plan *p = &ctx->plan;
+        const VkDeviceSize gates = CACAO_TILE_GATES((VkDeviceSize)p->tiles_x * p->tiles_y,
+                                                    (VkDeviceSize)p->blur_groups_x * p->blur_groups_y);
+        ctx->vk.CmdDispatchIndirect(cmd, ctx->buffers[CACAO_RES_TILES], sizeof(uint32_t) * (gates + 3u * (step->gate - 1u)));
+    }
     else
         ctx->vk.CmdDispatch(cmd, step->dispatch[0], step->dispatch[1], step->dispatch[2]);
 }
@@ -262,8 +297,12 @@ cacao_result cacao_record(cacao_context *ctx, VkCommandBuffer cmd, const cacao_i
     cacao_result r = check_inputs(ctx, in);
     if (r != CACAO_SUCCESS) return r;
 
-    record_frame_start(ctx, cmd, in);
-    record_constants(ctx, cmd, in);
+    /* the constants first: whether the frame keeps the intermediates' contents depends on them */
+    cacao_constants constants;
+    cacaoi_fill_constants(&ctx->plan, in, &constants);
+    const bool keep = reuse_frame(ctx, in, &constants);
+    record_frame_start(ctx, cmd, in, keep);
+    record_constants(ctx, cmd, &constants);
     const VkQueryPool timer = in->timestamp_query_pool;
     if (timer)
         ctx->vk.CmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timer, in->timestamp_first_query);
@@ -328,6 +367,8 @@ cacao_result cacao_tile_counts_decode(const cacao_context *ctx, const void *byte
         .generate_total = p->tiles_x * p->tiles_y,
         .blur_run = skip_in_shader ? h[CACAO_TILE_COUNT_BLUR_NEEDED] : LIST_X(CACAO_LIST_BLUR),
         .blur_total = p->blur_groups_x * p->blur_groups_y,
+        .changed = h[CACAO_TILE_COUNT_CHANGED],
+        .recomputed = h[CACAO_TILE_COUNT_RECOMPUTE],
     };
 #undef LIST_X
     return CACAO_SUCCESS;

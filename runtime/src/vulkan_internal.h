@@ -57,6 +57,10 @@ struct cacao_context {
     bool pipelines_only;     /* the pipelines of the settings exist (cacao_context_create_pipelines),
                                 no intermediates: plan holds the steps at a nominal size */
     cacao_plan plan;
+    /* reuse_unchanged: a frame was recorded since the last resize, and its constants (less the
+     * per-frame reuse fields): a frame whose constants differ recomputes everything */
+    bool reuse_primed;
+    cacao_constants reuse_constants;
 
     VkSampler nearest_sampler, linear_sampler;
     VkDescriptorSetLayout set_layout;

@@ -92,3 +92,11 @@ layout(set = 0, binding = CACAO_BINDING_HORIZON_AO_OUT, CACAO_FORMAT_HORIZON_AO_
 /* No format qualifier: the caller's image format (shaderStorageImageWriteWithoutFormat). */
 layout(set = 0, binding = CACAO_BINDING_OUTPUT) uniform CACAO_ACCESS_OUTPUT image2D output_image;
 #endif
+/* Reuse (tiles.glsl): the copies the diff compares with and updates, so read and written through
+ * one declaration (no access qualifier; CACAO_ACCESS_ is not used). */
+#ifdef CACAO_BIND_DEPTH_HISTORY
+layout(set = 0, binding = CACAO_BINDING_DEPTH_HISTORY, CACAO_FORMAT_DEPTH_HISTORY) uniform image2D depth_history;
+#endif
+#ifdef CACAO_BIND_NORMALS_HISTORY
+layout(set = 0, binding = CACAO_BINDING_NORMALS_HISTORY, CACAO_FORMAT_NORMALS_HISTORY) uniform image2D normals_history;
+#endif

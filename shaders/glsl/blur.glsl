@@ -183,7 +183,8 @@ void main()
             packed[y][x] = 1.0;
         }
     }
-    if (group_needed(group)) {
+    int work = group_work(group); /* reuse: a group it keeps stores nothing (below) */
+    if (work == GROUP_COMPUTE) {
 #endif
     [[unroll]] for (int y = 0; y < BY; ++y) {
         [[unroll]] for (int x = 0; x < BX; ++x) {
@@ -259,6 +260,7 @@ void main()
     }
 #if CACAO_SKIPS_BY_CLASS
     }
+    if (work == GROUP_KEEP) return;
 #endif
 
     /* inner texels: (blurred AO, original packed edges) */

@@ -331,9 +331,11 @@ void main()
     ivec2 size = slice_size();
     if (!in_rect(xy, size)) return; /* no LDS, no barriers: safe to leave */
 #if CACAO_SKIPS_BY_CLASS
-    /* a group is a tile (in one layer); one the list would leave out stores AO 1 and edges 1 */
-    if (!group_needed(group)) {
-        imageStore(ssao_image, ivec3(xy, int(gl_WorkGroupID.z)), vec4(1.0, 1.0, 0.0, 0.0));
+    /* a group is a tile (in one layer); one the list would leave out stores AO 1 and edges 1, one
+     * reuse keeps stores nothing */
+    int work = group_work(group);
+    if (work != GROUP_COMPUTE) {
+        if (work == GROUP_FILL) imageStore(ssao_image, ivec3(xy, int(gl_WorkGroupID.z)), vec4(1.0, 1.0, 0.0, 0.0));
         return;
     }
 #endif

@@ -54,27 +54,70 @@ bool touches_needed(ivec2 t0, ivec2 t1)
 }
 #endif
 
-#if CACAO_SKIPS_BY_CLASS || CACAO_PASS == CACAO_PASS_CLASSIFY
-uint needed_base() { return uint(CACAO_TILE_NEEDED(CB.tiles_x * CB.tiles_y, CB.blur_groups_x * CB.blur_groups_y)); }
-uint blur_needed_base() { return uint(CACAO_TILE_BLUR_NEEDED(CB.tiles_x * CB.tiles_y, CB.blur_groups_x * CB.blur_groups_y)); }
+#if CACAO_SKIPS_BY_CLASS || CACAO_PASS == CACAO_PASS_CLASSIFY || CACAO_PASS == CACAO_PASS_COMPACT || \
+    CACAO_PASS == CACAO_PASS_REUSE
+#define TILE_REGION(name) uint(name(CB.tiles_x * CB.tiles_y, CB.blur_groups_x * CB.blur_groups_y))
+uint needed_base() { return TILE_REGION(CACAO_TILE_NEEDED); }
+uint blur_needed_base() { return TILE_REGION(CACAO_TILE_BLUR_NEEDED); }
+uint recompute_base() { return TILE_REGION(CACAO_TILE_RECOMPUTE); }
+uint blur_recompute_base() { return TILE_REGION(CACAO_TILE_BLUR_RECOMPUTE); }
+
+/* Reuse (docs/tiles.md "Reusing the previous frame"): tile t, or blur group g, is recomputed this
+ * frame (the reach pass's flags); without reuse every one is. */
+bool tile_recomputed(ivec2 t) { return CB.reuse == 0 || tiles[recompute_base() + uint(t.y * CB.tiles_x + t.x)] == 0u; }
+bool blur_group_recomputed(ivec2 g)
+{
+    return CB.reuse == 0 || tiles[blur_recompute_base() + uint(g.y * CB.blur_groups_x + g.x)] == 0u;
+}
+#endif
+
+#if CACAO_PASS == CACAO_PASS_CLASSIFY || CACAO_PASS == CACAO_PASS_REUSE
+/* Every mark stores the same 0 (flags the host reset to CACAO_TILE_NO_ENTRY), an atomic whose
+ * result nothing waits for: counting here (the mark that found the flag unset) made each active
+ * tile wait on a chain of atomics, 3 microseconds of an H200's frame (docs/gpu.md). */
+void mark(uint flag) { atomicAnd(tiles[flag], 0u); }
+
+/* Marks, in the flags from tile_base and blur_base, the tiles within one tile of tile a and the
+ * blur groups whose output touches one of those (a group g, output texels g out .. g out + out -
+ * 1, touches tiles a - 1 .. a + 1 when g out < (a + 2) TILE and g out + out > (a - 1) TILE). */
+void mark_around(ivec2 a, uint tile_base, uint blur_base)
+{
+    ivec2 last = ivec2(CB.tiles_x, CB.tiles_y) - 1;
+    for (int y = max(a.y - 1, 0); y <= min(a.y + 1, last.y); ++y)
+        for (int x = max(a.x - 1, 0); x <= min(a.x + 1, last.x); ++x)
+            mark(tile_base + uint(y * CB.tiles_x + x));
+    if (CB.blur_groups_x == 0) return; /* no blur */
+    ivec2 out_size = ivec2(CB.blur_out_x, CB.blur_out_y);
+    ivec2 g0 = max(a - 1, ivec2(0)) * CACAO_TILE / out_size;
+    ivec2 g1 = min(((a + 2) * CACAO_TILE - 1) / out_size, ivec2(CB.blur_groups_x, CB.blur_groups_y) - 1);
+    for (int y = g0.y; y <= g1.y; ++y)
+        for (int x = g0.x; x <= g1.x; ++x) mark(blur_base + uint(y * CB.blur_groups_x + x));
+}
 #endif
 
 #if CACAO_SKIPS_BY_CLASS
-/* Group g of generate (a tile) or of the blur is one the lists would hold (classify's flags:
- * compact's test, made from each active tile, which counted them). One load per invocation, the
+/* What group g of generate (a tile) or of the blur does: GROUP_COMPUTE where the lists would hold
+ * it (classify's flags: compact's test, made from each active tile) and reuse recomputes it;
+ * GROUP_FILL (store AO 1, the CPU forms' fill) where reuse recomputes it but no active tile is
+ * near; GROUP_KEEP where reuse keeps the previous frame's. One or two loads per invocation, the
  * same for the group. */
-bool group_needed(ivec2 g)
+#define GROUP_KEEP 0
+#define GROUP_FILL 1
+#define GROUP_COMPUTE 2
+int group_work(ivec2 g)
 {
 #if CACAO_PASS == CACAO_PASS_BLUR_GPU
+    if (!blur_group_recomputed(g)) return GROUP_KEEP;
     bool needed = tiles[blur_needed_base() + g.y * CB.blur_groups_x + g.x] == 0u;
     const uint count = CACAO_TILE_COUNT_BLUR_NEEDED;
 #else
+    if (!tile_recomputed(g)) return GROUP_KEEP;
     bool needed = tiles[needed_base() + g.y * CB.tiles_x + g.x] == 0u;
     const uint count = CACAO_TILE_COUNT_NEEDED;
 #endif
     /* counted once per group of the first layer (cacao_tile_counts) */
     if (needed && gl_WorkGroupID.z == 0u && gl_LocalInvocationIndex == 0u) atomicAdd(tiles[count], 1u);
-    return needed;
+    return needed ? GROUP_COMPUTE : GROUP_FILL;
 }
 #endif
 
@@ -89,27 +132,10 @@ layout(local_size_x = CACAO_WG_CLASSIFY, local_size_y = CACAO_WG_CLASSIFY) in;
 
 #if CACAO_VARIANT == CACAO_CLASSIFY_SLICES
 /* Active tile a makes needed the tiles within one tile of it, and the blur groups whose output
- * touches one of those: compact's tests, turned around (a group g, output texels g out .. g out +
- * out - 1, touches tiles a - 1 .. a + 1 when g out < (a + 2) TILE and g out + out > (a - 1) TILE).
- * Every mark stores the same 0 (the GPU forms' flags; the CPU forms run from compact's lists), an
- * atomic whose result nothing waits for: counting here (the mark that found the flag unset) made
- * each active tile wait on a chain of atomics, 3 microseconds of an H200's frame (docs/gpu.md).
- * The GPU forms' generate and blur count the needed groups they run instead (group_needed). */
-void mark(uint flag) { atomicAnd(tiles[flag], 0u); }
-
-void mark_needed(ivec2 a)
-{
-    ivec2 last = ivec2(CB.tiles_x, CB.tiles_y) - 1;
-    for (int y = max(a.y - 1, 0); y <= min(a.y + 1, last.y); ++y)
-        for (int x = max(a.x - 1, 0); x <= min(a.x + 1, last.x); ++x)
-            mark(needed_base() + uint(y * CB.tiles_x + x));
-    if (CB.blur_groups_x == 0) return; /* no blur */
-    ivec2 out_size = ivec2(CB.blur_out_x, CB.blur_out_y);
-    ivec2 g0 = max(a - 1, ivec2(0)) * CACAO_TILE / out_size;
-    ivec2 g1 = min(((a + 2) * CACAO_TILE - 1) / out_size, ivec2(CB.blur_groups_x, CB.blur_groups_y) - 1);
-    for (int y = g0.y; y <= g1.y; ++y)
-        for (int x = g0.x; x <= g1.x; ++x) mark(blur_needed_base() + uint(y * CB.blur_groups_x + x));
-}
+ * touches one of those: compact's tests, turned around, in the GPU forms' flags (the CPU forms
+ * run from compact's lists). The GPU forms' generate and blur count the needed groups they run
+ * (group_work). */
+void mark_needed(ivec2 a) { mark_around(a, needed_base(), blur_needed_base()); }
 #endif
 
 #if CACAO_VARIANT == CACAO_CLASSIFY_HORIZON
@@ -201,7 +227,8 @@ void main()
     int t = CB.tiles_x * CB.tiles_y, b = CB.blur_groups_x * CB.blur_groups_y;
     if (i < t) {
         ivec2 g = ivec2(i % CB.tiles_x, i / CB.tiles_x);
-        append(touches_needed(g, g) ? CACAO_LIST_GENERATE : CACAO_LIST_FILL_SLICES, g);
+        /* reuse: a tile it does not recompute keeps the previous frame's values, in no list */
+        if (tile_recomputed(g)) append(touches_needed(g, g) ? CACAO_LIST_GENERATE : CACAO_LIST_FILL_SLICES, g);
 #if CACAO_VARIANT == CACAO_COMPACT_HORIZON
         /* the background tiles keep the clear's view z and normal (what the prepare would store) */
         if (tiles[CACAO_TILE_CLASSES + i] != CACAO_TILE_CLASS_BACKGROUND) append(CACAO_LIST_PREPARE, g);
@@ -211,7 +238,7 @@ void main()
         ivec2 g = ivec2(i % CB.blur_groups_x, i / CB.blur_groups_x);
         ivec2 out_size = ivec2(CB.blur_out_x, CB.blur_out_y);
         ivec2 lo = g * out_size, hi = lo + out_size - 1; /* its output texels */
-        if (touches_needed(lo / CACAO_TILE, hi / CACAO_TILE)) append(CACAO_LIST_BLUR, g);
+        if (blur_group_recomputed(g) && touches_needed(lo / CACAO_TILE, hi / CACAO_TILE)) append(CACAO_LIST_BLUR, g);
     }
 }
 #endif /* COMPACT */
@@ -253,3 +280,140 @@ void main()
 #endif
 }
 #endif /* FILL */
+
+/* ---- reuse (docs/tiles.md "Reusing the previous frame") ---- */
+#if CACAO_PASS == CACAO_PASS_REUSE
+layout(local_size_x = CACAO_WG_CLASSIFY, local_size_y = CACAO_WG_CLASSIFY) in;
+
+uint tile_index(ivec2 t) { return uint(t.y * CB.tiles_x + t.x); }
+
+#if CACAO_VARIANT == CACAO_REUSE_DIFF || CACAO_VARIANT == CACAO_REUSE_DIFF_NORMALS
+/* The least view z of raw depths in [dmin, dmax] (no NaN), as prepare's view_z gives them: z is a
+ * ratio of two linear functions of the depth, monotonic between two depths with no pole between,
+ * so its least value is at an end (the 1% the reach allows covers a rounding that is not). 0, the
+ * nearest (the tile always recomputes), where a pole lies between or an end is behind the camera. */
+float least_view_z(float dmin, float dmax)
+{
+    if (dmin > dmax) return uintBitsToFloat(0x7f800000u); /* no depth that is not NaN: +inf */
+    vec2 d = vec2(dmin, dmax);
+    vec2 num = CB.depth_unpack.x + CB.depth_unpack_d.x * d, den = CB.depth_unpack.y + CB.depth_unpack_d.y * d;
+    vec2 z = num / den;
+    return den.x * den.y > 0.0 && all(greaterThanEqual(z, vec2(0.0))) ? min(z.x, z.y) : 0.0;
+}
+
+/* One invocation per tile: its pixels' depth (and input normals' r, g, b) against the copies the
+ * previous frame kept, bit for bit (a NaN that stays NaN is unchanged); changed copies are updated
+ * (every one on a full frame, CB.reuse 2). The copies hold each 2x2 block as one texel per
+ * channel, in the order of the gather that reads the block (past the image's edge the gather
+ * clamps, the same way every frame). Also the tile's least view z: the reach pass bounds the taps' radius by it. */
+void main()
+{
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    if (!in_rect(t, ivec2(CB.tiles_x, CB.tiles_y))) return;
+    ivec2 size = textureSize(src_depth, 0);
+    int n = CB.reuse_tile_pixels;
+    ivec2 p0 = t * n, p1 = min(p0 + n, size);
+    bool full = CB.reuse == 2, changed = full;
+    vec2 inv_size = 1.0 / vec2(size);
+    const float inf = uintBitsToFloat(0x7f800000u);
+    vec4 dmin = vec4(inf), dmax = vec4(-inf);
+    for (int y = p0.y; y < p1.y; y += 2) {
+        for (int x = p0.x; x < p1.x; x += 2) {
+            vec4 d4 = textureGather(src_depth, vec2(x + 1, y + 1) * inv_size, 0);
+            ivec2 q = ivec2(x, y) / 2;
+            if (full || any(notEqual(floatBitsToUint(d4), floatBitsToUint(imageLoad(depth_history, q))))) {
+                imageStore(depth_history, q, d4);
+                changed = true;
+            }
+            bvec4 number = not(isnan(d4));
+            dmin = min(dmin, mix(vec4(inf), d4, number));
+            dmax = max(dmax, mix(vec4(-inf), d4, number));
+#if CACAO_VARIANT == CACAO_REUSE_DIFF_NORMALS
+            /* the normals' r, g, b (what prepare reads) of the block: one gather and one texel each */
+            vec2 uv = vec2(x + 1, y + 1) * inv_size;
+            vec4 nc[3] = vec4[3](textureGather(src_normals, uv, 0), textureGather(src_normals, uv, 1),
+                                 textureGather(src_normals, uv, 2));
+            for (int c = 0; c < 3; ++c) {
+                vec4 n4 = nc[c];
+                ivec2 h = ivec2(3 * q.x + c, q.y);
+                if (full || any(notEqual(floatBitsToUint(n4), floatBitsToUint(imageLoad(normals_history, h))))) {
+                    imageStore(normals_history, h, n4);
+                    changed = true;
+                }
+            }
+#endif
+        }
+    }
+    float zmin = least_view_z(min(min(dmin.x, dmin.y), min(dmin.z, dmin.w)), max(max(dmax.x, dmax.y), max(dmax.z, dmax.w)));
+    tiles[TILE_REGION(CACAO_TILE_CHANGED) + tile_index(t)] = changed ? 1u : 0u;
+    tiles[TILE_REGION(CACAO_TILE_ZMIN) + tile_index(t)] = floatBitsToUint(zmin);
+    if (changed) atomicAdd(tiles[CACAO_TILE_COUNT_CHANGED], 1u);
+}
+#elif CACAO_VARIANT == CACAO_REUSE_PREFIX
+/* One invocation per row of tiles: the changed tiles of the row up to each tile, so that the
+ * reach pass counts those of a span of a row with two loads. */
+void main()
+{
+    int row = int(gl_WorkGroupID.x * gl_WorkGroupSize.x * gl_WorkGroupSize.y + gl_LocalInvocationIndex);
+    if (row >= CB.tiles_y) return;
+    uint changed = TILE_REGION(CACAO_TILE_CHANGED), sums = TILE_REGION(CACAO_TILE_ROW_SUM), sum = 0u;
+    for (int x = 0; x < CB.tiles_x; ++x) {
+        uint i = uint(row * CB.tiles_x + x);
+        sum += tiles[changed + i];
+        tiles[sums + i] = sum;
+    }
+}
+#else /* CACAO_REUSE_REACH */
+/* One invocation per tile. A changed texel reaches the output of tile t through the taps of the
+ * texels the blur and apply of t read (those within 2 tiles), at most reuse_tap_reach times
+ * their lookup radius, which is largest at their least view z (the near limit only shrinks it),
+ * plus reuse_margin texels (mips, edges, normals, blur, apply). t is recomputed when a changed
+ * tile lies within that reach (a count over the rows' prefix sums, at most the image's tiles); always on a full frame, and at HIGHEST (whose adaptive pass depends on the whole
+ * frame's importance) when anything changed. A recomputed tile marks the tiles within one tile of
+ * it, and the blur groups touching those, for generate, the fills and the blur (group_work,
+ * compact). With nothing changed, the gated steps' commands are zeroed: they dispatch nothing. */
+void main()
+{
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    if (!in_rect(t, ivec2(CB.tiles_x, CB.tiles_y))) return;
+    uint changed_tiles = tiles[CACAO_TILE_COUNT_CHANGED];
+    if (changed_tiles == 0u) {
+        if (t == ivec2(0))
+            for (int g = 0; g < CB.gate_count; ++g) tiles[TILE_REGION(CACAO_TILE_GATES) + uint(3 * g)] = 0u;
+        return;
+    }
+    ivec2 last = ivec2(CB.tiles_x, CB.tiles_y) - 1;
+    bool recompute = CB.reuse == 2 || CB.reuse_all_or_nothing != 0;
+    if (!recompute) {
+        float zmin = uintBitsToFloat(0x7f800000u);
+        for (int y = max(t.y - 2, 0); y <= min(t.y + 2, last.y); ++y)
+            for (int x = max(t.x - 2, 0); x <= min(t.x + 2, last.x); ++x)
+                zmin = min(zmin, uintBitsToFloat(tiles[TILE_REGION(CACAO_TILE_ZMIN) + tile_index(ivec2(x, y))]));
+        /* generate's radius in texels, lookup factor r near_mod / texel size, is largest at the
+         * least z: near_mod = sat(|p| near_limit_rec) 0.8 + 0.2 with |p| <= z near_k */
+        float texel = view_xy_scale(zmin) * abs(CB.ndc_to_view_mul.x) * CB.ssao_buffer_inverse_dimensions.x;
+        float near_mod = sat(zmin * CB.reuse_near_k * CB.effect_sampling_radius_near_limit_rec) * CACAO_NEAR_LIMIT_SCALE +
+                         CACAO_NEAR_LIMIT_BIAS;
+        float reach = CB.reuse_tap_reach * (CACAO_LOOKUP_RADIUS_FACTOR * CB.effect_radius * near_mod / texel) +
+                      float(CB.reuse_margin);
+        /* tiles t and c, d tiles apart (Chebyshev), are (d - 1) TILE + 1 texels apart at least */
+        float r = floor((reach - 1.0) / float(CACAO_TILE)) + 1.0;
+        /* a reach past the image's tiles counts them all (also inf and NaN: z 0) */
+        int k = r <= float(max(CB.tiles_x, CB.tiles_y)) ? int(r) : max(CB.tiles_x, CB.tiles_y);
+        {
+            uint sums = TILE_REGION(CACAO_TILE_ROW_SUM), count = 0u;
+            int x1 = min(t.x + k, last.x), x0 = t.x - k - 1;
+            for (int y = max(t.y - k, 0); y <= min(t.y + k, last.y); ++y) {
+                uint row = uint(y * CB.tiles_x);
+                count += tiles[sums + row + uint(x1)] - (x0 >= 0 ? tiles[sums + row + uint(x0)] : 0u);
+            }
+            recompute = count > 0u;
+        }
+    }
+    if (recompute) {
+        atomicAdd(tiles[CACAO_TILE_COUNT_RECOMPUTE], 1u);
+        mark_around(t, recompute_base(), blur_recompute_base());
+    }
+}
+#endif
+#endif /* REUSE */

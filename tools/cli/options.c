@@ -148,6 +148,9 @@ static const flag_def flags[] = {
     SET("--all-tiles", NULL, SET_BOOL, compute_all_tiles,
         "skip nothing: every tile, and the taps of background and faded pixels (docs/tiles.md): the "
         "same output, slower; for measurement"),
+    SET("--reuse", NULL, SET_BOOL, reuse_unchanged,
+        "reuse the previous frame where nothing changed (docs/tiles.md); with --repeat every frame "
+        "after the first is unchanged, unless --move-box changes some"),
     {.name = "--shader-forms",
      .value = "F",
      .kind = SET_ENUM,

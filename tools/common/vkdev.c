@@ -678,20 +678,26 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
     }
     if (repeat == 0) repeat = 1;
     const uint32_t frames = warmup + repeat;
-    gpu_image depth = {0}, normals = {0}, output = {0};
+    gpu_image depth = {0}, normals = {0}, output = {0}, alternate = {0};
     gpu_buffer staging = {0};
     cacao_result r;
     const VkDeviceSize pixels = (VkDeviceSize)w * h;
     const VkDeviceSize normals_offset = (pixels * 4 + 15) / 16 * 16; /* RGBA32F copies need 16-byte offsets */
     /* depth R32 (+ normals RGBA32 when given); AO read back into the front. Only what is used is
      * staged: depth alone at 16384x16384 is 1 GiB, within the 4 GiB buffers lavapipe allows. */
-    const VkDeviceSize image_bytes = frame->normals ? normals_offset + pixels * 16 : pixels * 4;
+    const VkDeviceSize depths_bytes = frame->alternate_depth ? normals_offset + pixels * 4 : pixels * 4;
+    const VkDeviceSize alternate_offset = normals_offset; /* the alternate depth, then the normals */
+    const VkDeviceSize normals_at = frame->alternate_depth ? (depths_bytes + 15) / 16 * 16 : normals_offset;
+    const VkDeviceSize image_bytes = frame->normals ? normals_at + pixels * 16 : depths_bytes;
     const VkDeviceSize tiles_offset = (image_bytes + 15) / 16 * 16; /* then the tile counts */
     const VkDeviceSize bytes = tiles_offset + (plan->uses_tiles ? CACAO_TILE_COUNTS_BYTES : 0);
     r = CACAO_ERROR_VULKAN;
     if (!make_buffer(dev, bytes, &staging) ||
         !make_image(dev, VK_FORMAT_R32_SFLOAT, w, h, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                     &depth) ||
+        (frame->alternate_depth &&
+         !make_image(dev, VK_FORMAT_R32_SFLOAT, w, h, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                     &alternate)) ||
         (frame->normals && !make_image(dev, VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
                                        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, &normals)) ||
         !make_image(dev, out_format, w, h,
@@ -702,9 +708,10 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
     }
     float *host = staging.mapped;
     memcpy(host, frame->depth, pixels * 4);
+    if (frame->alternate_depth) memcpy(host + alternate_offset / 4, frame->alternate_depth, pixels * 4);
     if (frame->normals)
         for (VkDeviceSize i = 0; i < pixels; ++i) {
-            float *dst = host + normals_offset / 4 + 4 * i;
+            float *dst = host + normals_at / 4 + 4 * i;
             dst[0] = frame->normals[3 * i];
             dst[1] = frame->normals[3 * i + 1];
             dst[2] = frame->normals[3 * i + 2];
@@ -712,7 +719,8 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
         }
     if (!begin(dev)) goto vk_failed;
     record_upload(dev, &staging, 0, &depth, w, h);
-    if (frame->normals) record_upload(dev, &staging, normals_offset, &normals, w, h);
+    if (frame->alternate_depth) record_upload(dev, &staging, alternate_offset, &alternate, w, h);
+    if (frame->normals) record_upload(dev, &staging, normals_at, &normals, w, h);
     transition(dev->cmd, output.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0,
                VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
     /* NaN in every output pixel: a pixel cacao does not write reads back as NaN, never as AO. */
@@ -745,6 +753,10 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
             goto vk_failed;
         }
         vkCmdResetQueryPool(dev->cmd, dev->timestamps, 0, steps + 1);
+        in.depth.image = frame->alternate_depth && rep % 2 ? alternate.image : depth.image;
+        in.depth.view = frame->alternate_depth && rep % 2 ? alternate.view : depth.view;
+        in.output_holds_previous = frame->output_holds_previous && rep > 0;
+        in.force_full_frame = frame->force_full_frame;
         r = cacao_record(ctx, dev->cmd, &in);
         if (r != CACAO_SUCCESS) {
             cacao_set_err(err, n, "%s", cacao_context_last_error(ctx));
@@ -796,6 +808,7 @@ done:
     wait_idle(dev);
     free_image(dev, &depth);
     free_image(dev, &normals);
+    free_image(dev, &alternate);
     free_image(dev, &output);
     free_buffer(dev, &staging);
     return r;

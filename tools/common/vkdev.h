@@ -83,6 +83,13 @@ typedef struct vkdev_frame {
     float normals_unpack_mul, normals_unpack_add;
     VkFormat output_format;    /* 0 = R32_SFLOAT */
     uint32_t frame_index;      /* cacao_inputs.frame_index (GTAO/BITMASK sample pattern) */
+    /* reuse_unchanged (docs/tiles.md): alternate_depth, when set, is the depth of every other frame
+     * of a run (frames 1, 3, ...: a change between every two frames); output_holds_previous sets
+     * that input on every frame after a run's first (the run keeps one output image);
+     * force_full_frame sets that input on every frame. */
+    const float *alternate_depth;
+    bool output_holds_previous;
+    bool force_full_frame;
     /* Optional: called after the last cacao_record, before submission, to record extra commands
      * (e.g. copies of intermediates), and after the wait, to read them. */
     void (*after_record)(struct vkdev *dev, cacao_context *ctx, VkCommandBuffer cmd, void *user);

@@ -1,0 +1,275 @@
+/* test_reuse - reuse_unchanged (docs/tiles.md "Reusing the previous frame") changes how much a
+ * frame computes, never its result. The reference of every frame is a context without reuse that
+ * computes that frame alone; a reusing context runs a sequence of frames and must give, frame by
+ * frame, the reference's output bit for bit:
+ *   - the first frame (a full one: changed = every tile);
+ *   - the same frame again: nothing changed, nothing recomputed, no generate or blur group run;
+ *   - one object moved (a sphere of the embedded scene, a few tiles): only tiles within reach of
+ *     it recomputed (fewer than all, except at HIGHEST, which recomputes everything when anything
+ *     changed), and the same frame again after it;
+ *   - the output kept by the caller (output_holds_previous) on an unchanged frame: nothing is
+ *     written and the output is still the reference's;
+ *   - the camera moved (another projection): a full frame;
+ *   - force_full_frame; a settings change; a resize; NaN in the depth that stays NaN (unchanged).
+ * Every quality, native and downsampled, both shader forms, normals from depth and given, with
+ * blur none, 2 and 8 (a subset of the product). The output image is NaN before each run
+ * (vkdev): a pixel the frame fails to write shows. Validation (synchronization included) is on. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gpu_scene.h"
+
+enum { W = 512, H = 288 };
+
+typedef struct frames {
+    scene_buffers base, moved;
+    float *nan_depth;
+} frames;
+
+/* The embedded scene, and the same with one sphere (the one by the column, far from the camera)
+ * moved 0.3 m along x. */
+static void render_frames(frames *f) {
+    const cacao_scene scene = cacao_default_scene(W, H);
+    scene_buffers_render(&scene, &f->base);
+    cacao_prim prims[64];
+    cacao_scene moved = scene;
+    moved.prim_count = scene.prim_count < 64 ? scene.prim_count : 64;
+    memcpy(prims, scene.prims, moved.prim_count * sizeof *prims);
+    uint32_t sphere = moved.prim_count;
+    for (uint32_t i = 0; i < moved.prim_count; ++i)
+        if (prims[i].kind == CACAO_PRIM_SPHERE && fabs(prims[i].a[0] - 1.55) < 1e-9) sphere = i;
+    CHECK(sphere < moved.prim_count);
+    if (sphere < moved.prim_count) prims[sphere].a[0] += 0.3;
+    moved.prims = prims;
+    scene_buffers_render(&moved, &f->moved);
+    const size_t n = (size_t)W * H;
+    f->nan_depth = malloc(n * sizeof(float));
+    memcpy(f->nan_depth, f->base.depth, n * sizeof(float));
+    for (size_t i = 0; i < n; i += 97) f->nan_depth[i] = NAN;
+}
+
+static void free_frames(frames *f) {
+    scene_buffers_free(&f->base);
+    scene_buffers_free(&f->moved);
+    free(f->nan_depth);
+}
+
+/* The reference: a fresh context without reuse, this frame alone. */
+static bool reference(vkdev *dev, cacao_settings s, const vkdev_frame *f, float *ao) {
+    s.reuse_unchanged = false;
+    return run(dev, &s, f, ao);
+}
+
+/* One frame (or `repeat` of it) on the reusing context; false on a failure (reported). */
+static bool step(vkdev *dev, cacao_context *ctx, const vkdev_frame *f, uint32_t repeat, float *ao, cacao_tile_counts *c) {
+    char err[512];
+    cacao_timings t;
+    const cacao_result r = vkdev_run_context(dev, ctx, f, repeat, ao, &t, err, sizeof err);
+    if (r != CACAO_SUCCESS || !t.has_tiles) {
+        fprintf(stderr, "reusing run failed: %s: %s\n", cacao_result_string(r), err);
+        ++test_failures;
+        return false;
+    }
+    *c = t.tiles;
+    return true;
+}
+
+static char config[160];
+
+/* The reusing context's frame equals the reference's, bit for bit. */
+static void check_same(const float *a, const float *b, const char *what) {
+    size_t differ = 0;
+    for (size_t i = 0; i < (size_t)W * H; ++i) differ += memcmp(&a[i], &b[i], sizeof(float)) != 0;
+    if (differ) fprintf(stderr, "%s, %s: %zu pixels differ from the frame computed alone\n", config, what, differ);
+    CHECK(differ == 0);
+}
+
+static void check_nothing_ran(const cacao_tile_counts *c, const char *what) {
+    if (c->changed || c->recomputed || c->generate_run || c->blur_run)
+        fprintf(stderr, "%s, %s: changed %u, recomputed %u, generate %u, blur %u (expected 0)\n", config, what,
+                c->changed, c->recomputed, c->generate_run, c->blur_run);
+    CHECK(c->changed == 0 && c->recomputed == 0 && c->generate_run == 0 && c->blur_run == 0);
+}
+
+static void check_full(const cacao_tile_counts *c, const char *what) {
+    if (c->changed != c->tiles || c->recomputed != c->tiles)
+        fprintf(stderr, "%s, %s: changed %u, recomputed %u of %u tiles (expected all)\n", config, what, c->changed,
+                c->recomputed, c->tiles);
+    CHECK(c->changed == c->tiles && c->recomputed == c->tiles);
+}
+
+/* The sequence of the file's comment for one configuration. */
+static void sequence(vkdev *dev, const frames *fr, cacao_settings s, bool normals) {
+    snprintf(config, sizeof config, "quality %d, %s, blur %d, normals %s, %s forms", (int)s.quality,
+             s.downsample ? "downsampled" : "native", s.blur_pass_count, normals ? "given" : "from depth",
+             s.shader_forms == CACAO_SHADER_FORMS_GPU ? "GPU" : "CPU");
+    s.generate_normals = !normals;
+    s.reuse_unchanged = true;
+    const size_t n = (size_t)W * H;
+    float *ref = malloc(n * sizeof(float)), *ref_moved = malloc(n * sizeof(float)), *ao = malloc(n * sizeof(float));
+    const vkdev_frame base = scene_frame(&fr->base, false, normals), moved = scene_frame(&fr->moved, false, normals);
+    cacao_context *ctx = NULL;
+    cacao_tile_counts c;
+    if (!reference(dev, s, &base, ref) || !reference(dev, s, &moved, ref_moved)) goto done;
+    if (vkdev_context_create(dev, &ctx) != CACAO_SUCCESS || cacao_context_set_settings(ctx, &s) != CACAO_SUCCESS ||
+        cacao_context_resize(ctx, W, H, NULL) != CACAO_SUCCESS) {
+        fprintf(stderr, "%s: cannot create the reusing context\n", config);
+        ++test_failures;
+        goto done;
+    }
+    /* first frame: full */
+    if (!step(dev, ctx, &base, 1, ao, &c)) goto done;
+    check_same(ao, ref, "first frame");
+    check_full(&c, "first frame");
+    /* the same frame: nothing changed */
+    if (!step(dev, ctx, &base, 1, ao, &c)) goto done;
+    check_same(ao, ref, "unchanged frame");
+    check_nothing_ran(&c, "unchanged frame");
+    /* one sphere moved */
+    if (!step(dev, ctx, &moved, 1, ao, &c)) goto done;
+    check_same(ao, ref_moved, "a sphere moved");
+    CHECK(c.changed > 0 && c.changed < c.tiles / 8);
+    printf("%s: a sphere moved: %u of %u tiles changed, %u recomputed, generate %u, blur %u of %u groups\n", config,
+           c.changed, c.tiles, c.recomputed, c.generate_run, c.blur_run, c.blur_total);
+    if (s.quality == CACAO_QUALITY_HIGHEST) CHECK(c.recomputed == c.tiles);
+    else {
+        if (!(c.recomputed >= c.changed && c.recomputed < c.tiles))
+            fprintf(stderr, "%s: a sphere moved: %u tiles changed, %u of %u recomputed\n", config, c.changed,
+                    c.recomputed, c.tiles);
+        CHECK(c.recomputed >= c.changed && c.recomputed < c.tiles);
+        CHECK(c.generate_run < c.tiles);
+    }
+    /* back to the first frame, then kept by the caller: the second run of two writes nothing */
+    vkdev_frame keep = base;
+    keep.output_holds_previous = true;
+    if (!step(dev, ctx, &keep, 2, ao, &c)) goto done;
+    check_same(ao, ref, "output kept by the caller");
+    check_nothing_ran(&c, "output kept by the caller");
+    /* the camera moved: another projection (a slightly wider field of view) */
+    vkdev_frame camera = base;
+    camera.projection[0] *= 0.99f;
+    camera.projection[5] *= 0.99f;
+    float *ref_camera = malloc(n * sizeof(float));
+    if (reference(dev, s, &camera, ref_camera) && step(dev, ctx, &camera, 1, ao, &c)) {
+        check_same(ao, ref_camera, "camera moved");
+        check_full(&c, "camera moved");
+    }
+    free(ref_camera);
+    /* forced */
+    vkdev_frame forced = base;
+    forced.force_full_frame = true;
+    if (!step(dev, ctx, &forced, 1, ao, &c)) goto done;
+    check_same(ao, ref, "forced full frame");
+    check_full(&c, "forced full frame");
+done:
+    cacao_context_destroy(ctx);
+    free(ref);
+    free(ref_moved);
+    free(ao);
+}
+
+/* Settings changes, a resize, NaN in the depth and the alternating frames of one run. */
+static void other_changes(vkdev *dev, const frames *fr) {
+    const size_t n = (size_t)W * H;
+    float *ref = malloc(n * sizeof(float)), *ao = malloc(n * sizeof(float));
+    cacao_settings s = {.quality = CACAO_QUALITY_HIGH, .generate_normals = true, .reuse_unchanged = true};
+    snprintf(config, sizeof config, "quality high, native, normals from depth");
+    vkdev_frame base = scene_frame(&fr->base, false, false);
+    cacao_context *ctx = NULL;
+    cacao_tile_counts c;
+    if (vkdev_context_create(dev, &ctx) != CACAO_SUCCESS || cacao_context_set_settings(ctx, &s) != CACAO_SUCCESS ||
+        cacao_context_resize(ctx, W, H, NULL) != CACAO_SUCCESS) {
+        ++test_failures;
+        goto done;
+    }
+    /* NaN that stays NaN is no change */
+    vkdev_frame nan_frame = base;
+    nan_frame.depth = fr->nan_depth;
+    if (!reference(dev, s, &nan_frame, ref) || !step(dev, ctx, &nan_frame, 1, ao, &c)) goto done;
+    check_same(ao, ref, "NaN depth, first frame");
+    if (!step(dev, ctx, &nan_frame, 1, ao, &c)) goto done;
+    check_same(ao, ref, "NaN depth, unchanged");
+    check_nothing_ran(&c, "NaN depth, unchanged");
+    /* another radius: the constants differ, a full frame */
+    s.radius = 0.8f;
+    if (cacao_context_set_settings(ctx, &s) != CACAO_SUCCESS || cacao_context_resize(ctx, W, H, NULL) != CACAO_SUCCESS) {
+        ++test_failures;
+        goto done;
+    }
+    if (!reference(dev, s, &base, ref) || !step(dev, ctx, &base, 1, ao, &c)) goto done;
+    check_same(ao, ref, "settings changed");
+    check_full(&c, "settings changed");
+    /* a resize to another size and back: full frames */
+    scene_buffers small;
+    const cacao_scene scene = cacao_default_scene(W / 2, H / 2);
+    scene_buffers_render(&scene, &small);
+    vkdev_frame small_frame = scene_frame(&small, false, false);
+    float *small_ref = malloc(n / 4 * sizeof(float)), *small_ao = malloc(n / 4 * sizeof(float));
+    if (cacao_context_resize(ctx, W / 2, H / 2, NULL) == CACAO_SUCCESS && reference(dev, s, &small_frame, small_ref) &&
+        step(dev, ctx, &small_frame, 1, small_ao, &c)) {
+        CHECK(memcmp(small_ref, small_ao, n / 4 * sizeof(float)) == 0);
+        check_full(&c, "resized");
+    }
+    free(small_ref);
+    free(small_ao);
+    scene_buffers_free(&small);
+    if (cacao_context_resize(ctx, W, H, NULL) != CACAO_SUCCESS || !step(dev, ctx, &base, 1, ao, &c)) {
+        ++test_failures;
+        goto done;
+    }
+    check_same(ao, ref, "resized back");
+    check_full(&c, "resized back");
+    /* one run alternating the two frames (the command's --move-box): its last frame (the fourth,
+     * the moved one) is the moved frame's reference */
+    vkdev_frame alternating = base;
+    alternating.alternate_depth = fr->moved.depth;
+    const vkdev_frame moved = scene_frame(&fr->moved, false, false);
+    if (!reference(dev, s, &moved, ref)) goto done;
+    if (!step(dev, ctx, &alternating, 4, ao, &c)) goto done;
+    check_same(ao, ref, "alternating frames");
+    CHECK(c.changed > 0 && c.recomputed < c.tiles);
+    printf("alternating frames, quality high: %u tiles changed, %u recomputed, generate %u, blur %u of %u groups\n",
+           c.changed, c.recomputed, c.generate_run, c.blur_run, c.blur_total);
+done:
+    cacao_context_destroy(ctx);
+    free(ref);
+    free(ao);
+}
+
+int main(void) {
+    vkdev dev;
+    open_device(&dev);
+    frames fr;
+    render_frames(&fr);
+    static const cacao_quality qualities[] = {CACAO_QUALITY_LOWEST, CACAO_QUALITY_LOW, CACAO_QUALITY_MEDIUM,
+                                              CACAO_QUALITY_HIGH, CACAO_QUALITY_HIGHEST};
+    for (int forms = 0; forms < 2; ++forms)
+        for (int q = 0; q < 5; ++q)
+            for (int ds = 0; ds < 2; ++ds) {
+                const cacao_settings s = {.quality = qualities[q],
+                                          .downsample = ds != 0,
+                                          .shader_forms = forms ? CACAO_SHADER_FORMS_GPU : CACAO_SHADER_FORMS_CPU};
+                sequence(&dev, &fr, s, false);
+            }
+    /* blur none and 8, and normals given, at two qualities */
+    static const int blurs[] = {CACAO_BLUR_NONE, 8};
+    for (int forms = 0; forms < 2; ++forms)
+        for (int b = 0; b < 2; ++b) {
+            cacao_settings s = {.quality = b ? CACAO_QUALITY_MEDIUM : CACAO_QUALITY_HIGH,
+                                .blur_pass_count = blurs[b],
+                                .shader_forms = forms ? CACAO_SHADER_FORMS_GPU : CACAO_SHADER_FORMS_CPU};
+            sequence(&dev, &fr, s, false);
+            sequence(&dev, &fr, s, true);
+        }
+    other_changes(&dev, &fr);
+    /* refused where it does not apply */
+    cacao_settings horizon = {.estimator = CACAO_ESTIMATOR_GTAO, .reuse_unchanged = true}, resolved;
+    char err[256] = "";
+    CHECK(cacao_settings_resolve(&horizon, &resolved, err, sizeof err) == CACAO_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(err, "reuse_unchanged") != NULL);
+    free_frames(&fr);
+    vkdev_destroy(&dev);
+    CHECK(dev.validation_messages == 0);
+    return test_report("test_reuse");
+}
