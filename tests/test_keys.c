@@ -115,7 +115,9 @@ static void test_subset(void) {
                               "apply_gpu.smart.fp32", "prepare_gpu.full.native", "prepare_gpu.mips.native",
                               "generate_gpu.q1", "generate_gpu.q2",
                               /* the horizon estimators' fills where the CPU forms clear */
-                              "fill.horizon_all", "fill.view_all"};
+                              "fill.horizon_all", "fill.view_all",
+                              /* reuse_unchanged (no axis: any CACAO configuration may ask for it) */
+                              "reuse.diff", "reuse.diff_normals", "reuse.prefix", "reuse.reach"};
     size_t n, kept = 0;
     cacao_key *keys = all_keys(&n);
     for (size_t i = 0; i < n; ++i) {

@@ -154,8 +154,10 @@ static void test_only_needed_resources(void) {
      * 64x32 texels (8x8 threads of 8x4 each, from their footprints). */
     CHECK(lowest.tiles_x == 120 && lowest.tiles_y == 68 && lowest.blur_groups_x == 15 && lowest.blur_groups_y == 17);
     /* header, classes, three lists of a tile each (generate, fill, and the horizon estimators'
-     * prepare list), the blur list, then a needed flag per tile and per blur group */
-    CHECK(lowest.tile_buffer_bytes == 4u * (32u + 5u * 120u * 68u + 2u * 15u * 17u));
+     * prepare list), the blur list, then a needed flag per tile and per blur group; reuse's four
+     * words per tile (changed, least z, row sum, recompute) and a recompute flag per blur group;
+     * 16 gate commands */
+    CHECK(lowest.tile_buffer_bytes == 4u * (32u + 9u * 120u * 68u + 3u * 15u * 17u + 3u * 16u));
     cacao_plan highest =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
     const cacao_plan_image *depths = find_image(&highest, CACAO_RES_DEPTHS);

@@ -31,7 +31,8 @@ endforeach()
 # every key of the horizon-slice estimators (full resolution, fp32, no quality axis) and the
 # tile passes (no axis: every CACAO configuration runs them); and the GPU forms of the blur,
 # apply, prepare and generate, and the horizon estimators' fills where the CPU forms clear (a build
-# embeds both forms: the device chooses).
+# embeds both forms: the device chooses); the reuse passes (no axis: a setting of any CACAO
+# configuration).
 set(expected prepare_depths.full.native prepare_depths.mips.native prepare_normals.native
     generate.q1 generate.q2 blur.1.fp32 blur.2.fp32 blur.3.fp32
     blur.4.fp32 blur.5.fp32 blur.6.fp32 blur.7.fp32 blur.8.fp32 apply.smart.fp32
@@ -40,7 +41,8 @@ set(expected prepare_depths.full.native prepare_depths.mips.native prepare_norma
     compact.horizon fill fill.output fill.horizon_all fill.view_all
     prepare.full.native prepare.mips.native
     blur_gpu.1.fp32 blur_gpu.2.fp32 blur_gpu.3.fp32 blur_gpu.4.fp32 blur_gpu.5.fp32 blur_gpu.6.fp32 blur_gpu.7.fp32
-    blur_gpu.8.fp32 apply_gpu.smart.fp32 prepare_gpu.full.native prepare_gpu.mips.native generate_gpu.q1 generate_gpu.q2)
+    blur_gpu.8.fp32 apply_gpu.smart.fp32 prepare_gpu.full.native prepare_gpu.mips.native generate_gpu.q1 generate_gpu.q2
+    reuse.diff reuse.diff_normals reuse.prefix reuse.reach)
 if(NOT names STREQUAL expected)
   message(FATAL_ERROR "subset table holds [${names}]\nexpected [${expected}]")
 endif()

@@ -101,6 +101,12 @@ static const flag_def flags[] = {
     OPT("--repeat", NULL, "N", FLAG_COUNT, repeat, "time the frame N times (default 1)"),
     OPT("--warmup", NULL, "N", FLAG_COUNT0, warmup,
         "run N untimed frames first (default 2; on lavapipe the first frames compile shader variants)"),
+    OPT("--move-box", NULL, "X,Y,W,H", FLAG_PATH, move_box,
+        "with --reuse: every other frame shifts the depth inside the box 8 pixels "
+        "right, an object moving: each frame after the first changes those tiles"),
+    OPT("--keep-output", NULL, NULL, FLAG_SWITCH, keep_output,
+        "with --reuse: tell cacao the output holds its last frame (output_holds_previous): a frame "
+        "with nothing changed writes nothing"),
     OPT("--json", NULL, "FILE", FLAG_PATH, json_path,
         "write settings, device, per-pass times, total, output path (and --compare errors) as JSON"),
     OPT("--print-settings", NULL, NULL, FLAG_SWITCH, print_settings,

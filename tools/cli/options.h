@@ -40,6 +40,8 @@ typedef struct cli_options {
     uint32_t repeat;                 /* timed frames; 0 = 1 */
     uint32_t warmup;                 /* untimed frames before them; default 2 */
     uint32_t frame_index;            /* cacao_inputs.frame_index (gtao/bitmask sample pattern) */
+    const char *move_box;            /* --move-box X,Y,W,H (with --reuse): parsed by main */
+    bool keep_output;                /* --keep-output: cacao_inputs.output_holds_previous */
     /* Device. */
     const char *device;
     bool validate;

@@ -44,6 +44,8 @@ void cacao_timings_summarise(const double *samples, uint32_t steps, uint32_t war
     free(totals);
 }
 
+static double share(uint32_t part, uint32_t whole) { return whole ? 100.0 * part / whole : 0.0; }
+
 void cacao_timings_print(FILE *out, const cacao_plan *plan, const cacao_timings *t) {
     fprintf(out, "%-34s %10s %10s %10s   (%u frames timed after %u warm-up)\n", "pass", "median_ms", "min_ms", "max_ms",
             t->repeat, t->warmup);
@@ -52,9 +54,12 @@ void cacao_timings_print(FILE *out, const cacao_plan *plan, const cacao_timings 
                 t->step[s].max_ms);
     fprintf(out, "%-34s %10.3f %10.3f %10.3f\n", "total", t->total.median_ms, t->total.min_ms, t->total.max_ms);
     if (t->has_tiles) cacao_tile_counts_print(out, &t->tiles);
+    if (t->has_tiles && plan->settings.reuse_unchanged) /* docs/tiles.md "Reusing the previous frame" */
+        fprintf(out, "reuse (the last frame): %u of %u tiles changed, %u recomputed (%.1f%%), %u reused\n",
+                t->tiles.changed, t->tiles.tiles, t->tiles.recomputed, share(t->tiles.recomputed, t->tiles.tiles),
+                t->tiles.tiles - t->tiles.recomputed);
 }
 
-static double share(uint32_t part, uint32_t whole) { return whole ? 100.0 * part / whole : 0.0; }
 
 void cacao_tile_counts_print(FILE *out, const cacao_tile_counts *c) {
     fprintf(out, "tiles: %u: %u active, %u faded, %u background; skipped: generate %u of %u tiles (%.1f%%), ", c->tiles,
@@ -78,6 +83,8 @@ void cacao_tile_counts_add_json(cJSON *object, const cacao_tile_counts *c) {
     cJSON_AddNumberToObject(o, "generate_run", c->generate_run);
     cJSON_AddNumberToObject(o, "generate_total", c->generate_total);
     cJSON_AddNumberToObject(o, "blur_run", c->blur_run);
+    cJSON_AddNumberToObject(o, "changed", c->changed);       /* reuse_unchanged; 0 without */
+    cJSON_AddNumberToObject(o, "recomputed", c->recomputed);
     cJSON_AddNumberToObject(o, "blur_total", c->blur_total);
 }
 

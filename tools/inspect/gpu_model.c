@@ -51,6 +51,7 @@ static const struct {
                                        prepare_depths, prepare_normals */
     {"classify", GPU_STAGE_CLASSIFY},
     {"compact", GPU_STAGE_CLASSIFY},
+    {"reuse.", GPU_STAGE_CLASSIFY}, /* reuse_unchanged's diff, prefix and reach: tile bookkeeping */
     {"fill", GPU_STAGE_LEFT_OUT},
     {"clear.", GPU_STAGE_LEFT_OUT}, /* the clears of cacao's own images (transfers, not shaders) */
     {"importance_", GPU_STAGE_IMPORTANCE},
