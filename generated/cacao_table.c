@@ -3,7 +3,7 @@
 
 #include "cacao_table.h"
 
-extern const cacao_module cacaoi_generated_modules[103];
+extern const cacao_module cacaoi_generated_modules[105];
 
 static const cacao_permutation permutations[] = {
     {{0, 0, 0, 0, 0}, "prepare_depths.half.native", 0, {8, 8, 1}, 1296, 0, {1, 0, 0, 3, 0, 0, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
@@ -112,9 +112,11 @@ static const cacao_permutation permutations[] = {
     {{19, 1, 0, 0, 0}, "reuse.diff_normals", 100, {8, 8, 1}, 1296, 0, {1, 0, 2, 3, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4}},
     {{19, 2, 0, 0, 0}, "reuse.prefix", 101, {8, 8, 1}, 1296, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
     {{19, 3, 0, 0, 0}, "reuse.reach", 102, {8, 8, 1}, 1296, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
+    {{19, 4, 0, 0, 0}, "reuse.diff_gpu", 103, {8, 8, 1}, 1296, 0, {1, 0, 2, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 0}},
+    {{19, 5, 0, 0, 0}, "reuse.diff_normals_gpu", 104, {8, 8, 1}, 1296, 0, {1, 0, 2, 3, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4}},
 };
 
 const cacao_table cacaoi_embedded_table = {
-    permutations, 106, cacaoi_generated_modules, 103, "main",
+    permutations, 108, cacaoi_generated_modules, 105, "main",
     "glslang 12.0.0", "SPIRV-Tools v2023.1", "all",
 };

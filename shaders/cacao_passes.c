@@ -73,6 +73,8 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
 #define PASS(id) [CACAO_PASS_##id]
 #define WG(name) {CACAO_WG_##name##_X, CACAO_WG_##name##_Y}
 #define GEN CACAO_LIST_GENERATE
+#define DIFFS_NORMALS (V(CACAO_REUSE_DIFF_NORMALS) | V(CACAO_REUSE_DIFF_NORMALS_GPU))
+#define DIFFS (V(CACAO_REUSE_DIFF) | V(CACAO_REUSE_DIFF_GPU) | DIFFS_NORMALS)
 
 /* The generate row and its GPU form's (the same grids), `taps` the variants whose taps' depths
  * come through the storage image with imageLoad: every variant of the CPU form (lavapipe runs it
@@ -225,13 +227,14 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * caller's depth (and normals) with the copies the previous frame kept and updates them; the
      * prefix sums each row of tiles' changed flags (one invocation per row); the reach marks the
      * tiles whose output a change can reach, one invocation per tile. */
-    PASS(REUSE) = {"reuse", {"diff", "diff_normals", "prefix", "reach"}, 4, false, false, false,
-                   {CACAO_WG_CLASSIFY, CACAO_WG_CLASSIFY}, CACAOI_GRID_TILES, 6,
-                   {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, V(CACAO_REUSE_DIFF) | V(CACAO_REUSE_DIFF_NORMALS)),
-                    R(SRC_NORMALS, NORMALS_INPUT, V(CACAO_REUSE_DIFF_NORMALS)),
-                    W(DEPTH_HISTORY, DEPTH_HISTORY, V(CACAO_REUSE_DIFF) | V(CACAO_REUSE_DIFF_NORMALS)),
-                    W(NORMALS_HISTORY, NORMALS_HISTORY, V(CACAO_REUSE_DIFF_NORMALS)), W(TILES, TILES, ALL)},
-                   .grids = {[CACAO_REUSE_PREFIX] = CACAOI_GRID_TILE_ROWS}},
+    PASS(REUSE) = {"reuse", {"diff", "diff_normals", "prefix", "reach", "diff_gpu", "diff_normals_gpu"}, 6, false, false,
+                   false, {CACAO_WG_CLASSIFY, CACAO_WG_CLASSIFY}, CACAOI_GRID_TILES, 6,
+                   {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, DIFFS), R(SRC_NORMALS, NORMALS_INPUT, DIFFS_NORMALS),
+                    W(DEPTH_HISTORY, DEPTH_HISTORY, DIFFS), W(NORMALS_HISTORY, NORMALS_HISTORY, DIFFS_NORMALS),
+                    W(TILES, TILES, ALL)},
+                   .quad = {[CACAO_REUSE_DIFF_GPU] = 2, [CACAO_REUSE_DIFF_NORMALS_GPU] = 2},
+                   .grids = {[CACAO_REUSE_PREFIX] = CACAOI_GRID_TILE_ROWS, [CACAO_REUSE_DIFF_GPU] = CACAOI_GRID_OUTPUT,
+                             [CACAO_REUSE_DIFF_NORMALS_GPU] = CACAOI_GRID_OUTPUT}},
 };
 #undef R
 #undef W
@@ -242,6 +245,8 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
 #undef PASS
 #undef WG
 #undef GEN
+#undef DIFFS
+#undef DIFFS_NORMALS
 #undef GENERATE_ROW
 #undef PREPARE_ROW
 

@@ -123,7 +123,9 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     const unsigned ds = c->downsampled ? 1 : 0, fp = c->fp16 ? 1 : 0;
     const unsigned depths = cacaoi_qualities[c->quality].depths_variant;
     if (c->reuse) { /* docs/tiles.md "Reusing the previous frame" */
-        push(out, &n, CACAO_PASS_REUSE, c->normals_from_input ? CACAO_REUSE_DIFF_NORMALS : CACAO_REUSE_DIFF, 0, 0, 0);
+        const unsigned diff = c->normals_from_input ? (c->gpu_forms ? CACAO_REUSE_DIFF_NORMALS_GPU : CACAO_REUSE_DIFF_NORMALS)
+                                                    : (c->gpu_forms ? CACAO_REUSE_DIFF_GPU : CACAO_REUSE_DIFF);
+        push(out, &n, CACAO_PASS_REUSE, diff, 0, 0, 0);
         push(out, &n, CACAO_PASS_REUSE, CACAO_REUSE_PREFIX, 0, 0, 0);
         push(out, &n, CACAO_PASS_REUSE, CACAO_REUSE_REACH, 0, 0, 0);
     }

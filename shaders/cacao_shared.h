@@ -111,6 +111,8 @@
 #define CACAO_REUSE_DIFF_NORMALS 1
 #define CACAO_REUSE_PREFIX 2
 #define CACAO_REUSE_REACH 3
+#define CACAO_REUSE_DIFF_GPU 4         /* the GPU forms' diffs: one invocation per 2x2 pixels, a group */
+#define CACAO_REUSE_DIFF_NORMALS_GPU 5 /* per 16x16 pixels (the CPU forms: one invocation per tile) */
 
 /* Compact variants: CACAO's lists, or the horizon estimators' (also prepare and background). */
 #define CACAO_COMPACT_SLICES 0
@@ -418,7 +420,7 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(INT, blur_out_y)                                                                             \
     M(INT, slice_width)                 /* the slice (deinterleaved image, level 0) in texels */   \
     M(INT, slice_height)                                                                           \
-    M(INT, reuse)                       /* 0 off; 1 reuse the previous frame's; 2 a full frame */  \
+    M(INT, reuse)                       /* 0 off; 1 reuse the previous frame's; 2, 3 full frames (record.c) */ \
     M(INT, reuse_all_or_nothing)        /* 1: any change recomputes every tile (HIGHEST's counter) */ \
     M(INT, reuse_tile_pixels)           /* output pixels per tile side (16 native, 32 downsampled) */ \
     M(INT, reuse_margin)                /* slice texels a change reaches besides the taps */      \

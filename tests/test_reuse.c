@@ -9,7 +9,8 @@
  *     changed), and the same frame again after it;
  *   - the output kept by the caller (output_holds_previous) on an unchanged frame: nothing is
  *     written and the output is still the reference's;
- *   - the camera moved (another projection): a full frame;
+ *   - the camera moved (another projection): a full frame, without the diff; the next frame with
+ *     that camera a full one that refreshes the copies, the one after it nothing;
  *   - force_full_frame; a settings change; a resize; NaN in the depth that stays NaN (unchanged).
  * Every quality, native and downsampled, both shader forms, normals from depth and given, with
  * blur none, 2 and 8 (a subset of the product). The output image is NaN before each run
@@ -154,6 +155,16 @@ static void sequence(vkdev *dev, const frames *fr, cacao_settings s, bool normal
     if (reference(dev, s, &camera, ref_camera) && step(dev, ctx, &camera, 1, ao, &c)) {
         check_same(ao, ref_camera, "camera moved");
         check_full(&c, "camera moved");
+        /* the camera stops: the frame after the move refreshes the copies the move skipped (a
+         * full frame), the next reuses everything */
+        if (step(dev, ctx, &camera, 1, ao, &c)) {
+            check_same(ao, ref_camera, "camera stopped");
+            check_full(&c, "camera stopped");
+        }
+        if (step(dev, ctx, &camera, 1, ao, &c)) {
+            check_same(ao, ref_camera, "camera stopped, next frame");
+            check_nothing_ran(&c, "camera stopped, next frame");
+        }
     }
     free(ref_camera);
     /* forced */

@@ -124,33 +124,41 @@ static void record_frame_start(cacao_context *ctx, VkCommandBuffer cmd, const ca
                          n, barriers);
 }
 
-/* Reuse (docs/tiles.md "Reusing the previous frame"): whether this frame may keep tiles of the
- * previous one (the settings ask for it, a frame was recorded since the resize, the caller does
- * not force a full frame, and the constants, so camera, settings and size, are the same), and
- * the per-frame constants that say it. Remembers this frame's constants. */
-static bool reuse_frame(cacao_context *ctx, const cacao_inputs *in, cacao_constants *c) {
+/* Reuse (docs/tiles.md "Reusing the previous frame"): how this frame uses the previous one, as
+ * the per-frame constant reuse: 1 keep what did not change (the constants, so camera, settings
+ * and size, are the last frame's, whose copies of the inputs are current, and the caller does not
+ * force a full frame); 2 a full frame that refreshes the copies (the first after a resize, a
+ * forced one, or the first with the same constants after a 3); 3 a full frame with other
+ * constants than the last (a moving camera): the diff is not recorded and the copies go stale.
+ * 0 without reuse. Also the gates a frame with nothing changed zeroes. Remembers this frame's
+ * constants. */
+static int reuse_frame(cacao_context *ctx, const cacao_inputs *in, cacao_constants *c) {
     const cacao_plan *p = &ctx->plan;
-    if (!p->settings.reuse_unchanged || p->settings.estimator != CACAO_ESTIMATOR_CACAO) return false;
-    const bool keep = ctx->reuse_primed && !in->force_full_frame &&
-                      memcmp(&ctx->reuse_constants, c, sizeof *c) == 0;
+    if (!p->settings.reuse_unchanged || p->settings.estimator != CACAO_ESTIMATOR_CACAO) return 0;
+    const bool same = ctx->reuse_primed && memcmp(&ctx->reuse_constants, c, sizeof *c) == 0;
+    const int mode = !ctx->reuse_primed || in->force_full_frame ? 2 : !same ? 3 : ctx->reuse_copies_stale ? 2 : 1;
     ctx->reuse_constants = *c;
     ctx->reuse_primed = true;
+    ctx->reuse_copies_stale = mode == 3;
     uint32_t gates = 0;
     for (uint32_t i = 0; i < p->step_count; ++i)
         if (p->steps[i].gate > gates) gates = p->steps[i].gate;
-    c->reuse = keep ? 1 : 2;
+    c->reuse = mode;
     /* the last gate is apply's (or the upsample's): kept only where the output holds the last frame's */
     c->gate_count = (int)gates - (in->output_holds_previous ? 0 : 1);
-    return keep;
+    return mode;
 }
 
 static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const cacao_constants *constants) {
+    const cacao_plan *p = &ctx->plan;
     ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_CONSTANTS], 0, sizeof *constants, constants);
     if (ctx->plan.uses_load_counter)
         ctx->vk.CmdFillBuffer(cmd, ctx->buffers[CACAO_RES_LOAD_COUNTER], 0, sizeof(uint32_t), 0);
     if (ctx->plan.uses_tiles) { /* empty lists; the compact pass appends (docs/tiles.md) */
         uint32_t header[CACAO_TILE_HEADER] = {0};
-        const cacao_plan *p = &ctx->plan;
+        /* full frames run no reach pass (and 3 no diff): every tile changed and is recomputed */
+        if (constants->reuse == 3) header[CACAO_TILE_COUNT_CHANGED] = p->tiles_x * p->tiles_y;
+        if (constants->reuse >= 2) header[CACAO_TILE_COUNT_RECOMPUTE] = p->tiles_x * p->tiles_y;
         for (unsigned list = 1; list <= CACAO_LIST_COUNT; ++list) { /* x: the grid's width; rows 0 */
             const uint32_t width = list == CACAO_LIST_BLUR ? p->blur_groups_x : p->tiles_x;
             header[CACAO_TILE_COMMAND(list)] = width ? width : 1;
@@ -300,15 +308,20 @@ cacao_result cacao_record(cacao_context *ctx, VkCommandBuffer cmd, const cacao_i
     /* the constants first: whether the frame keeps the intermediates' contents depends on them */
     cacao_constants constants;
     cacaoi_fill_constants(&ctx->plan, in, &constants);
-    const bool keep = reuse_frame(ctx, in, &constants);
-    record_frame_start(ctx, cmd, in, keep);
+    const int reuse = reuse_frame(ctx, in, &constants);
+    record_frame_start(ctx, cmd, in, reuse == 1);
     record_constants(ctx, cmd, &constants);
     const VkQueryPool timer = in->timestamp_query_pool;
     if (timer)
         ctx->vk.CmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timer, in->timestamp_first_query);
     const bool clears = plan_has_clears(&ctx->plan);
     for (uint32_t i = 0; i < ctx->plan.step_count; ++i) {
-        record_step(ctx, cmd, in, i, clears);
+        /* a full frame records no prefix and reach (every tile is recomputed), and one whose
+         * constants changed no diff either (the copies go stale) */
+        const uint8_t *key = ctx->plan.steps[i].key;
+        const bool reach = key[0] == CACAO_PASS_REUSE && (key[1] == CACAO_REUSE_PREFIX || key[1] == CACAO_REUSE_REACH);
+        const bool diff = key[0] == CACAO_PASS_REUSE && !reach;
+        if (!((reach && reuse >= 2) || (diff && reuse == 3))) record_step(ctx, cmd, in, i, clears);
         if (timer)
             ctx->vk.CmdWriteTimestamp(cmd, step_stage(&ctx->plan.steps[i]), timer, in->timestamp_first_query + i + 1);
     }

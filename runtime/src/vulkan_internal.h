@@ -57,9 +57,11 @@ struct cacao_context {
     bool pipelines_only;     /* the pipelines of the settings exist (cacao_context_create_pipelines),
                                 no intermediates: plan holds the steps at a nominal size */
     cacao_plan plan;
-    /* reuse_unchanged: a frame was recorded since the last resize, and its constants (less the
-     * per-frame reuse fields): a frame whose constants differ recomputes everything */
+    /* reuse_unchanged (record.c reuse_frame): a frame was recorded since the last resize, and its
+     * constants (less the per-frame reuse fields) */
     bool reuse_primed;
+    bool reuse_copies_stale; /* the last frame skipped the diff (its constants changed): the next
+                                one refreshes the copies of the inputs */
     cacao_constants reuse_constants;
 
     VkSampler nearest_sampler, linear_sampler;

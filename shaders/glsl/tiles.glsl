@@ -63,11 +63,12 @@ uint recompute_base() { return TILE_REGION(CACAO_TILE_RECOMPUTE); }
 uint blur_recompute_base() { return TILE_REGION(CACAO_TILE_BLUR_RECOMPUTE); }
 
 /* Reuse (docs/tiles.md "Reusing the previous frame"): tile t, or blur group g, is recomputed this
- * frame (the reach pass's flags); without reuse every one is. */
-bool tile_recomputed(ivec2 t) { return CB.reuse == 0 || tiles[recompute_base() + uint(t.y * CB.tiles_x + t.x)] == 0u; }
+ * frame (the reach pass's flags); without reuse, and on a full frame (which runs no reach pass),
+ * every one is. */
+bool tile_recomputed(ivec2 t) { return CB.reuse != 1 || tiles[recompute_base() + uint(t.y * CB.tiles_x + t.x)] == 0u; }
 bool blur_group_recomputed(ivec2 g)
 {
-    return CB.reuse == 0 || tiles[blur_recompute_base() + uint(g.y * CB.blur_groups_x + g.x)] == 0u;
+    return CB.reuse != 1 || tiles[blur_recompute_base() + uint(g.y * CB.blur_groups_x + g.x)] == 0u;
 }
 #endif
 
@@ -287,7 +288,8 @@ layout(local_size_x = CACAO_WG_CLASSIFY, local_size_y = CACAO_WG_CLASSIFY) in;
 
 uint tile_index(ivec2 t) { return uint(t.y * CB.tiles_x + t.x); }
 
-#if CACAO_VARIANT == CACAO_REUSE_DIFF || CACAO_VARIANT == CACAO_REUSE_DIFF_NORMALS
+#if CACAO_VARIANT != CACAO_REUSE_PREFIX && CACAO_VARIANT != CACAO_REUSE_REACH
+#define REUSE_NORMALS (CACAO_VARIANT == CACAO_REUSE_DIFF_NORMALS || CACAO_VARIANT == CACAO_REUSE_DIFF_NORMALS_GPU)
 /* The least view z of raw depths in [dmin, dmax] (no NaN), as prepare's view_z gives them: z is a
  * ratio of two linear functions of the depth, monotonic between two depths with no pole between,
  * so its least value is at an end (the 1% the reach allows covers a rounding that is not). 0, the
@@ -301,11 +303,49 @@ float least_view_z(float dmin, float dmax)
     return den.x * den.y > 0.0 && all(greaterThanEqual(z, vec2(0.0))) ? min(z.x, z.y) : 0.0;
 }
 
-/* One invocation per tile: its pixels' depth (and input normals' r, g, b) against the copies the
- * previous frame kept, bit for bit (a NaN that stays NaN is unchanged); changed copies are updated
- * (every one on a full frame, CB.reuse 2). The copies hold each 2x2 block as one texel per
- * channel, in the order of the gather that reads the block (past the image's edge the gather
- * clamps, the same way every frame). Also the tile's least view z: the reach pass bounds the taps' radius by it. */
+/* The 2x2 pixels whose gather corner is (x + 1, y + 1) (pixels x..x+1, y..y+1) against the copies
+ * the previous frame kept, bit for bit (a NaN that stays NaN is unchanged): true where any differs
+ * (always on a full frame, CB.reuse 2), after updating the copies. The copies hold each block as
+ * one texel per channel, in the order of the gather that reads the block (past the image's edge
+ * the gather clamps, the same way every frame): the depth, and the input normals' r, g, b (what
+ * prepare reads). Widens [dmin, dmax] by the block's depths that are not NaN. */
+bool block_differs(int x, int y, vec2 inv_size, inout vec4 dmin, inout vec4 dmax)
+{
+    const float inf = uintBitsToFloat(0x7f800000u);
+    bool full = CB.reuse == 2, changed = full;
+    vec2 uv = vec2(x + 1, y + 1) * inv_size;
+    vec4 d4 = textureGather(src_depth, uv, 0);
+    ivec2 q = ivec2(x, y) / 2;
+    if (full || any(notEqual(floatBitsToUint(d4), floatBitsToUint(imageLoad(depth_history, q))))) {
+        imageStore(depth_history, q, d4);
+        changed = true;
+    }
+    bvec4 number = not(isnan(d4));
+    dmin = min(dmin, mix(vec4(inf), d4, number));
+    dmax = max(dmax, mix(vec4(-inf), d4, number));
+#if REUSE_NORMALS
+    vec4 nc[3] = vec4[3](textureGather(src_normals, uv, 0), textureGather(src_normals, uv, 1),
+                         textureGather(src_normals, uv, 2));
+    for (int c = 0; c < 3; ++c) {
+        ivec2 h = ivec2(3 * q.x + c, q.y);
+        if (full || any(notEqual(floatBitsToUint(nc[c]), floatBitsToUint(imageLoad(normals_history, h))))) {
+            imageStore(normals_history, h, nc[c]);
+            changed = true;
+        }
+    }
+#endif
+    return changed;
+}
+
+float least_of(vec4 dmin, vec4 dmax)
+{
+    return least_view_z(min(min(dmin.x, dmin.y), min(dmin.z, dmin.w)), max(max(dmax.x, dmax.y), max(dmax.z, dmax.w)));
+}
+
+#if CACAO_VARIANT == CACAO_REUSE_DIFF || CACAO_VARIANT == CACAO_REUSE_DIFF_NORMALS
+/* The CPU forms: one invocation per tile (lavapipe runs long loops over few invocations well), its
+ * blocks in turn. Writes the tile's changed flag (0: changed) and least view z, which the reach
+ * pass bounds the taps' radius by. */
 void main()
 {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
@@ -313,42 +353,52 @@ void main()
     ivec2 size = textureSize(src_depth, 0);
     int n = CB.reuse_tile_pixels;
     ivec2 p0 = t * n, p1 = min(p0 + n, size);
-    bool full = CB.reuse == 2, changed = full;
     vec2 inv_size = 1.0 / vec2(size);
-    const float inf = uintBitsToFloat(0x7f800000u);
-    vec4 dmin = vec4(inf), dmax = vec4(-inf);
-    for (int y = p0.y; y < p1.y; y += 2) {
-        for (int x = p0.x; x < p1.x; x += 2) {
-            vec4 d4 = textureGather(src_depth, vec2(x + 1, y + 1) * inv_size, 0);
-            ivec2 q = ivec2(x, y) / 2;
-            if (full || any(notEqual(floatBitsToUint(d4), floatBitsToUint(imageLoad(depth_history, q))))) {
-                imageStore(depth_history, q, d4);
-                changed = true;
-            }
-            bvec4 number = not(isnan(d4));
-            dmin = min(dmin, mix(vec4(inf), d4, number));
-            dmax = max(dmax, mix(vec4(-inf), d4, number));
-#if CACAO_VARIANT == CACAO_REUSE_DIFF_NORMALS
-            /* the normals' r, g, b (what prepare reads) of the block: one gather and one texel each */
-            vec2 uv = vec2(x + 1, y + 1) * inv_size;
-            vec4 nc[3] = vec4[3](textureGather(src_normals, uv, 0), textureGather(src_normals, uv, 1),
-                                 textureGather(src_normals, uv, 2));
-            for (int c = 0; c < 3; ++c) {
-                vec4 n4 = nc[c];
-                ivec2 h = ivec2(3 * q.x + c, q.y);
-                if (full || any(notEqual(floatBitsToUint(n4), floatBitsToUint(imageLoad(normals_history, h))))) {
-                    imageStore(normals_history, h, n4);
-                    changed = true;
-                }
-            }
-#endif
-        }
-    }
-    float zmin = least_view_z(min(min(dmin.x, dmin.y), min(dmin.z, dmin.w)), max(max(dmax.x, dmax.y), max(dmax.z, dmax.w)));
-    tiles[TILE_REGION(CACAO_TILE_CHANGED) + tile_index(t)] = changed ? 1u : 0u;
-    tiles[TILE_REGION(CACAO_TILE_ZMIN) + tile_index(t)] = floatBitsToUint(zmin);
+    bool changed = false;
+    vec4 dmin = vec4(uintBitsToFloat(0x7f800000u)), dmax = -dmin;
+    for (int y = p0.y; y < p1.y; y += 2)
+        for (int x = p0.x; x < p1.x; x += 2) changed = block_differs(x, y, inv_size, dmin, dmax) || changed;
+    tiles[TILE_REGION(CACAO_TILE_CHANGED) + tile_index(t)] = changed ? 0u : CACAO_TILE_NO_ENTRY;
+    tiles[TILE_REGION(CACAO_TILE_ZMIN) + tile_index(t)] = floatBitsToUint(least_of(dmin, dmax));
     if (changed) atomicAdd(tiles[CACAO_TILE_COUNT_CHANGED], 1u);
 }
+#else
+/* The GPU forms: one invocation per block, a group of 16x16 pixels (a tile native, a quarter of one
+ * downsampled). The group reduces in shared memory (depths as order-preserving keys), then marks
+ * its tile (flags the host reset: 0 marks changed, the first mark counts) and lowers its least z
+ * (uint order is float order for z >= 0 and +inf). */
+shared uint group_changed, group_dmin, group_dmax;
+
+uint order_key(float v) { uint b = floatBitsToUint(v); return (b & 0x80000000u) != 0u ? ~b : b | 0x80000000u; }
+float key_value(uint k) { return uintBitsToFloat((k & 0x80000000u) != 0u ? k & 0x7fffffffu : ~k); }
+
+void main()
+{
+    if (gl_LocalInvocationIndex == 0u) {
+        group_changed = 0u;
+        group_dmin = order_key(uintBitsToFloat(0x7f800000u));
+        group_dmax = order_key(-uintBitsToFloat(0x7f800000u));
+    }
+    barrier();
+    ivec2 size = textureSize(src_depth, 0);
+    ivec2 p = 2 * ivec2(gl_GlobalInvocationID.xy);
+    if (in_rect(p, size)) {
+        vec4 dmin = vec4(uintBitsToFloat(0x7f800000u)), dmax = -dmin;
+        if (block_differs(p.x, p.y, 1.0 / vec2(size), dmin, dmax)) atomicOr(group_changed, 1u);
+        float lo = min(min(dmin.x, dmin.y), min(dmin.z, dmin.w)), hi = max(max(dmax.x, dmax.y), max(dmax.z, dmax.w));
+        if (lo <= hi) {
+            atomicMin(group_dmin, order_key(lo));
+            atomicMax(group_dmax, order_key(hi));
+        }
+    }
+    barrier();
+    if (gl_LocalInvocationIndex != 0u) return;
+    uint t = tile_index(ivec2(gl_WorkGroupID.xy) * 16 / CB.reuse_tile_pixels);
+    if (group_changed != 0u && atomicAnd(tiles[TILE_REGION(CACAO_TILE_CHANGED) + t], 0u) != 0u)
+        atomicAdd(tiles[CACAO_TILE_COUNT_CHANGED], 1u);
+    atomicMin(tiles[TILE_REGION(CACAO_TILE_ZMIN) + t], floatBitsToUint(least_view_z(key_value(group_dmin), key_value(group_dmax))));
+}
+#endif
 #elif CACAO_VARIANT == CACAO_REUSE_PREFIX
 /* One invocation per row of tiles: the changed tiles of the row up to each tile, so that the
  * reach pass counts those of a span of a row with two loads. */
@@ -356,11 +406,16 @@ void main()
 {
     int row = int(gl_WorkGroupID.x * gl_WorkGroupSize.x * gl_WorkGroupSize.y + gl_LocalInvocationIndex);
     if (row >= CB.tiles_y) return;
-    uint changed = TILE_REGION(CACAO_TILE_CHANGED), sums = TILE_REGION(CACAO_TILE_ROW_SUM), sum = 0u;
-    for (int x = 0; x < CB.tiles_x; ++x) {
-        uint i = uint(row * CB.tiles_x + x);
-        sum += tiles[changed + i];
-        tiles[sums + i] = sum;
+    uint changed = TILE_REGION(CACAO_TILE_CHANGED) + uint(row * CB.tiles_x), sums = TILE_REGION(CACAO_TILE_ROW_SUM) +
+                   uint(row * CB.tiles_x), sum = 0u;
+    /* eight flags loaded before their sums are stored: the loads need not wait on the stores */
+    for (int x0 = 0; x0 < CB.tiles_x; x0 += 8) {
+        uint flag[8];
+        [[unroll]] for (int i = 0; i < 8; ++i) flag[i] = x0 + i < CB.tiles_x ? tiles[changed + uint(x0 + i)] : 1u;
+        [[unroll]] for (int i = 0; i < 8; ++i) {
+            sum += flag[i] == 0u ? 1u : 0u; /* 0 marks a changed tile */
+            if (x0 + i < CB.tiles_x) tiles[sums + uint(x0 + i)] = sum;
+        }
     }
 }
 #else /* CACAO_REUSE_REACH */
@@ -376,14 +431,14 @@ void main()
 {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
     if (!in_rect(t, ivec2(CB.tiles_x, CB.tiles_y))) return;
-    uint changed_tiles = tiles[CACAO_TILE_COUNT_CHANGED];
+    uint changed_tiles = tiles[CACAO_TILE_COUNT_CHANGED]; /* the host's count on a frame without a diff */
     if (changed_tiles == 0u) {
         if (t == ivec2(0))
             for (int g = 0; g < CB.gate_count; ++g) tiles[TILE_REGION(CACAO_TILE_GATES) + uint(3 * g)] = 0u;
         return;
     }
     ivec2 last = ivec2(CB.tiles_x, CB.tiles_y) - 1;
-    bool recompute = CB.reuse == 2 || CB.reuse_all_or_nothing != 0;
+    bool recompute = CB.reuse >= 2 || CB.reuse_all_or_nothing != 0; /* a full frame, or HIGHEST */
     if (!recompute) {
         float zmin = uintBitsToFloat(0x7f800000u);
         for (int y = max(t.y - 2, 0); y <= min(t.y + 2, last.y); ++y)

@@ -132,6 +132,7 @@ static bool run_on_device(vkdev *dev, const cli_options *o, const cli_inputs *in
     vkdev_frame frame = cli_inputs_frame(in, encoded, o->frame_index);
     frame.plan_out = &out->plan; /* the plan the context ran, fallbacks included */
     frame.output_holds_previous = o->keep_output;
+    frame.alternate_camera = o->move_camera;
     float *moved = NULL;
     if (o->move_box) {
         if (!moved_depth(o, in, &moved, err)) return false;

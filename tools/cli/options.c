@@ -104,6 +104,9 @@ static const flag_def flags[] = {
     OPT("--move-box", NULL, "X,Y,W,H", FLAG_PATH, move_box,
         "with --reuse: every other frame shifts the depth inside the box 8 pixels "
         "right, an object moving: each frame after the first changes those tiles"),
+    OPT("--move-camera", NULL, NULL, FLAG_SWITCH, move_camera,
+        "every other frame, the projection's x scale one part in a million larger: a camera that "
+        "moves every frame (with --reuse: every frame a full one)"),
     OPT("--keep-output", NULL, NULL, FLAG_SWITCH, keep_output,
         "with --reuse: tell cacao the output holds its last frame (output_holds_previous): a frame "
         "with nothing changed writes nothing"),

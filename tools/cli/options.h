@@ -42,6 +42,7 @@ typedef struct cli_options {
     uint32_t frame_index;            /* cacao_inputs.frame_index (gtao/bitmask sample pattern) */
     const char *move_box;            /* --move-box X,Y,W,H (with --reuse): parsed by main */
     bool keep_output;                /* --keep-output: cacao_inputs.output_holds_previous */
+    bool move_camera;                /* --move-camera: every other frame another projection */
     /* Device. */
     const char *device;
     bool validate;

@@ -756,6 +756,7 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
         in.depth.image = frame->alternate_depth && rep % 2 ? alternate.image : depth.image;
         in.depth.view = frame->alternate_depth && rep % 2 ? alternate.view : depth.view;
         in.output_holds_previous = frame->output_holds_previous && rep > 0;
+        in.projection[0] = frame->alternate_camera && rep % 2 ? frame->projection[0] * (1.0f + 1.0e-6f) : frame->projection[0];
         in.force_full_frame = frame->force_full_frame;
         r = cacao_record(ctx, dev->cmd, &in);
         if (r != CACAO_SUCCESS) {

@@ -88,6 +88,7 @@ typedef struct vkdev_frame {
      * that input on every frame after a run's first (the run keeps one output image);
      * force_full_frame sets that input on every frame. */
     const float *alternate_depth;
+    bool alternate_camera; /* every other frame, P(0,0) one part in a million larger: a moving camera */
     bool output_holds_previous;
     bool force_full_frame;
     /* Optional: called after the last cacao_record, before submission, to record extra commands
