@@ -117,7 +117,8 @@ static void test_subset(void) {
                               /* the horizon estimators' fills where the CPU forms clear */
                               "fill.horizon_all", "fill.view_all",
                               /* reuse_unchanged (no axis: any CACAO configuration may ask for it) */
-                              "reuse.diff", "reuse.diff_normals", "reuse.prefix", "reuse.reach"};
+                              "reuse.diff", "reuse.diff_normals", "reuse.prefix", "reuse.reach", "reuse.diff_gpu",
+                              "reuse.diff_normals_gpu"};
     size_t n, kept = 0;
     cacao_key *keys = all_keys(&n);
     for (size_t i = 0; i < n; ++i) {
