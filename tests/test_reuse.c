@@ -131,8 +131,20 @@ static void sequence(vkdev *dev, const frames *fr, cacao_settings s, bool normal
     if (!step(dev, ctx, &moved, 1, ao, &c)) goto done;
     check_same(ao, ref_moved, "a sphere moved");
     CHECK(c.changed > 0 && c.changed < c.tiles / 8);
-    printf("%s: a sphere moved: %u of %u tiles changed, %u recomputed, generate %u, blur %u of %u groups\n", config,
-           c.changed, c.tiles, c.recomputed, c.generate_run, c.blur_run, c.blur_total);
+    /* the tiles whose output the move changed: reuse must recompute at least these */
+    const uint32_t px = s.downsample ? 32 : 16, tx = (W + px - 1) / px;
+    uint32_t moved_tiles = 0;
+    for (uint32_t ty = 0; ty * px < H; ++ty)
+        for (uint32_t x0 = 0; x0 < tx; ++x0) {
+            bool differs = false;
+            for (uint32_t y = ty * px; y < (ty + 1) * px && y < H; ++y)
+                for (uint32_t x = x0 * px; x < (x0 + 1) * px && x < W; ++x)
+                    differs |= memcmp(&ref[(size_t)y * W + x], &ref_moved[(size_t)y * W + x], sizeof(float)) != 0;
+            moved_tiles += differs;
+        }
+    printf("%s: a sphere moved: %u of %u tiles changed, %u output tiles differ, %u recomputed, generate %u, blur %u of "
+           "%u groups\n", config, c.changed, c.tiles, moved_tiles, c.recomputed, c.generate_run, c.blur_run, c.blur_total);
+    CHECK(c.recomputed >= moved_tiles);
     if (s.quality == CACAO_QUALITY_HIGHEST) CHECK(c.recomputed == c.tiles);
     else {
         if (!(c.recomputed >= c.changed && c.recomputed < c.tiles))

@@ -19,10 +19,16 @@ time of each against the first:
              how many it recomputed.
 Same binary, same run: the ratios are the figures, never the absolute milliseconds.
 
+The measurements go to --json (docs/gpu-measured/lavapipe-reuse.json); --render-only writes the
+markdown from that file without measuring. --gpu FILE adds the same ways timed on a real GPU by
+tools/device-reuse.sh (its reuse-gpu.txt, kept as docs/gpu-measured/h200-reuse.txt).
+
 usage: tools/reuse-report.py [--cacao build/tools/cli/cacao] [--shared ../shared] [--reps 3]
                              [--frames 5] [--qualities lowest,...] [--out docs/reuse-measured.md]
+                             [--json docs/gpu-measured/lavapipe-reuse.json] [--render-only]
+                             [--gpu docs/gpu-measured/h200-reuse.txt]
 """
-import argparse, os, re, statistics, subprocess, sys
+import argparse, collections, json, os, re, statistics, subprocess, sys
 
 QUALITIES = ['lowest', 'low', 'medium', 'high', 'highest']
 SCENES = ['street_track', 'statues_scanned', 'interior_fzkhaus']
@@ -51,15 +57,12 @@ def size_of(scene_dir):
     return w, h
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument('--cacao', default='build/tools/cli/cacao')
-    ap.add_argument('--shared', default='../shared')
-    ap.add_argument('--reps', type=int, default=3)
-    ap.add_argument('--frames', type=int, default=5)
-    ap.add_argument('--qualities', default=','.join(QUALITIES))
-    ap.add_argument('--out', default='docs/reuse-measured.md')
-    a = ap.parse_args()
+WAYS = ['camera moving', 'all moved', 'unchanged', 'unchanged, apply', 'moved']
+GPU_WAYS = {'camera': 'camera moving', 'allmoved': 'all moved', 'unchanged': 'unchanged',
+            'unchangedapply': 'unchanged, apply', 'moved': 'moved'}
+
+
+def measure(a):
     scenes_dir = os.path.join(a.shared, 'scenes')
     if not os.path.isdir(scenes_dir):
         sys.exit('no scenes at %s (--shared)' % scenes_dir)
@@ -87,35 +90,114 @@ def main():
                         if k == 'moved':
                             counts = reuse
                 med = {k: statistics.median(v) for k, v in times.items()}
-                row = (name, 'downsampled' if ds else 'native', q, med['full'], med['camera moving'] / med['full'],
-                       med['all moved'] / med['full'],
-                       med['unchanged'] / med['full'], med['unchanged, apply'] / med['full'],
-                       med['moved'] / med['full'], counts)
+                row = {'scene': name, 'mode': 'downsampled' if ds else 'native', 'quality': q, 'full_ms': med['full'],
+                       'ratio': {k: med[k] / med['full'] for k in WAYS}, 'moved_tiles': counts}
                 rows.append(row)
-                print('%-17s %-11s %-8s full %7.2f ms  camera %.3f  all moved %.3f  unchanged %.3f  (apply %.3f)  moved %.3f  %s'
-                      % row, flush=True)
-    up_after = open('/proc/loadavg').read().split()[:3]
+                print('%-17s %-11s %-8s full %7.2f ms  %s  %s' % (name, row['mode'], q, med['full'], '  '.join(
+                    '%s %.3f' % (k, row['ratio'][k]) for k in WAYS), counts), flush=True)
+    return {'reps': a.reps, 'frames': a.frames, 'load_before': up_before,
+            'load_after': open('/proc/loadavg').read().split()[:3], 'rows': rows}
+
+
+def gpu_rows(path):
+    """The device script's lines: rep scene quality mode way [R step lines] total [R counts]."""
+    times, counts, machine = collections.defaultdict(list), {}, ''
+    for line in open(path):
+        if line.startswith('#'):
+            machine = machine or line[1:].strip()
+            continue
+        f = line.split()
+        if len(f) < 6:
+            continue
+        scene, q, mode, way = f[1:5]
+        rest = ' '.join(f[5:])
+        bare = re.sub(r'R reuse\.[a-z_]+\s+[0-9.]+\s+[0-9.]+\s+[0-9.]+', '', rest)
+        bare = re.sub(r'R reuse \(the last frame\).*', '', bare).split()
+        if not bare:
+            continue
+        times[(scene, q, mode, way)].append(float(bare[0]))
+        m = re.search(r'(\d+) of (\d+) tiles changed, (\d+) recomputed', rest)
+        if m and way == 'moved':
+            counts[(scene, q, mode)] = tuple(int(x) for x in m.groups())
+    out = []
+    for scene in ['street_track', 'statues_scanned', 'interior_fzkhaus', 'embedded']:
+        for q in QUALITIES:
+            for mode in ['native', '--downsample']:
+                full = times.get((scene, q, mode, 'full'))
+                if not full:
+                    continue
+                f = statistics.median(full)
+                out.append((scene, 'downsampled' if mode != 'native' else 'native', q, f * 1000.0,
+                            {GPU_WAYS[w]: statistics.median(times[(scene, q, mode, w)]) / f for w in GPU_WAYS},
+                            counts.get((scene, q, mode))))
+    return out, machine
+
+
+def table(rows, unit):
+    lines = ['| scene | mode | quality | full (%s) | %s | moved: tiles changed / recomputed / all |' % (unit, ' | '.join(WAYS)),
+             '|---|---|---|---:|' + '---:|' * len(WAYS) + '---|']
+    for scene, mode, q, full, ratio, counts in rows:
+        c = '%d / %d / %d' % (counts[0], counts[2], counts[1]) if counts else '-'
+        lines.append('| %s | %s | %s | %.1f | %s | %s |' % (scene, mode, q, full, ' | '.join(
+            '%.2f' % ratio[k] for k in WAYS), c))
+    return lines
+
+
+def render(data, gpu_path, out):
     lines = ['# Reusing the previous frame, measured', '',
              'Regenerated by `tools/reuse-report.py --reps %d --frames %d` (lavapipe, the shared scenes at their '
-             'size, the CLI defaults: normals given where the scene has them, fade-out 50..300, blur 2). Load average '
-             'before %s, after %s. Each cell is the median over %d interleaved runs of the median of %d timed frames '
-             '(after 2 warm-up frames), divided by the full frame of the same run (*full*, no reuse). '
-             '*camera moving*: every frame another projection (`--move-camera`), a full frame for reuse; '
-             '*all moved*: every tile changes every frame under a still camera (`--move-box` over the whole image); *unchanged*: the same '
-             'depth every frame with the output kept by the caller (`--keep-output`); *unchanged, apply*: the same '
-             'without it (apply writes the whole output); *moved*: a box of a ninth of the image (a third of each '
-             'side, centred) moves 8 pixels every frame, with the output kept; its tile counts are the runtime\'s '
-             '(changed: tiles whose depth or normals differ; recomputed: tiles whose output a change can reach).'
-             % (a.reps, a.frames, ' '.join(up_before), ' '.join(up_after), a.reps, a.frames), '',
-             '| scene | mode | quality | full (ms) | camera moving | all moved | unchanged | unchanged, apply | moved | moved: tiles changed / recomputed / all |',
-             '|---|---|---|---:|---:|---:|---:|---:|---:|---|']
-    for name, mode, q, full, cam, allm, unch, unch_apply, moved, counts in rows:
-        c = '%d / %d / %d' % (counts[0], counts[2], counts[1]) if counts else '-'
-        lines.append('| %s | %s | %s | %.1f | %.3f | %.3f | %.3f | %.3f | %.3f | %s |'
-                     % (name, mode, q, full, cam, allm, unch, unch_apply, moved, c))
-    with open(a.out, 'w') as f:
+             'size, 960x540, the CLI defaults: normals given, fade-out 50..300, blur 2; the CPU shader forms). Load '
+             'average before %s, after %s. Each cell is the median over %d interleaved runs of the median of %d timed '
+             'frames (after 2 warm-up frames), divided by the full frame of the same run (*full*: no reuse). '
+             '*camera moving*: every frame another projection (`--move-camera`), so a full frame for reuse (what '
+             'reuse costs a frame with nothing to skip); *all moved*: every tile changes every frame under a still '
+             'camera (`--move-box` over the whole image: the diff finds it, the worst case); *unchanged*: the same '
+             'depth every frame, the output kept by the caller (`--keep-output`, nothing written); *unchanged, '
+             'apply*: the same without it (apply writes the whole output); *moved*: a box of a ninth of the image (a '
+             'third of each side, centred) moves 8 pixels every frame, with the output kept. The tile counts are the '
+             'runtime\'s for the moved frames (changed: tiles whose depth or normals differ; recomputed: tiles whose '
+             'output a change can reach).'
+             % (data['reps'], data['frames'], ' '.join(data['load_before']), ' '.join(data['load_after']),
+                data['reps'], data['frames']), '']
+    rows = [(r['scene'], r['mode'], r['quality'], r['full_ms'], r['ratio'],
+             (r['moved_tiles'][0], r['moved_tiles'][1], r['moved_tiles'][2]) if r['moved_tiles'] else None)
+            for r in data['rows']]
+    lines += table(rows, 'ms')
+    if gpu_path:
+        grows, machine = gpu_rows(gpu_path)
+        lines += ['', '## On a real GPU', '',
+                  'The same ways, timed by `tools/device-reuse.sh` on %s (`%s`: 3 interleaved repetitions of 30 '
+                  'timed frames, medians; the GPU shader forms; the three shared scenes and the embedded scene, '
+                  '1280x720). Full frames here take 40-130 microseconds, and reuse adds a fixed cost: its three '
+                  'small passes (diff 10-12, prefix about 7, reach 5-7 microseconds) and the barriers between them. '
+                  'It pays only on unchanged frames at HIGH and HIGHEST.'
+                  % (machine or 'a GPU', os.path.relpath(gpu_path, os.path.dirname(os.path.dirname(os.path.abspath(out))))),
+                  '']
+        lines += table(grows, 'us')
+    with open(out, 'w') as f:
         f.write('\n'.join(lines) + '\n')
-    print('wrote', a.out)
+    print('wrote', out)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument('--cacao', default='build/tools/cli/cacao')
+    ap.add_argument('--shared', default='../shared')
+    ap.add_argument('--reps', type=int, default=3)
+    ap.add_argument('--frames', type=int, default=5)
+    ap.add_argument('--qualities', default=','.join(QUALITIES))
+    ap.add_argument('--out', default='docs/reuse-measured.md')
+    ap.add_argument('--json', default='docs/gpu-measured/lavapipe-reuse.json')
+    ap.add_argument('--render-only', action='store_true')
+    ap.add_argument('--gpu', default=None)
+    a = ap.parse_args()
+    if a.render_only:
+        data = json.load(open(a.json))
+    else:
+        data = measure(a)
+        with open(a.json, 'w') as f:
+            json.dump(data, f, indent=1)
+    render(data, a.gpu, a.out)
 
 
 if __name__ == '__main__':
