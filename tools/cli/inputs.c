@@ -247,3 +247,31 @@ vkdev_frame cli_inputs_frame(const cli_inputs *in, const cacao_settings *encoded
     if (in->normals.data && !encoded->generate_normals) vkdev_frame_set_view_normals(&frame, in->normals.data);
     return frame;
 }
+
+bool cli_inputs_reuse_frame(const cli_options *o, const cli_inputs *in, vkdev_frame *frame, float **moved, char *err,
+                            size_t err_size) {
+    frame->output_holds_previous = o->keep_output;
+    frame->alternate_camera = o->move_camera;
+    *moved = NULL;
+    if (!o->move_box) return true;
+    unsigned x, y, w, h;
+    char end;
+    const uint32_t iw = in->depth.width, ih = in->depth.height;
+    if (sscanf(o->move_box, "%u,%u,%u,%u%c", &x, &y, &w, &h, &end) != 4 || w == 0 || h == 0 || x >= iw || y >= ih ||
+        w > iw - x || h > ih - y) {
+        cacao_set_err(err, err_size, "--move-box %s: expected X,Y,W,H, a box of at least one pixel inside the %ux%u depth",
+                      o->move_box, iw, ih);
+        return false;
+    }
+    *moved = malloc(sizeof(float) * iw * ih);
+    if (!*moved) {
+        cacao_set_err(err, err_size, "--move-box: out of memory");
+        return false;
+    }
+    memcpy(*moved, in->depth.data, sizeof(float) * iw * ih);
+    for (uint32_t r = y; r < y + h; ++r)
+        for (uint32_t c = x; c < x + w; ++c)
+            (*moved)[(size_t)r * iw + c] = in->depth.data[(size_t)r * iw + (c >= 8 ? c - 8 : c)];
+    frame->alternate_depth = *moved;
+    return true;
+}

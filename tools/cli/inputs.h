@@ -39,6 +39,13 @@ cacao_settings cli_inputs_settings(const cli_options *options, const cli_inputs 
  * normals passed only where the settings do not reconstruct them. */
 vkdev_frame cli_inputs_frame(const cli_inputs *inputs, const cacao_settings *encoded, uint32_t frame_index);
 
+/* The reuse flags' frames (--keep-output, --move-camera, --move-box X,Y,W,H: every other frame the
+ * box's depth shifted 8 pixels right, an object moving) into *frame; *moved holds the alternate
+ * depth (NULL without --move-box; the caller frees it). A box that is not X,Y,W,H inside the
+ * depth is an error naming the flag. */
+bool cli_inputs_reuse_frame(const cli_options *options, const cli_inputs *inputs, vkdev_frame *frame, float **moved,
+                            char *err, size_t err_size);
+
 /* Reads a 1-channel image by extension: .pfm, .exr (channel Z, R, Y or the only one) or .png.
  * PNG must be 16-bit grey unless allow_8bit (values are sample / 65535 or / 255). `role` names
  * the image in messages ("depth", "ground truth"). */

@@ -103,41 +103,12 @@ typedef struct render_result {
     char device_name[256];
 } render_result;
 
-/* --move-box X,Y,W,H: the depth with the box's contents shifted 8 pixels right (pixels shifted in
- * from left of the image keep theirs), into *moved (the caller frees it). */
-static bool moved_depth(const cli_options *o, const cli_inputs *in, float **moved, char *err) {
-    unsigned x, y, w, h;
-    char end;
-    const uint32_t iw = in->depth.width, ih = in->depth.height;
-    if (sscanf(o->move_box, "%u,%u,%u,%u%c", &x, &y, &w, &h, &end) != 4 || w == 0 || h == 0 || x >= iw || y >= ih ||
-        w > iw - x || h > ih - y) {
-        cacao_set_err(err, ERR_SIZE, "--move-box %s: expected X,Y,W,H, a box of at least one pixel inside the %ux%u depth",
-                      o->move_box, iw, ih);
-        return false;
-    }
-    *moved = malloc(sizeof(float) * iw * ih);
-    if (!*moved) {
-        cacao_set_err(err, ERR_SIZE, "--move-box: out of memory");
-        return false;
-    }
-    memcpy(*moved, in->depth.data, sizeof(float) * iw * ih);
-    for (uint32_t r = y; r < y + h; ++r)
-        for (uint32_t c = x + w; c-- > x;)
-            (*moved)[(size_t)r * iw + c] = c >= 8 ? in->depth.data[(size_t)r * iw + c - 8] : in->depth.data[(size_t)r * iw + c];
-    return true;
-}
-
 static bool run_on_device(vkdev *dev, const cli_options *o, const cli_inputs *in, const cacao_settings *encoded,
                           render_result *out, char *err) {
     vkdev_frame frame = cli_inputs_frame(in, encoded, o->frame_index);
     frame.plan_out = &out->plan; /* the plan the context ran, fallbacks included */
-    frame.output_holds_previous = o->keep_output;
-    frame.alternate_camera = o->move_camera;
     float *moved = NULL;
-    if (o->move_box) {
-        if (!moved_depth(o, in, &moved, err)) return false;
-        frame.alternate_depth = moved;
-    }
+    if (!cli_inputs_reuse_frame(o, in, &frame, &moved, err, ERR_SIZE)) return false;
     char why[ERR_SIZE - 128];
     const cacao_result r = vkdev_run_timed(dev, encoded, &frame, o->warmup, o->repeat ? o->repeat : 1, out->ao.data,
                                            &out->timings, why, sizeof why);

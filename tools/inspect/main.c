@@ -230,10 +230,19 @@ static int cmd_show(const char *key_name) {
 static double percent(uint32_t part, uint32_t whole) { return whole ? 100.0 * part / whole : 0.0; }
 
 /* What each step of the plan did on the frame whose tile counts are c. */
-static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *c) {
-    printf("tiles: %u (%ux%u of 8x8 slice texels): %u active (%.1f%%), %u faded (%.1f%%), %u background (%.1f%%)\n",
-           c->tiles, plan->tiles_x, plan->tiles_y, c->active, percent(c->active, c->tiles), c->faded,
-           percent(c->faded, c->tiles), c->background, percent(c->background, c->tiles));
+static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *c, bool output_kept) {
+    const bool reuse = plan->settings.reuse_unchanged, nothing_changed = reuse && c->changed == 0;
+    if (nothing_changed)
+        printf("tiles: %u (%ux%u of 8x8 slice texels): classify did not run (nothing changed)\n", c->tiles,
+               plan->tiles_x, plan->tiles_y);
+    else
+        printf("tiles: %u (%ux%u of 8x8 slice texels): %u active (%.1f%%), %u faded (%.1f%%), %u background (%.1f%%)\n",
+               c->tiles, plan->tiles_x, plan->tiles_y, c->active, percent(c->active, c->tiles), c->faded,
+               percent(c->faded, c->tiles), c->background, percent(c->background, c->tiles));
+    if (reuse)
+        printf("reuse: %u tiles changed since the last frame (%.1f%%); a change can reach %u (%.1f%%); %u (%.1f%%) keep the "
+               "last frame's AO\n", c->changed, percent(c->changed, c->tiles), c->recomputed,
+               percent(c->recomputed, c->tiles), c->tiles - c->recomputed, percent(c->tiles - c->recomputed, c->tiles));
     printf("work each step skips on this frame:\n");
     const uint32_t generate_skipped = c->generate_total - c->generate_run, blur_skipped = c->blur_total - c->blur_run;
     for (uint32_t i = 0; i < plan->step_count; ++i) {
@@ -256,16 +265,26 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
                    percent(generate_skipped, c->generate_total));
             break;
         case CACAO_LIST_FILL_SLICES:
-            printf("writes AO 1 into the %u skipped tiles (%.1f%% of the tiles)\n", generate_skipped,
-                   percent(generate_skipped, c->generate_total));
+            if (reuse)
+                printf("writes AO 1 into the skipped tiles a change reaches (at most %u)\n", c->recomputed);
+            else
+                printf("writes AO 1 into the %u skipped tiles (%.1f%% of the tiles)\n", generate_skipped,
+                       percent(generate_skipped, c->generate_total));
             break;
         case CACAO_LIST_BLUR:
             printf("runs %u of %u groups, skips %u (%.1f%%)\n", c->blur_run, c->blur_total, blur_skipped,
                    percent(blur_skipped, c->blur_total));
             break;
         default:
-            printf("runs over everything, skips 0%%\n");
+            if (st->key[0] == CACAO_PASS_REUSE)
+                printf("reuse's bookkeeping (full frames record only the diff, or nothing)\n");
+            else if (st->gate && nothing_changed && (i + 1 < plan->step_count || output_kept))
+                printf("gated: nothing changed, dispatches nothing\n");
+            else
+                printf("runs over everything, skips 0%%\n");
         }
+        if (reuse && (list == CACAO_LIST_GENERATE || list == CACAO_LIST_BLUR))
+            printf("  %2s %-34s (background, faded, and the %u tiles no change reaches)\n", "", "", c->tiles - c->recomputed);
     }
 }
 
@@ -280,6 +299,11 @@ static int plan_on_scene(const cli_options *options) {
     cacao_plan plan;
     vkdev_frame frame = cli_inputs_frame(&in, &s, options->frame_index);
     frame.plan_out = &plan;
+    float *moved = NULL;
+    if (!cli_inputs_reuse_frame(options, &in, &frame, &moved, err, sizeof err)) {
+        cli_inputs_free(&in);
+        return fail("plan: %s", err);
+    }
     float *ao = malloc(sizeof(float) * in.depth.width * in.depth.height);
     vkdev dev;
     cacao_timings timings = {0};
@@ -290,16 +314,17 @@ static int plan_on_scene(const cli_options *options) {
                            sizeof err))
         rc = fail("plan: %s", err);
     else {
-        const cacao_result r = vkdev_run(&dev, &s, &frame, 1, ao, &timings, err, sizeof err);
+        /* with reuse, the second of two frames: the first is a full one (--move-box: the second moved) */
+        const cacao_result r = vkdev_run(&dev, &s, &frame, s.reuse_unchanged ? 2 : 1, ao, &timings, err, sizeof err);
         if (r != CACAO_SUCCESS) {
             fprintf(stderr, "cacao-inspect: plan: %s: %s\n", cacao_result_string(r), err);
             rc = 1;
         } else {
             cacao_plan_print(&plan, stdout);
-            printf("frame: %s, on %s\n", options->scene_dir ? options->scene_dir : options->depth_path,
-                   dev.device_name);
+            printf("frame: %s%s, on %s\n", options->scene_dir ? options->scene_dir : options->depth_path,
+                   s.reuse_unchanged ? " (the second of two frames)" : "", dev.device_name);
             if (timings.has_tiles)
-                print_skipped_work(&plan, &timings.tiles);
+                print_skipped_work(&plan, &timings.tiles, options->keep_output);
             else
                 printf("no tile counts for this frame: every step runs over everything\n");
         }
@@ -311,6 +336,7 @@ static int plan_on_scene(const cli_options *options) {
         }
     }
     free(ao);
+    free(moved);
     cli_inputs_free(&in);
     return rc;
 }
