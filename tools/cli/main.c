@@ -206,6 +206,8 @@ static int run(const cli_options *o) {
     char err[ERR_SIZE];
     if (!cli_check_estimator_flags(o, o->settings.estimator, "this run", err, sizeof err)) return fail(err);
     if (!check_output_flags(o, err)) return fail(err);
+    if (o->keep_output && !o->settings.reuse_unchanged)
+        return fail("--keep-output: only with --reuse (it tells the reusing context that the output holds its last frame)");
     cli_inputs in;
     if (!cli_inputs_load(o, &in, err, sizeof err)) return fail(err);
     const int rc = run_with_inputs(o, &in);
