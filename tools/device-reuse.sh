@@ -1,6 +1,6 @@
 #!/bin/bash
 # Times reuse_unchanged on a GPU machine (docs/reuse-measured.md "On a real GPU"): per scene (the
-# three shared scenes and the embedded one), quality (lowest, high, highest) and resolution mode,
+# three shared scenes and the embedded one, or the bundle's scenes named in $SCENES), quality (lowest, high, highest) and resolution mode,
 # the full frame and five ways of --reuse (tools/reuse-report.py names them), 3 interleaved
 # repetitions of 30 timed frames each. Run from the repository's root on the device, with the
 # bundle of tools/device-bundle.sh (.gpu: libraries and scenes) and build/tools/cli/cacao carried;
@@ -16,8 +16,9 @@ T0=$SECONDS
 GPU=$(nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2>/dev/null | head -1)
 C=build/tools/cli/cacao
 for rep in 1 2 3; do
-for s in street_track statues_scanned interior_fzkhaus embedded; do
-  S="--scene .gpu/shared/scenes/$s"; W=960; H=540; [ $s = embedded ] && { S=""; W=1280; H=720; }
+for s in ${SCENES:-street_track statues_scanned interior_fzkhaus embedded}; do
+  S="--scene .gpu/shared/scenes/$s"; W=1280; H=720
+  [ $s = embedded ] && S="" || read W H < <(head -c 64 .gpu/shared/scenes/$s/depth.pfm | sed -n 2p)
   WHOLE=0,0,$W,$H; BOX=$((W/3)),$((H/3)),$((W/3)),$((H/3))
   for q in lowest high highest; do for ds in "" "--downsample"; do
     for way in full camera "allmoved" "unchanged" "unchangedapply" "moved"; do

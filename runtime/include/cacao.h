@@ -246,7 +246,8 @@ typedef enum cacao_resource {
     CACAO_RES_AO_PONG,          /* GTAO/BITMASK: denoise ping-pong, R16F */
     CACAO_RES_AO_HALF,          /* GTAO/BITMASK downsampled: the 2x2 blocks' visibility, R16F, half size */
     CACAO_RES_TILES,            /* storage + indirect buffer: tile classes, lists, dispatch commands */
-    CACAO_RES_DEPTH_HISTORY,    /* reuse_unchanged: the caller's depth as the last frame read it, RGBA32F, 2x2 pixels a texel */
+    CACAO_RES_DEPTH_HISTORY,    /* reuse_unchanged: the caller's depth as the last frame read it, RGBA32F
+                                   (2x2 pixels a texel) */
     CACAO_RES_NORMALS_HISTORY,  /* reuse_unchanged with input normals: the caller's normals, RGBA32F */
     CACAO_RES_COUNT
 } cacao_resource;

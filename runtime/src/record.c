@@ -96,15 +96,16 @@ static VkImageMemoryBarrier image_barrier(VkImage image, VkImageAspectFlags aspe
 }
 
 /* Frame start: previous frames' accesses to our intermediates end before this frame overwrites
- * them (their contents are discarded: UNDEFINED -> GENERAL, unless reuse keeps them), the caller's earlier writes to its
- * inputs become visible, and the output goes to GENERAL for storage writes. */
+ * them (their contents are discarded: UNDEFINED -> GENERAL, unless reuse keeps them), the caller's
+ * earlier writes to its inputs become visible, and the output goes to GENERAL for storage writes. */
 static void record_frame_start(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in, bool keep) {
     VkImageMemoryBarrier barriers[CACAO_RES_COUNT + 3];
     uint32_t n = 0;
     /* `keep` (reuse: the frame may keep tiles of the previous one): contents stay, in GENERAL */
     for (uint32_t i = 0; i < ctx->plan.image_count; ++i)
         barriers[n++] = image_barrier(ctx->images[ctx->plan.images[i].resource].image, VK_IMAGE_ASPECT_COLOR_BIT,
-                                      keep ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                                      keep ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED,
+                                      VK_IMAGE_LAYOUT_GENERAL,
                                       VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
                                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
                                           VK_ACCESS_TRANSFER_WRITE_BIT);
@@ -169,7 +170,8 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
         for (uint32_t i = 0; i < p->step_count; ++i)
             if (p->steps[i].list) header[CACAO_TILE_COMMAND(p->steps[i].list) + 2] = p->steps[i].dispatch[2];
         ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], 0, sizeof header, header);
-        const VkDeviceSize tiles = (VkDeviceSize)p->tiles_x * p->tiles_y, groups = (VkDeviceSize)p->blur_groups_x * p->blur_groups_y;
+        const VkDeviceSize tiles = (VkDeviceSize)p->tiles_x * p->tiles_y;
+        const VkDeviceSize groups = (VkDeviceSize)p->blur_groups_x * p->blur_groups_y;
         const VkDeviceSize lists = sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_LIST_BASE(CACAO_LIST_GENERATE, tiles);
         const VkDeviceSize gates = sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_GATES(tiles, groups);
         ctx->vk.CmdFillBuffer(cmd, ctx->buffers[CACAO_RES_TILES], lists, gates - lists, CACAO_TILE_NO_ENTRY);
@@ -181,7 +183,8 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
             memcpy(&commands[3 * (p->steps[i].gate - 1)], p->steps[i].dispatch, sizeof p->steps[i].dispatch);
             if (p->steps[i].gate > count) count = p->steps[i].gate;
         }
-        if (count) ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], gates, sizeof(uint32_t) * 3 * count, commands);
+        if (count)
+            ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], gates, sizeof(uint32_t) * 3 * count, commands);
     }
     const VkMemoryBarrier memory = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
@@ -290,9 +293,9 @@ static void record_step(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inp
         const cacao_plan *p = &ctx->plan;
         const VkDeviceSize gates = CACAO_TILE_GATES((VkDeviceSize)p->tiles_x * p->tiles_y,
                                                     (VkDeviceSize)p->blur_groups_x * p->blur_groups_y);
-        ctx->vk.CmdDispatchIndirect(cmd, ctx->buffers[CACAO_RES_TILES], sizeof(uint32_t) * (gates + 3u * (step->gate - 1u)));
-    }
-    else
+        ctx->vk.CmdDispatchIndirect(cmd, ctx->buffers[CACAO_RES_TILES],
+                                    sizeof(uint32_t) * (gates + 3u * (step->gate - 1u)));
+    } else
         ctx->vk.CmdDispatch(cmd, step->dispatch[0], step->dispatch[1], step->dispatch[2]);
 }
 
@@ -319,7 +322,8 @@ cacao_result cacao_record(cacao_context *ctx, VkCommandBuffer cmd, const cacao_i
         /* a full frame records no prefix and reach (every tile is recomputed), and one whose
          * constants changed no diff either (the copies go stale) */
         const uint8_t *key = ctx->plan.steps[i].key;
-        const bool reach = key[0] == CACAO_PASS_REUSE && (key[1] == CACAO_REUSE_PREFIX || key[1] == CACAO_REUSE_REACH);
+        const bool reach =
+            key[0] == CACAO_PASS_REUSE && (key[1] == CACAO_REUSE_PREFIX || key[1] == CACAO_REUSE_REACH);
         const bool diff = key[0] == CACAO_PASS_REUSE && !reach;
         if (!((reach && reuse >= 2) || (diff && reuse == 3))) record_step(ctx, cmd, in, i, clears);
         if (timer)

@@ -396,7 +396,8 @@ void main()
     uint t = tile_index(ivec2(gl_WorkGroupID.xy) * 16 / CB.reuse_tile_pixels);
     if (group_changed != 0u && atomicAnd(tiles[TILE_REGION(CACAO_TILE_CHANGED) + t], 0u) != 0u)
         atomicAdd(tiles[CACAO_TILE_COUNT_CHANGED], 1u);
-    atomicMin(tiles[TILE_REGION(CACAO_TILE_ZMIN) + t], floatBitsToUint(least_view_z(key_value(group_dmin), key_value(group_dmax))));
+    float zmin = least_view_z(key_value(group_dmin), key_value(group_dmax));
+    atomicMin(tiles[TILE_REGION(CACAO_TILE_ZMIN) + t], floatBitsToUint(zmin));
 }
 #endif
 #elif CACAO_VARIANT == CACAO_REUSE_PREFIX
@@ -423,10 +424,12 @@ void main()
  * texels the blur and apply of t read (those within 2 tiles), at most reuse_tap_reach times
  * their lookup radius, which is largest at their least view z (the near limit only shrinks it),
  * plus reuse_margin texels (mips, edges, normals, blur, apply). t is recomputed when a changed
- * tile lies within that reach (a count over the rows' prefix sums, at most the image's tiles); always on a full frame, and at HIGHEST (whose adaptive pass depends on the whole
- * frame's importance) when anything changed. A recomputed tile marks the tiles within one tile of
- * it, and the blur groups touching those, for generate, the fills and the blur (group_work,
- * compact). With nothing changed, the gated steps' commands are zeroed: they dispatch nothing. */
+ * tile lies within that reach (a count over the rows' prefix sums, at most the image's tiles),
+ * and at HIGHEST (whose adaptive pass depends on the whole frame's importance) when anything
+ * changed; full frames record no reach pass (tile_recomputed). A recomputed tile marks the tiles
+ * within one tile of it, and the blur groups touching those, for generate, the fills and the
+ * blur (group_work, compact). With nothing changed, the gated steps' commands are zeroed: they
+ * dispatch nothing. */
 void main()
 {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
