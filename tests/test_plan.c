@@ -1,7 +1,8 @@
 /* test_plan - the pass plan is pure data that runs only the work the settings need: the step list
  * per quality matches the spec's pass graph (README "Pass graph"), dispatch sizes follow from the
  * sizes by hand, intermediates exist only when a step touches them, and barriers sit exactly
- * where a step reads or overwrites what an earlier step since the last barrier touched. */
+ * where a step reads or overwrites what an earlier step since the last barrier touched; with
+ * reuse_unchanged, its passes come first and every later direct step runs from a gate. */
 #include <string.h>
 
 #include "cacao.h"
@@ -275,8 +276,61 @@ static void test_invalid(void) {
     CHECK(cacao_plan_build(&(cacao_settings){0}, 64, 64, NULL, err, sizeof err) == CACAO_ERROR_INVALID_ARGUMENT);
 }
 
+/* reuse_unchanged (docs/tiles.md "Reusing the previous frame"): the diff (with input normals, the
+ * variant that also compares them; the GPU forms' own diff), prefix and reach run first, ungated;
+ * every later direct step runs from a gate, numbered in step order so that apply's, the last, is
+ * the last gate; the list-dispatched steps have none; the copies of the inputs are intermediates
+ * (depth: a texel per 2x2 pixels; normals: three texels per 2x2 pixels) and nothing else is added;
+ * the first gated step has a barrier before it (it reads the commands the reach pass wrote); the
+ * horizon estimators refuse the setting. */
+static void test_reuse(void) {
+    for (int gpu = 0; gpu < 2; ++gpu)
+        for (int normals = 0; normals < 2; ++normals) {
+            const cacao_settings s = {.quality = CACAO_QUALITY_HIGH, .generate_normals = !normals, .reuse_unchanged = true,
+                                      .shader_forms = gpu ? CACAO_SHADER_FORMS_GPU : CACAO_SHADER_FORMS_CPU};
+            cacao_plan p = build(s, 1920, 1080);
+            cacao_settings plain_settings = s;
+            plain_settings.reuse_unchanged = false;
+            cacao_plan plain = build(plain_settings, 1920, 1080);
+            CHECK(p.step_count == plain.step_count + 3);
+            const char *diff = gpu ? (normals ? "reuse.diff_normals_gpu" : "reuse.diff_gpu")
+                                   : (normals ? "reuse.diff_normals" : "reuse.diff");
+            CHECK(strcmp(p.steps[0].key_name, diff) == 0);
+            CHECK(strcmp(p.steps[1].key_name, "reuse.prefix") == 0 && p.steps[1].dispatch[0] == 2); /* 68 rows / 64 */
+            CHECK(strcmp(p.steps[2].key_name, "reuse.reach") == 0);
+            uint32_t gate = 0;
+            for (uint32_t i = 0; i < p.step_count; ++i) {
+                const cacao_plan_step *st = &p.steps[i];
+                if (i < 3) {
+                    CHECK(st->gate == 0);
+                    continue;
+                }
+                CHECK(strcmp(st->key_name, plain.steps[i - 3].key_name) == 0); /* the same steps after them */
+                if (st->list) {
+                    CHECK(st->gate == 0); /* a list's command is compact's */
+                } else {
+                    CHECK(st->gate == gate + 1); /* numbered in step order */
+                    gate = st->gate;
+                }
+            }
+            CHECK(p.steps[p.step_count - 1].gate == gate); /* apply's is the last */
+            const cacao_plan_image *depth = find_image(&p, CACAO_RES_DEPTH_HISTORY);
+            const cacao_plan_image *norm = find_image(&p, CACAO_RES_NORMALS_HISTORY);
+            CHECK(depth && depth->width == 960 && depth->height == 540 && depth->format == VK_FORMAT_R32G32B32A32_SFLOAT);
+            CHECK(normals ? norm && norm->width == 3 * 960 && norm->height == 540 : norm == NULL);
+            CHECK(p.image_count == plain.image_count + 1 + (uint32_t)normals);
+            CHECK(p.steps[3].barrier_before); /* the first gated step reads the commands the reach pass wrote */
+        }
+    cacao_plan p;
+    char err[256] = "";
+    CHECK(cacao_plan_build(&(cacao_settings){.estimator = CACAO_ESTIMATOR_BITMASK, .reuse_unchanged = true}, 64, 64, &p,
+                           err, sizeof err) == CACAO_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(err, "reuse_unchanged") != NULL);
+}
+
 int main(void) {
     test_steps_per_quality();
+    test_reuse();
     test_gpu_forms_skip_in_shader();
     test_horizon_clears();
     test_only_needed_resources();
