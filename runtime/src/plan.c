@@ -61,7 +61,7 @@ cacao_key_config cacaoi_key_config_of(const cacao_settings *s) {
         .blur_passes = s->blur_pass_count == CACAO_BLUR_NONE ? 0 : (unsigned)s->blur_pass_count,
         .estimator = (unsigned)s->estimator - 1u,
         .gpu_forms = s->shader_forms == CACAO_SHADER_FORMS_GPU,
-        .reuse = s->reuse_unchanged && s->estimator == CACAO_ESTIMATOR_CACAO,
+        .reuse = s->reuse_unchanged, /* CACAO only (cacao_settings_resolve) */
     };
 }
 

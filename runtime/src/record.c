@@ -125,6 +125,20 @@ static void record_frame_start(cacao_context *ctx, VkCommandBuffer cmd, const ca
                          n, barriers);
 }
 
+/* The plan's gate commands (cacao_plan_step.gate numbers them in step order) and their byte
+ * offset in the tile buffer. */
+static uint32_t gate_count(const cacao_plan *p) {
+    uint32_t gates = 0;
+    for (uint32_t i = 0; i < p->step_count; ++i)
+        if (p->steps[i].gate > gates) gates = p->steps[i].gate;
+    return gates;
+}
+
+static VkDeviceSize gates_offset(const cacao_plan *p) {
+    return sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_GATES((VkDeviceSize)p->tiles_x * p->tiles_y,
+                                                             (VkDeviceSize)p->blur_groups_x * p->blur_groups_y);
+}
+
 /* Reuse (docs/tiles.md "Reusing the previous frame"): how this frame uses the previous one, as
  * the per-frame constant reuse: 1 keep what did not change (the constants, so camera, settings
  * and size, are the last frame's, whose copies of the inputs are current, and the caller does not
@@ -135,18 +149,15 @@ static void record_frame_start(cacao_context *ctx, VkCommandBuffer cmd, const ca
  * constants. */
 static int reuse_frame(cacao_context *ctx, const cacao_inputs *in, cacao_constants *c) {
     const cacao_plan *p = &ctx->plan;
-    if (!p->settings.reuse_unchanged || p->settings.estimator != CACAO_ESTIMATOR_CACAO) return 0;
+    if (!p->settings.reuse_unchanged) return 0; /* CACAO only (cacao_settings_resolve) */
     const bool same = ctx->reuse_primed && memcmp(&ctx->reuse_constants, c, sizeof *c) == 0;
     const int mode = !ctx->reuse_primed || in->force_full_frame ? 2 : !same ? 3 : ctx->reuse_copies_stale ? 2 : 1;
     ctx->reuse_constants = *c;
     ctx->reuse_primed = true;
     ctx->reuse_copies_stale = mode == 3;
-    uint32_t gates = 0;
-    for (uint32_t i = 0; i < p->step_count; ++i)
-        if (p->steps[i].gate > gates) gates = p->steps[i].gate;
     c->reuse = mode;
     /* the last gate is apply's (or the upsample's): kept only where the output holds the last frame's */
-    c->gate_count = (int)gates - (in->output_holds_previous ? 0 : 1);
+    c->gate_count = (int)gate_count(p) - (in->output_holds_previous ? 0 : 1);
     return mode;
 }
 
@@ -170,19 +181,16 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
         for (uint32_t i = 0; i < p->step_count; ++i)
             if (p->steps[i].list) header[CACAO_TILE_COMMAND(p->steps[i].list) + 2] = p->steps[i].dispatch[2];
         ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], 0, sizeof header, header);
-        const VkDeviceSize tiles = (VkDeviceSize)p->tiles_x * p->tiles_y;
-        const VkDeviceSize groups = (VkDeviceSize)p->blur_groups_x * p->blur_groups_y;
-        const VkDeviceSize lists = sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_LIST_BASE(CACAO_LIST_GENERATE, tiles);
-        const VkDeviceSize gates = sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_GATES(tiles, groups);
+        const VkDeviceSize lists =
+            sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_LIST_BASE(CACAO_LIST_GENERATE, (VkDeviceSize)p->tiles_x * p->tiles_y);
+        const VkDeviceSize gates = gates_offset(p);
         ctx->vk.CmdFillBuffer(cmd, ctx->buffers[CACAO_RES_TILES], lists, gates - lists, CACAO_TILE_NO_ENTRY);
         /* reuse: each gated step's full grid (the reach pass zeroes x when nothing changed) */
         uint32_t commands[3 * CACAO_TILE_GATE_MAX];
-        uint32_t count = 0;
-        for (uint32_t i = 0; i < p->step_count; ++i) {
-            if (!p->steps[i].gate) continue;
-            memcpy(&commands[3 * (p->steps[i].gate - 1)], p->steps[i].dispatch, sizeof p->steps[i].dispatch);
-            if (p->steps[i].gate > count) count = p->steps[i].gate;
-        }
+        for (uint32_t i = 0; i < p->step_count; ++i)
+            if (p->steps[i].gate)
+                memcpy(&commands[3 * (p->steps[i].gate - 1)], p->steps[i].dispatch, sizeof p->steps[i].dispatch);
+        const uint32_t count = gate_count(p);
         if (count)
             ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], gates, sizeof(uint32_t) * 3 * count, commands);
     }
@@ -289,13 +297,10 @@ static void record_step(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inp
     ctx->vk.CmdPushDescriptorSetKHR(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->pipeline_layout, 0, step->binding_count, writes);
     if (step->list)
         ctx->vk.CmdDispatchIndirect(cmd, ctx->buffers[CACAO_RES_TILES], sizeof(uint32_t) * CACAO_TILE_COMMAND(step->list));
-    else if (step->gate) {
-        const cacao_plan *p = &ctx->plan;
-        const VkDeviceSize gates = CACAO_TILE_GATES((VkDeviceSize)p->tiles_x * p->tiles_y,
-                                                    (VkDeviceSize)p->blur_groups_x * p->blur_groups_y);
+    else if (step->gate)
         ctx->vk.CmdDispatchIndirect(cmd, ctx->buffers[CACAO_RES_TILES],
-                                    sizeof(uint32_t) * (gates + 3u * (step->gate - 1u)));
-    } else
+                                    gates_offset(&ctx->plan) + sizeof(uint32_t) * 3u * (step->gate - 1u));
+    else
         ctx->vk.CmdDispatch(cmd, step->dispatch[0], step->dispatch[1], step->dispatch[2]);
 }
 

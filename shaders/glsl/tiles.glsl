@@ -25,9 +25,11 @@ bool group_of(out ivec2 g)
 #endif
 }
 
-#if CACAO_PASS == CACAO_PASS_CLASSIFY || CACAO_PASS == CACAO_PASS_COMPACT || CACAO_PASS == CACAO_PASS_FILL
-/* Where tile t's class is (cacao_shared.h). */
-uint class_index(ivec2 t) { return uint(CACAO_TILE_CLASSES + t.y * CB.tiles_x + t.x); }
+#if CACAO_PASS == CACAO_PASS_CLASSIFY || CACAO_PASS == CACAO_PASS_COMPACT || CACAO_PASS == CACAO_PASS_FILL || \
+    CACAO_PASS == CACAO_PASS_REUSE || CACAO_SKIPS_BY_CLASS
+/* Tile t's index in the per-tile regions of the tile buffer (cacao_shared.h), and where its class is. */
+uint tile_index(ivec2 t) { return uint(t.y * CB.tiles_x + t.x); }
+uint class_index(ivec2 t) { return uint(CACAO_TILE_CLASSES) + tile_index(t); }
 #endif
 
 /* The invocation's texel in group g: a macro, since gl_WorkGroupSize is only known after each
@@ -65,7 +67,7 @@ uint blur_recompute_base() { return TILE_REGION(CACAO_TILE_BLUR_RECOMPUTE); }
 /* Reuse (docs/tiles.md "Reusing the previous frame"): tile t, or blur group g, is recomputed this
  * frame (the reach pass's flags); without reuse, and on a full frame (which runs no reach pass),
  * every one is. */
-bool tile_recomputed(ivec2 t) { return CB.reuse != 1 || tiles[recompute_base() + uint(t.y * CB.tiles_x + t.x)] == 0u; }
+bool tile_recomputed(ivec2 t) { return CB.reuse != 1 || tiles[recompute_base() + tile_index(t)] == 0u; }
 bool blur_group_recomputed(ivec2 g)
 {
     return CB.reuse != 1 || tiles[blur_recompute_base() + uint(g.y * CB.blur_groups_x + g.x)] == 0u;
@@ -86,7 +88,7 @@ void mark_around(ivec2 a, uint tile_base, uint blur_base)
     ivec2 last = ivec2(CB.tiles_x, CB.tiles_y) - 1;
     for (int y = max(a.y - 1, 0); y <= min(a.y + 1, last.y); ++y)
         for (int x = max(a.x - 1, 0); x <= min(a.x + 1, last.x); ++x)
-            mark(tile_base + uint(y * CB.tiles_x + x));
+            mark(tile_base + tile_index(ivec2(x, y)));
     if (CB.blur_groups_x == 0) return; /* no blur */
     ivec2 out_size = ivec2(CB.blur_out_x, CB.blur_out_y);
     ivec2 g0 = max(a - 1, ivec2(0)) * CACAO_TILE / out_size;
@@ -113,7 +115,7 @@ int group_work(ivec2 g)
     const uint count = CACAO_TILE_COUNT_BLUR_NEEDED;
 #else
     if (!tile_recomputed(g)) return GROUP_KEEP;
-    bool needed = tiles[needed_base() + g.y * CB.tiles_x + g.x] == 0u;
+    bool needed = tiles[needed_base() + tile_index(g)] == 0u;
     const uint count = CACAO_TILE_COUNT_NEEDED;
 #endif
     /* counted once per group of the first layer (cacao_tile_counts) */
@@ -286,8 +288,6 @@ void main()
 #if CACAO_PASS == CACAO_PASS_REUSE
 layout(local_size_x = CACAO_WG_CLASSIFY, local_size_y = CACAO_WG_CLASSIFY) in;
 
-uint tile_index(ivec2 t) { return uint(t.y * CB.tiles_x + t.x); }
-
 #if CACAO_VARIANT != CACAO_REUSE_PREFIX && CACAO_VARIANT != CACAO_REUSE_REACH
 #define REUSE_NORMALS (CACAO_VARIANT == CACAO_REUSE_DIFF_NORMALS || CACAO_VARIANT == CACAO_REUSE_DIFF_NORMALS_GPU)
 /* The least view z of raw depths in [dmin, dmax] (no NaN), as prepare's view_z gives them: z is a
@@ -337,9 +337,10 @@ bool block_differs(int x, int y, vec2 inv_size, inout vec4 dmin, inout vec4 dmax
     return changed;
 }
 
-float least_of(vec4 dmin, vec4 dmax)
+/* The least and greatest of the depths block_differs gathered into dmin and dmax (lo > hi: none). */
+vec2 depth_range(vec4 dmin, vec4 dmax)
 {
-    return least_view_z(min(min(dmin.x, dmin.y), min(dmin.z, dmin.w)), max(max(dmax.x, dmax.y), max(dmax.z, dmax.w)));
+    return vec2(min(min(dmin.x, dmin.y), min(dmin.z, dmin.w)), max(max(dmax.x, dmax.y), max(dmax.z, dmax.w)));
 }
 
 #if CACAO_VARIANT == CACAO_REUSE_DIFF || CACAO_VARIANT == CACAO_REUSE_DIFF_NORMALS
@@ -359,7 +360,8 @@ void main()
     for (int y = p0.y; y < p1.y; y += 2)
         for (int x = p0.x; x < p1.x; x += 2) changed = block_differs(x, y, inv_size, dmin, dmax) || changed;
     tiles[TILE_REGION(CACAO_TILE_CHANGED) + tile_index(t)] = changed ? 0u : CACAO_TILE_NO_ENTRY;
-    tiles[TILE_REGION(CACAO_TILE_ZMIN) + tile_index(t)] = floatBitsToUint(least_of(dmin, dmax));
+    vec2 range = depth_range(dmin, dmax);
+    tiles[TILE_REGION(CACAO_TILE_ZMIN) + tile_index(t)] = floatBitsToUint(least_view_z(range.x, range.y));
     if (changed) atomicAdd(tiles[CACAO_TILE_COUNT_CHANGED], 1u);
 }
 #else
@@ -385,10 +387,10 @@ void main()
     if (in_rect(p, size)) {
         vec4 dmin = vec4(uintBitsToFloat(0x7f800000u)), dmax = -dmin;
         if (block_differs(p.x, p.y, 1.0 / vec2(size), dmin, dmax)) atomicOr(group_changed, 1u);
-        float lo = min(min(dmin.x, dmin.y), min(dmin.z, dmin.w)), hi = max(max(dmax.x, dmax.y), max(dmax.z, dmax.w));
-        if (lo <= hi) {
-            atomicMin(group_dmin, order_key(lo));
-            atomicMax(group_dmax, order_key(hi));
+        vec2 range = depth_range(dmin, dmax);
+        if (range.x <= range.y) {
+            atomicMin(group_dmin, order_key(range.x));
+            atomicMax(group_dmax, order_key(range.y));
         }
     }
     barrier();
@@ -441,7 +443,7 @@ void main()
         return;
     }
     ivec2 last = ivec2(CB.tiles_x, CB.tiles_y) - 1;
-    bool recompute = CB.reuse >= 2 || CB.reuse_all_or_nothing != 0; /* a full frame, or HIGHEST */
+    bool recompute = CB.reuse_all_or_nothing != 0; /* HIGHEST (full frames record no reach pass) */
     if (!recompute) {
         float zmin = uintBitsToFloat(0x7f800000u);
         for (int y = max(t.y - 2, 0); y <= min(t.y + 2, last.y); ++y)
@@ -458,15 +460,13 @@ void main()
         float r = floor((reach - 1.0) / float(CACAO_TILE)) + 1.0;
         /* a reach past the image's tiles counts them all (also inf and NaN: z 0) */
         int k = r <= float(max(CB.tiles_x, CB.tiles_y)) ? int(r) : max(CB.tiles_x, CB.tiles_y);
-        {
-            uint sums = TILE_REGION(CACAO_TILE_ROW_SUM), count = 0u;
-            int x1 = min(t.x + k, last.x), x0 = t.x - k - 1;
-            for (int y = max(t.y - k, 0); y <= min(t.y + k, last.y); ++y) {
-                uint row = uint(y * CB.tiles_x);
-                count += tiles[sums + row + uint(x1)] - (x0 >= 0 ? tiles[sums + row + uint(x0)] : 0u);
-            }
-            recompute = count > 0u;
+        uint sums = TILE_REGION(CACAO_TILE_ROW_SUM), count = 0u;
+        int x1 = min(t.x + k, last.x), x0 = t.x - k - 1;
+        for (int y = max(t.y - k, 0); y <= min(t.y + k, last.y); ++y) {
+            uint row = uint(y * CB.tiles_x);
+            count += tiles[sums + row + uint(x1)] - (x0 >= 0 ? tiles[sums + row + uint(x0)] : 0u);
         }
+        recompute = count > 0u;
     }
     if (recompute) {
         atomicAdd(tiles[CACAO_TILE_COUNT_RECOMPUTE], 1u);
