@@ -116,7 +116,7 @@ bool cacaoi_key_parse(const char *name, cacao_key *out) {
 }
 
 bool cacaoi_key_expect(const cacao_key *key, cacaoi_module_expect *out) {
-    return cacaoi_key_is_valid(key) && cacaoi_pass_expect(key->pass, key->variant, out);
+    return cacaoi_key_is_valid(key) && cacaoi_pass_expect(key->pass, key->variant, key->downsampled, out);
 }
 
 /* How the GLSL declares a slot's access: storage images read or write only; a written storage

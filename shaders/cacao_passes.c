@@ -67,6 +67,7 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
 #define R(slot, res, variants) {CACAO_BINDING_##slot, CACAO_RES_##res, 0, false, variants}
 #define W(slot, res, variants) {CACAO_BINDING_##slot, CACAO_RES_##res, 0, true, variants}
 #define W_LEVELS(slot, res, levels, variants) {CACAO_BINDING_##slot, CACAO_RES_##res, levels, true, variants}
+#define W_NATIVE(slot, res, variants) {CACAO_BINDING_##slot, CACAO_RES_##res, 0, true, variants, true}
 #define ALL CACAOI_ALL_VARIANTS
 #define V(v) CACAOI_VARIANT(v)
 #define CONSTANTS R(CONSTANTS, CONSTANTS, ALL)
@@ -94,11 +95,14 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
      /* the Q3 base pass covers every tile: its values feed the importance map and the load     \
       * counter, which steer the adaptive pass everywhere */                                    \
      .lists = {list, list, list, list, CACAO_LIST_NONE}, .grids = {[CACAO_GENERATE_Q3_BASE] = base_grid}}
-/* The fused prepare (normals from depth) and its GPU form's row. */
-#define PREPARE_ROW(name)                                                                          \
-    {name, {"half", "full", "mips"}, 3, true, false, false, WG(PREPARE), CACAOI_GRID_SLICE, 5,          \
+/* The fused prepare (normals from depth) and its GPU form's row; the GPU form's native keys also
+ * classify the tiles (tiles_variants: ALL; the CPU form, and the GPU form downsampled, run the
+ * classify pass). */
+#define PREPARE_ROW(name, tiles_variants)                                                          \
+    {name, {"half", "full", "mips"}, 3, true, false, false, WG(PREPARE), CACAOI_GRID_SLICE, 6,          \
      {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), W(DEPTHS_IMAGE, DEPTHS, V(CACAO_DEPTHS_HALF) | V(CACAO_DEPTHS_FULL)), \
-      W_LEVELS(DEPTHS_IMAGE, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS)), W(NORMALS_IMAGE, NORMALS, ALL)}, \
+      W_LEVELS(DEPTHS_IMAGE, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS)), W(NORMALS_IMAGE, NORMALS, ALL), \
+      W_NATIVE(TILES, TILES, tiles_variants)},                                                      \
      .quad = {[CACAO_DEPTHS_HALF] = 2, [CACAO_DEPTHS_FULL] = 2, [CACAO_DEPTHS_MIPS] = 2}}
 
 const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
@@ -185,7 +189,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                      {CONSTANTS, W(TILES, TILES, ALL)}},
     /* spec: prepare.md, normals from depth: PREPARE_DEPTHS's variants and the normals in one pass,
      * a 2x2 quad of slice texels per invocation sharing one block of depths. */
-    PASS(PREPARE) = PREPARE_ROW("prepare"),
+    PASS(PREPARE) = PREPARE_ROW("prepare", 0u),
     /* The GPU forms (cacao_shader_forms): the rows above, other shapes. The blur: every n in
      * shared memory, 4x3 texels per thread (CACAO_BLUR_GPU_OUT_X, _Y); apply: 2x2 pixels per invocation,
      * each read through the sampler. Generate's GPU form runs its Q3 base pass one texel per
@@ -199,8 +203,10 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                        3, {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL)},
                        .quad = {[CACAO_OUTPUT_SMART] = 2, [CACAO_OUTPUT_NON_SMART] = 2, [CACAO_OUTPUT_HALF] = 2}},
     /* prepare: each direction between two neighbouring depths normalised once for the two
-     * normals that use it; generate: the tap's atlas level in integers. */
-    PASS(PREPARE_GPU) = PREPARE_ROW("prepare_gpu"),
+     * normals that use it, and the tile classes of its texels (no classify pass: its dispatch and
+     * barrier cost a GPU more than its work, docs/gpu.md); generate: the tap's atlas level in
+     * integers. */
+    PASS(PREPARE_GPU) = PREPARE_ROW("prepare_gpu", ALL),
     PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu", V(CACAO_GENERATE_Q3) | V(CACAO_GENERATE_Q3_BASE), CACAO_LIST_NONE,
                                       CACAOI_GRID_SLICE, W),
     /* The value of the tiles no pass computes: AO 1 over the unneeded tiles into the slices' AO
@@ -239,6 +245,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
 #undef R
 #undef W
 #undef W_LEVELS
+#undef W_NATIVE
 #undef ALL
 #undef V
 #undef CONSTANTS
@@ -250,21 +257,21 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
 #undef GENERATE_ROW
 #undef PREPARE_ROW
 
-static bool binding_active(const cacaoi_pass_binding *b, unsigned variant) {
-    return (b->variants >> variant) & 1u;
+static bool binding_active(const cacaoi_pass_binding *b, unsigned variant, unsigned downsampled) {
+    return ((b->variants >> variant) & 1u) && !(b->native_only && downsampled);
 }
 
 static const cacaoi_pass_row *row_of(unsigned pass, unsigned variant) {
     return pass < CACAO_PASS_COUNT && variant < cacaoi_passes[pass].variants ? &cacaoi_passes[pass] : NULL;
 }
 
-bool cacaoi_pass_expect(unsigned pass, unsigned variant, cacaoi_module_expect *out) {
+bool cacaoi_pass_expect(unsigned pass, unsigned variant, unsigned downsampled, cacaoi_module_expect *out) {
     const cacaoi_pass_row *row = row_of(pass, variant);
     if (!row) return false;
     memset(out, 0, sizeof *out);
     for (unsigned i = 0; i < row->binding_count; ++i) {
         const cacaoi_pass_binding *b = &row->bindings[i];
-        if (!binding_active(b, variant)) continue;
+        if (!binding_active(b, variant, downsampled)) continue;
         out->descriptor[b->slot] = cacaoi_slots[b->slot].descriptor;
         out->resource[b->slot] = b->resource;
         out->write[b->slot] = b->write;
@@ -275,11 +282,12 @@ bool cacaoi_pass_expect(unsigned pass, unsigned variant, cacaoi_module_expect *o
     return true;
 }
 
-size_t cacaoi_variant_bindings(unsigned pass, unsigned variant, cacaoi_pass_binding out[CACAO_PLAN_MAX_BINDINGS]) {
+size_t cacaoi_variant_bindings(unsigned pass, unsigned variant, unsigned downsampled,
+                               cacaoi_pass_binding out[CACAO_PLAN_MAX_BINDINGS]) {
     const cacaoi_pass_row *row = row_of(pass, variant);
     size_t n = 0;
     for (unsigned i = 0; row && i < row->binding_count; ++i) {
-        if (!binding_active(&row->bindings[i], variant)) continue;
+        if (!binding_active(&row->bindings[i], variant, downsampled)) continue;
         if (n < CACAO_PLAN_MAX_BINDINGS) out[n] = row->bindings[i];
         ++n;
     }

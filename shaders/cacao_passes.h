@@ -104,6 +104,7 @@ typedef struct cacaoi_pass_binding {
     uint8_t levels;   /* the depths: mip levels the image holds as an atlas (cacao_shared.h), 0 = 1 */
     bool write;
     uint8_t variants; /* bit mask of the variants that declare it */
+    bool native_only; /* declared by those variants' native keys only (the prepare passes' axis) */
 } cacaoi_pass_binding;
 
 /* Bindings a row lists (a binding per variant may share a slot) and variants a pass has. The
@@ -147,13 +148,14 @@ typedef struct cacaoi_module_expect {
     bool write[CACAO_BINDING_COUNT];
     uint32_t workgroup[3];
 } cacaoi_module_expect;
-bool cacaoi_pass_expect(unsigned pass, unsigned variant, cacaoi_module_expect *out);
+bool cacaoi_pass_expect(unsigned pass, unsigned variant, unsigned downsampled, cacaoi_module_expect *out);
 
-/* The bindings one variant of a pass makes (its row's, in row order), written into out up to
+/* The bindings one variant of a pass makes, native or downsampled (its row's, in row order), written into out up to
  * CACAO_PLAN_MAX_BINDINGS. Returns their number, which exceeds that only if the table is wrong
  * (test_pass_table checks every variant; cacao_plan_build refuses such a step); 0 for a pass or
  * variant the table lacks. */
-size_t cacaoi_variant_bindings(unsigned pass, unsigned variant, cacaoi_pass_binding out[CACAO_PLAN_MAX_BINDINGS]);
+size_t cacaoi_variant_bindings(unsigned pass, unsigned variant, unsigned downsampled,
+                               cacaoi_pass_binding out[CACAO_PLAN_MAX_BINDINGS]);
 
 /* The passes that run over every group and skip by the tile classes (the GPU forms of generate
  * and the blur: docs/tiles.md): a group that is not needed stores AO 1 and returns. */

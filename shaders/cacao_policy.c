@@ -32,7 +32,7 @@ unsigned cacaoi_form_pass(unsigned pass, bool gpu_forms) {
 
 
 size_t cacaoi_step_bindings(const cacaoi_step *step, cacaoi_pass_binding out[CACAO_PLAN_MAX_BINDINGS]) {
-    const size_t n = cacaoi_variant_bindings(step->key.pass, step->key.variant, out);
+    const size_t n = cacaoi_variant_bindings(step->key.pass, step->key.variant, step->key.downsampled, out);
     for (size_t i = 0; i < n && i < CACAO_PLAN_MAX_BINDINGS; ++i)
         for (unsigned o = 0; o < step->override_count; ++o)
             if (step->override_slot[o] == out[i].slot) out[i].resource = step->override_resource[o];
@@ -117,6 +117,10 @@ static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI
     return n;
 }
 
+bool cacaoi_prepare_classifies(const cacao_key_config *c) {
+    return c->estimator == CACAO_KEY_ESTIMATOR_CACAO && c->gpu_forms && !c->normals_from_input && !c->downsampled;
+}
+
 size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENCE_MAX]) {
     if (c->estimator != CACAO_KEY_ESTIMATOR_CACAO) return horizon_sequence(c, out);
     size_t n = 0;
@@ -135,7 +139,7 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     } else {
         push(out, &n, cacaoi_form_pass(CACAO_PASS_PREPARE, c->gpu_forms), depths, ds, 0, 0); /* depths and normals in one pass */
     }
-    push(out, &n, CACAO_PASS_CLASSIFY, 0, 0, 0, 0);
+    if (!cacaoi_prepare_classifies(c)) push(out, &n, CACAO_PASS_CLASSIFY, CACAO_CLASSIFY_SLICES, 0, 0, 0);
     /* The CPU forms run generate and the blur over lists of the groups that need them (compact);
      * the GPU forms run every group and store the AO 1 of a group they skip themselves: no lists,
      * no fills (docs/tiles.md). */

@@ -100,6 +100,10 @@ typedef struct cacaoi_step {
 /* The steps one configuration dispatches, in order (at most CACAOI_SEQUENCE_MAX). */
 size_t cacaoi_sequence(const cacao_key_config *config, cacaoi_step out[CACAOI_SEQUENCE_MAX]);
 
+/* The frame's prepare classifies the tiles, and no classify pass runs: CACAO's GPU forms with
+ * normals from depth, native (prepare_gpu's native keys; docs/tiles.md). */
+bool cacaoi_prepare_classifies(const cacao_key_config *config);
+
 /* The bindings a step makes: its row's bindings for its variant, with the step's overrides.
  * Returns their number (more than CACAO_PLAN_MAX_BINDINGS only if the table is wrong, see
  * cacaoi_variant_bindings). */

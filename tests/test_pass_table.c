@@ -79,8 +79,15 @@ static void test_rows(void) {
                 CHECK(seen[s] <= 1);
                 bound += seen[s];
             }
+            unsigned native_only = 0; /* bindings the downsampled keys leave out */
+            for (unsigned i = 0; i < row->binding_count; ++i)
+                if (((row->bindings[i].variants >> v) & 1u) && row->bindings[i].native_only) {
+                    CHECK(row->has_resolution); /* only the prepare passes have the axis */
+                    ++native_only;
+                }
             cacaoi_pass_binding out[CACAO_PLAN_MAX_BINDINGS];
-            CHECK(bound <= CACAO_PLAN_MAX_BINDINGS && cacaoi_variant_bindings(p, v, out) == bound);
+            CHECK(bound <= CACAO_PLAN_MAX_BINDINGS && cacaoi_variant_bindings(p, v, 0, out) == bound);
+            CHECK(cacaoi_variant_bindings(p, v, 1, out) == bound - native_only);
         }
     }
     /* Only the caller's images and the buffers lack a format; intermediates have a GLSL one. */
@@ -188,9 +195,12 @@ static void check_config(const cacao_settings *s) {
         const cacao_key key = cacaoi_plan_step_key(st);
         CHECK(cacaoi_key_compare(&key, &steps[i].key) == 0);
         CHECK(st->clear == cacaoi_fill_is_clear(steps[i].key.pass, steps[i].key.variant));
-        /* a step reading the tile buffer is a list dispatch, classify or compact, or a GPU form
-         * that skips by the classes itself (generate and the blur then write their count there;
-         * the horizon estimators' whole-image fills read a tile's class) */
+        /* a step reading the tile buffer is a list dispatch, classify or compact, a GPU form that
+         * skips by the classes itself (generate and the blur then write their count there; the
+         * horizon estimators' whole-image fills read a tile's class), or the GPU form of the fused
+         * prepare, native, which classifies (then no classify pass runs) */
+        const bool prepare_classifies = st->key[0] == CACAO_PASS_PREPARE_GPU && !st->key[2];
+        if (prepare_classifies) CHECK(cacaoi_prepare_classifies(&config) && config.gpu_forms && !config.downsampled);
         const bool class_fill = st->key[0] == CACAO_PASS_FILL &&
                                 (st->key[1] == CACAO_FILL_HORIZON_ALL || st->key[1] == CACAO_FILL_VIEW_ALL);
         if (class_fill) CHECK(st->list == CACAO_LIST_NONE && config.gpu_forms && !st->clear);
@@ -199,7 +209,7 @@ static void check_config(const cacao_settings *s) {
         for (uint32_t j = 0; j < st->binding_count; ++j)
             if (st->bindings[j].resource == CACAO_RES_TILES)
                 CHECK(st->list != CACAO_LIST_NONE || st->key[0] == CACAO_PASS_CLASSIFY || st->key[0] == CACAO_PASS_COMPACT ||
-                      cacaoi_skips_by_class(st->key[0], st->key[1]) || class_fill);
+                      cacaoi_skips_by_class(st->key[0], st->key[1]) || class_fill || prepare_classifies);
         if (st->clear) { /* a transfer: it only writes cacao's own images, each with a clear value; no module */
             CHECK(st->dispatch[0] == 0 && st->list == CACAO_LIST_NONE && st->binding_count >= 1);
             for (uint32_t j = 0; j < st->binding_count; ++j) {

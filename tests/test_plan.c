@@ -62,36 +62,48 @@ static void test_steps_per_quality(void) {
     }
 }
 
-/* The GPU forms (docs/tiles.md): classify, then generate and the blur on direct grids that skip
- * by the flags classify marks, in the shader; no compact, no lists, no fills (a group that is not
- * needed stores the 1 itself), at every quality and blur count. */
+static bool writes_tiles(const cacao_plan_step *st) {
+    for (uint32_t j = 0; j < st->binding_count; ++j)
+        if (st->bindings[j].resource == CACAO_RES_TILES && st->bindings[j].write) return true;
+    return false;
+}
+
+/* The GPU forms (docs/tiles.md): the tile classes, then generate and the blur on direct grids that
+ * skip by the flags the classification marks, in the shader; no compact, no lists, no fills (a
+ * group that is not needed stores the 1 itself), at every quality and blur count. Native with
+ * normals from depth, the prepare classifies (it writes the tile buffer) and no classify pass
+ * runs; downsampled, and with the caller's normals, the classify pass does. */
 static void test_gpu_forms_skip_in_shader(void) {
     for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
-        for (uint32_t blur = 0; blur <= 8; blur += 4) {
-            cacao_plan p = build((cacao_settings){.quality = (cacao_quality)q, .blur_pass_count = blur,
-                                                  .generate_normals = true, .shader_forms = CACAO_SHADER_FORMS_GPU},
-                                 1920, 1080);
-            bool classify = false, generate = false;
-            for (uint32_t i = 0; i < p.step_count; ++i) {
-                const cacao_plan_step *st = &p.steps[i];
-                CHECK(st->list == CACAO_LIST_NONE && !st->clear && strcmp(st->key_name, "compact") != 0 &&
-                      strcmp(st->key_name, "fill") != 0);
-                classify |= strcmp(st->key_name, "classify") == 0;
-                const bool skips = strncmp(st->key_name, "blur_gpu.", 9) == 0 ||
-                                   (strncmp(st->key_name, "generate_gpu.", 13) == 0 &&
-                                    strcmp(st->key_name, "generate_gpu.q3base") != 0);
-                if (skips) { /* after classify; every group of the grid, reading classify's flags and
-                              * counting the needed groups into the header (written) */
-                    CHECK(classify && st->dispatch[2] == p.slice_count && st->barrier_before);
-                    bool tiles_bound = false;
-                    for (uint32_t j = 0; j < st->binding_count; ++j)
-                        tiles_bound |= st->bindings[j].resource == CACAO_RES_TILES && st->bindings[j].write;
-                    CHECK(tiles_bound);
+        for (uint32_t blur = 0; blur <= 8; blur += 4)
+            for (int form = 0; form < 3; ++form) { /* native, downsampled, the caller's normals */
+                cacao_plan p = build((cacao_settings){.quality = (cacao_quality)q, .blur_pass_count = blur,
+                                                      .downsample = form == 1, .generate_normals = form != 2,
+                                                      .shader_forms = CACAO_SHADER_FORMS_GPU},
+                                     1920, 1080);
+                bool classified = false, classify_pass = false, generate = false;
+                for (uint32_t i = 0; i < p.step_count; ++i) {
+                    const cacao_plan_step *st = &p.steps[i];
+                    CHECK(st->list == CACAO_LIST_NONE && !st->clear && strcmp(st->key_name, "compact") != 0 &&
+                          strcmp(st->key_name, "fill") != 0);
+                    const bool is_classify = strcmp(st->key_name, "classify") == 0;
+                    const bool prepare_classifies = strncmp(st->key_name, "prepare_gpu.", 12) == 0 && writes_tiles(st);
+                    CHECK(!prepare_classifies || form == 0);
+                    classify_pass |= is_classify;
+                    classified |= is_classify || prepare_classifies;
+                    const bool skips = strncmp(st->key_name, "blur_gpu.", 9) == 0 ||
+                                       (strncmp(st->key_name, "generate_gpu.", 13) == 0 &&
+                                        strcmp(st->key_name, "generate_gpu.q3base") != 0);
+                    if (skips) { /* after the classes; every group of the grid, reading their flags and
+                                  * counting the needed groups into the header (written) */
+                        CHECK(classified && st->dispatch[2] == p.slice_count && st->barrier_before);
+                        CHECK(writes_tiles(st));
+                    }
+                    generate |= skips && st->key_name[0] == 'g';
                 }
-                generate |= skips && st->key_name[0] == 'g';
+                CHECK(classified && generate && p.uses_tiles);
+                CHECK(classify_pass == (form != 0));
             }
-            CHECK(classify && generate && p.uses_tiles);
-        }
 }
 
 /* The horizon estimators' own images get the values of the tiles no pass computes from clears

@@ -15,7 +15,9 @@
  *   - a frame that is all background (depth at the far plane) is exactly 1 everywhere and runs no
  *     generate and no blur group; the reference gives the same 1s with every tile active;
  *   - a frame with no background (the sky replaced by a far wall, fade-out beyond it) classifies
- *     no tile as background and skips nothing, with the same output.
+ *     no tile as background and skips nothing, with the same output;
+ *   - a tile is quiet only where every slice is: one slice all beyond the fade-out, the others
+ *     not, leaves every tile active (test_faded_layer).
  *   - the horizon estimators (GTAO, bitmask) likewise: identical to their reference, exactly 1
  *     with nothing estimated on an all-background frame, more than half the tiles skipped when
  *     three quarters of the pixels lie beyond the fade-out (test_horizon).
@@ -151,6 +153,41 @@ static void test_no_background(vkdev *dev, const scene_buffers *sb) {
         CHECK(c.background == 0 && c.faded == 0 && c.active == c.tiles && c.generate_run == c.tiles);
     }
     free(walled);
+}
+
+/* A tile is quiet only when every layer's texels are: here the columns slice 0 reads lie beyond
+ * the fade-out and the others' within it (native, slice 0 reads the even columns; downsampled,
+ * those with x % 4 == 0, slice 1 those with x % 4 == 2), so slice 0 is all faded while slices 1
+ * and 3 are not. Every tile is active, and the output is the reference's (a classification that
+ * stopped at the first layer with a texel not background called every tile faded and skipped
+ * generate: commit 16e6be8 and before). LOW and HIGH, native and downsampled. */
+static void test_faded_layer(vkdev *dev, const scene_buffers *sb, const cacao_camera *camera) {
+    const size_t n = (size_t)sb->width * sb->height;
+    float *striped = malloc(n * sizeof(float));
+    const double nz = camera->near_z, fz = camera->far_z;
+    for (int ds = 0; ds < 2; ++ds) {
+        for (size_t i = 0; i < n; ++i) {
+            const size_t x = i % sb->width, y = i / sb->width;
+            /* near columns: a rough surface at z 4..5 (it occludes itself); the others a wall at z 40 */
+            const bool near = (x & (ds ? 2u : 1u)) != 0;
+            const double z = near ? 4.0 + 0.25 * (double)((x * 7 + y * 13) % 5) : 40.0;
+            striped[i] = (float)(fz * (z - nz) / (z * (fz - nz)));
+        }
+        vkdev_frame f = scene_frame(sb, false, false);
+        f.depth = striped;
+        for (int q = 1; q < 5; q += 2) {
+            const cacao_settings s = {.quality = qualities[q], .downsample = ds != 0, .generate_normals = true,
+                                      .fade_out_from = 10.0f, .fade_out_to = 20.0f};
+            cacao_tile_counts c;
+            if (!same_as_all_tiles(dev, s, &f, "one layer faded", &c)) continue;
+            if (c.active != c.tiles) {
+                fprintf(stderr, "one layer faded, quality %d, %s: %u of %u tiles active\n", (int)s.quality,
+                        ds ? "downsampled" : "native", c.active, c.tiles);
+                ++test_failures;
+            }
+        }
+    }
+    free(striped);
 }
 
 static int compare_float(const void *a, const void *b) {
@@ -297,6 +334,7 @@ int main(void) {
     test_mostly_faded(&dev, 256, 144, false);
     test_mostly_faded(&dev, 512, 288, true);
     test_nan_depth(&dev, &sb);
+    test_faded_layer(&dev, &sb, &scene.camera);
     /* the GPU forms: the same cases (lavapipe runs both sides of their skip, slowly: the
      * downsampled frame once, with the CPU forms); mostly faded at 512x288, where the GPU blur's
      * larger groups (up to 64x48 texels) leave some away from every active tile */
@@ -306,6 +344,7 @@ int main(void) {
     test_no_background(&dev, &sb);
     test_mostly_faded(&dev, 512, 288, false);
     test_nan_depth(&dev, &sb);
+    test_faded_layer(&dev, &sb, &scene.camera);
     forms = CACAO_SHADER_FORMS_CPU;
     test_horizon(&dev, &sb, &sb, first_quartile_z(&sb, &scene.camera));
     scene_buffers_free(&sb);

@@ -201,6 +201,51 @@ void prep_rows(ivec2 u, int gj, vec2 inv, ivec2 src_size, float z0, inout vec3 p
 }
 #endif
 
+/* The GPU form's native keys classify the tiles of the texels they store (tiles.glsl, the
+ * classify pass's rules), which spares the frame the classify pass's dispatch and barrier (an H200
+ * ran CACAO HIGH at 960x540 in 74 instead of 80 microseconds: docs/gpu.md). A group's 8x8
+ * invocations of 2x2 texels cover 2x2 tiles; an invocation's quad lies in one of them. The
+ * downsampled keys run the classify pass: with the classification, gfx11 spilled two registers of
+ * their unrolled block, however it was placed. */
+#define PREP_CLASSIFIES (CACAO_PASS == CACAO_PASS_PREPARE_GPU && CACAO_DOWNSAMPLED == 0)
+#if PREP_CLASSIFIES
+#if CACAO_TILE != 8 || CACAO_WG_PREPARE_X != 8 || CACAO_WG_PREPARE_Y != 8
+#error "prepare_gpu classifies the 2x2 tiles of an 8x8 group of 2x2 texels: rewrite it for other sizes"
+#endif
+shared uint s_tile_flags[4];
+
+/* The least view z this invocation stores: +inf for none, -inf where one is NaN (NaN, like -inf,
+ * is neither quiet nor background). */
+float g_zmin = uintBitsToFloat(0x7f800000u);
+
+void classify_texel(float z) { g_zmin = min(g_zmin, isnan(z) ? uintBitsToFloat(0xff800000u) : z); }
+
+/* Every invocation of the group calls it, after main's stores (barriers). Being quiet is
+ * monotonic in z (background at or past background_z; faded where (z mod) mul + add is below
+ * -margin, and mul is negative), so some texel is not quiet, or not background, where the least is.
+ * The least as the R16F store keeps it, whichever way the store rounds, is at least the least less
+ * 2^-10 of it (a half's step; 1% more for the ulps of the arithmetic): its flags are a superset of
+ * the stored texels', which can call a tile active that the classify pass would not (a texel
+ * within 2^-10 of a threshold), never the other way. */
+void classify_group()
+{
+    uint l = gl_LocalInvocationIndex;
+    if (l < 4u) s_tile_flags[l] = CB.tiles_all != 0 ? FLAG_NOT_QUIET : 0u;
+    barrier();
+    float low = isinf(g_zmin) ? g_zmin : g_zmin - abs(g_zmin) * (1.01 / 1024.0);
+    uint flags = g_zmin > 0.0 && isinf(g_zmin) ? 0u : slice_z_flags(low); /* +inf: no texel */
+    ivec2 lt = ivec2(gl_LocalInvocationID.xy) / 4;
+    if (flags != 0u) atomicOr(s_tile_flags[2 * lt.y + lt.x], flags);
+    barrier();
+    ivec2 t = 2 * ivec2(gl_WorkGroupID.xy) + ivec2(l & 1u, l >> 1);
+    if (l < 4u && in_rect(t, ivec2(CB.tiles_x, CB.tiles_y)))
+        atomicAdd(tiles[CACAO_TILE_COUNT_ACTIVE + store_tile_class(t, s_tile_flags[l])], 1u);
+}
+#define CLASSIFY_TEXEL(z) classify_texel(z)
+#else
+#define CLASSIFY_TEXEL(z)
+#endif
+
 /* The fused prepare, for normals from depth: the 2x2 quad of slice texels 2u .. 2u + 1 (the pass
  * row halves the grid), all kept slices, its depths (and with MIPS the levels above) and its
  * normals from one block of full-res depths. Each texel's normals need a 4x4 block of full-res
@@ -279,6 +324,7 @@ void main()
             if (in_rect(t, s)) {
                 imageStore(depths_image, ivec3(t, layer), vec4(z[q][k]));
                 imageStore(normals_image, ivec3(t, layer), vec4(n, 1.0));
+                CLASSIFY_TEXEL(z[q][k]);
             }
         }
         [[unroll]] for (int i = 1; i < 5; ++i) up[i] = down[i];
@@ -307,12 +353,16 @@ void main()
             if (inside) {
                 imageStore(depths_image, ivec3(t, layer), vec4(z[q][k]));
                 imageStore(normals_image, ivec3(t, layer), vec4(n, 1.0));
+                CLASSIFY_TEXEL(z[q][k]);
             }
         }
     }
 #endif
 #if CACAO_VARIANT == CACAO_DEPTHS_MIPS
     reduce_mips(u, z);
+#endif
+#if PREP_CLASSIFIES
+    classify_group();
 #endif
 }
 #endif /* PREPARE, PREPARE_GPU main */

@@ -25,7 +25,11 @@ bool group_of(out ivec2 g)
 #endif
 }
 
-#if CACAO_PASS == CACAO_PASS_CLASSIFY || CACAO_PASS == CACAO_PASS_COMPACT || CACAO_PASS == CACAO_PASS_FILL || \
+/* The passes that classify tiles: classify, and the GPU form of the fused prepare, which
+ * classifies the texels it stores, native. */
+#define CACAO_CLASSIFIES (CACAO_PASS == CACAO_PASS_CLASSIFY || (CACAO_PASS == CACAO_PASS_PREPARE_GPU && CACAO_DOWNSAMPLED == 0))
+
+#if CACAO_CLASSIFIES || CACAO_PASS == CACAO_PASS_COMPACT || CACAO_PASS == CACAO_PASS_FILL || \
     CACAO_PASS == CACAO_PASS_REUSE || CACAO_SKIPS_BY_CLASS
 /* Tile t's index in the per-tile regions of the tile buffer (cacao_shared.h), and where its class is. */
 uint tile_index(ivec2 t) { return uint(t.y * CB.tiles_x + t.x); }
@@ -56,8 +60,7 @@ bool touches_needed(ivec2 t0, ivec2 t1)
 }
 #endif
 
-#if CACAO_SKIPS_BY_CLASS || CACAO_PASS == CACAO_PASS_CLASSIFY || CACAO_PASS == CACAO_PASS_COMPACT || \
-    CACAO_PASS == CACAO_PASS_REUSE
+#if CACAO_SKIPS_BY_CLASS || CACAO_CLASSIFIES || CACAO_PASS == CACAO_PASS_COMPACT || CACAO_PASS == CACAO_PASS_REUSE
 #define TILE_REGION(name) uint(name(CB.tiles_x * CB.tiles_y, CB.blur_groups_x * CB.blur_groups_y))
 uint needed_base() { return TILE_REGION(CACAO_TILE_NEEDED); }
 uint blur_needed_base() { return TILE_REGION(CACAO_TILE_BLUR_NEEDED); }
@@ -74,7 +77,7 @@ bool blur_group_recomputed(ivec2 g)
 }
 #endif
 
-#if CACAO_PASS == CACAO_PASS_CLASSIFY || CACAO_PASS == CACAO_PASS_REUSE
+#if CACAO_CLASSIFIES || CACAO_PASS == CACAO_PASS_REUSE
 /* Every mark stores the same 0 (flags the host reset to CACAO_TILE_NO_ENTRY), an atomic whose
  * result nothing waits for: counting here (the mark that found the flag unset) made each active
  * tile wait on a chain of atomics, 3 microseconds of an H200's frame (docs/gpu.md). */
@@ -125,21 +128,47 @@ int group_work(ivec2 g)
 #endif
 
 /* ---- classify ---- */
-#if CACAO_PASS == CACAO_PASS_CLASSIFY
-/* docs/tiles.md: one invocation per tile, no barriers. A texel is quiet where every layer's
- * stored view z is background or faded (with the margin of CB.quiet_margin, so that generate
- * finds it faded too); the tile is active when some texel is not quiet (the scan stops there),
- * else faded when some texel is not background, else background. Gathers read 2x2 texels; past
- * the slice's edge they clamp to texels of the same tile. */
-layout(local_size_x = CACAO_WG_CLASSIFY, local_size_y = CACAO_WG_CLASSIFY) in;
+#if CACAO_CLASSIFIES
+/* Flags of a tile: not quiet, not background. */
+#define FLAG_NOT_QUIET 1u
+#define FLAG_NOT_BACKGROUND 2u
+#define FLAGS_ALL (FLAG_NOT_QUIET | FLAG_NOT_BACKGROUND)
 
-#if CACAO_VARIANT == CACAO_CLASSIFY_SLICES
-/* Active tile a makes needed the tiles within one tile of it, and the blur groups whose output
- * touches one of those: compact's tests, turned around, in the GPU forms' flags (the CPU forms
- * run from compact's lists). The GPU forms' generate and blur count the needed groups they run
- * (group_work). */
-void mark_needed(ivec2 a) { mark_around(a, needed_base(), blur_needed_base()); }
+#if CACAO_PASS == CACAO_PASS_PREPARE_GPU || CACAO_VARIANT == CACAO_CLASSIFY_SLICES
+/* CACAO's stored view z (deinterleaved, R16F): background at or past background_z; quiet by fade
+ * with the margin of CB.quiet_margin, so that generate finds it faded too. */
+uint slice_z_flags(float z)
+{
+    bool background = z >= CB.background_z;
+    bool faded = (z * CB.depth_precision_offset_mod) * CB.effect_fade_out_mul + CB.effect_fade_out_add < -CB.quiet_margin;
+    return (background ? 0u : FLAG_NOT_BACKGROUND) | (background || faded ? 0u : FLAG_NOT_QUIET);
+}
 #endif
+
+/* Stores tile t's class from its flags and (CACAO) marks the needed tiles and blur groups around
+ * it; returns the class. */
+uint store_tile_class(ivec2 t, uint flags)
+{
+    uint cls = (flags & FLAG_NOT_QUIET) != 0u ? CACAO_TILE_CLASS_ACTIVE
+             : (flags & FLAG_NOT_BACKGROUND) != 0u ? CACAO_TILE_CLASS_FADED : CACAO_TILE_CLASS_BACKGROUND;
+    tiles[class_index(t)] = cls;
+#if CACAO_PASS == CACAO_PASS_PREPARE_GPU || CACAO_VARIANT == CACAO_CLASSIFY_SLICES
+    /* Active tile t makes needed the tiles within one tile of it, and the blur groups whose output
+     * touches one of those: compact's tests, turned around, in the GPU forms' flags (the CPU forms
+     * run from compact's lists). The GPU forms' generate and blur count the needed groups they run
+     * (group_work). */
+    if (cls == CACAO_TILE_CLASS_ACTIVE) mark_around(t, needed_base(), blur_needed_base());
+#endif
+    return cls;
+}
+#endif
+
+#if CACAO_PASS == CACAO_PASS_CLASSIFY
+/* docs/tiles.md: one invocation per tile, no barriers; a tile's scan stops at its first texel that
+ * is not quiet. Gathers read 2x2 texels; past the slice's edge they clamp to texels of the same
+ * tile. (CACAO's GPU forms classify in the fused prepare where normals come from depth, native:
+ * prepare.glsl.) */
+layout(local_size_x = CACAO_WG_CLASSIFY, local_size_y = CACAO_WG_CLASSIFY) in;
 
 #if CACAO_VARIANT == CACAO_CLASSIFY_HORIZON
 /* The horizon estimators' pixels, from the caller's depth, before their prepare: background where
@@ -149,34 +178,37 @@ void mark_needed(ivec2 a) { mark_around(a, needed_base(), blur_needed_base()); }
  * covers the ulps by which two passes may evaluate z differently). A depth whose z is invalid in
  * another way is neither: the passes compute it (and write 1). A background tile is left to the
  * fill of the background list, which stores what the prepare would. */
-void main()
+uint depth_flags(float d)
 {
-    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
-    if (!in_rect(t, ivec2(CB.tiles_x, CB.tiles_y))) return;
+    bool background = d == CB.horizon_far_depth || isnan(d);
+    float z = background ? -1.0 : horizon_view_z(d);
+    bool faded = z > 0.0 && z * CB.effect_fade_out_mul + CB.effect_fade_out_add < -CB.quiet_margin;
+    return (background ? 0u : FLAG_NOT_BACKGROUND) | (background || faded ? 0u : FLAG_NOT_QUIET);
+}
+
+uint tile_flags(ivec2 t)
+{
     ivec2 size = textureSize(src_depth, 0);
     vec2 inv_size = 1.0 / vec2(size);
-    uint flags = CB.tiles_all != 0 ? 3u : 0u; /* 1: not quiet, 2: not background */
+    uint flags = CB.tiles_all != 0 ? FLAGS_ALL : 0u;
     /* 2x2 pixels a gather (a quarter of the fetches: lavapipe pays per fetch); past the image's
      * edge the sampler clamps to pixels of the same tile, which changes no class */
-    for (int y = 0; y < CACAO_TILE && flags != 3u; y += 2) {
+    for (int y = 0; y < CACAO_TILE && flags != FLAGS_ALL; y += 2) {
         for (int x = 0; x < CACAO_TILE; x += 2) {
             ivec2 p = t * CACAO_TILE + ivec2(x, y);
             if (!in_rect(p, size)) continue;
             vec4 d = textureGather(src_depth, vec2(p + 1) * inv_size, 0);
-            for (int i = 0; i < 4; ++i) {
-                bool background = d[i] == CB.horizon_far_depth || isnan(d[i]);
-                float z = background ? -1.0 : horizon_view_z(d[i]);
-                bool faded = z > 0.0 && z * CB.effect_fade_out_mul + CB.effect_fade_out_add < -CB.quiet_margin;
-                if (!background) flags |= 2u;
-                if (!(background || faded)) flags |= 1u;
-            }
+            for (int i = 0; i < 4; ++i) flags |= depth_flags(d[i]);
         }
     }
+    return flags;
+}
 #else
-void main()
+/* A tile is quiet only where every layer is: each layer is scanned until a texel that is not
+ * quiet (a scan that stopped at the first layer with a texel that is not background called a tile
+ * faded whose other layers were active: test_tiles, test_faded_layer). */
+uint tile_flags(ivec2 t)
 {
-    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
-    if (!in_rect(t, ivec2(CB.tiles_x, CB.tiles_y))) return;
     ivec2 size = slice_size();
     ivec2 image_size = textureSize(depths, 0).xy;
     vec2 inv_d = 1.0 / vec2(image_size);
@@ -184,28 +216,25 @@ void main()
      * continues past the slice (cacao_shared.h), one texel inside it (the gather then also reads
      * texel n - 2, of this tile or its neighbour: at most a tile more is computed). */
     ivec2 corner_max = size - ivec2(greaterThan(image_size, size));
-    uint flags = CB.tiles_all != 0 ? 1u : 0u; /* 1: not quiet, 2: not background */
-    for (int layer = 0; layer < CB.slice_count && flags < 1u; ++layer) {
-        for (int y = 0; y < CACAO_TILE && (flags & 1u) == 0u; y += 2) {
+    uint flags = CB.tiles_all != 0 ? FLAG_NOT_QUIET : 0u;
+    for (int layer = 0; layer < CB.slice_count && (flags & FLAG_NOT_QUIET) == 0u; ++layer) {
+        for (int y = 0; y < CACAO_TILE && (flags & FLAG_NOT_QUIET) == 0u; y += 2) {
             for (int x = 0; x < CACAO_TILE; x += 2) {
                 ivec2 corner = min(t * CACAO_TILE + ivec2(x, y) + 1, corner_max);
                 vec4 z = textureGather(depths, vec3(vec2(corner) * inv_d, float(layer)), 0);
-                bvec4 background = greaterThanEqual(z, vec4(CB.background_z));
-                bvec4 faded = lessThan((z * CB.depth_precision_offset_mod) * CB.effect_fade_out_mul +
-                                           CB.effect_fade_out_add, vec4(-CB.quiet_margin));
-                if (!all(background)) flags |= 2u;
-                if (!all(bvec4(uvec4(background) | uvec4(faded)))) flags |= 1u;
+                for (int i = 0; i < 4; ++i) flags |= slice_z_flags(z[i]);
             }
         }
     }
+    return flags;
+}
 #endif
-    uint cls = (flags & 1u) != 0u ? CACAO_TILE_CLASS_ACTIVE
-             : (flags & 2u) != 0u ? CACAO_TILE_CLASS_FADED : CACAO_TILE_CLASS_BACKGROUND;
-    tiles[class_index(t)] = cls;
-    atomicAdd(tiles[CACAO_TILE_COUNT_ACTIVE + cls], 1u);
-#if CACAO_VARIANT == CACAO_CLASSIFY_SLICES
-    if (cls == CACAO_TILE_CLASS_ACTIVE) mark_needed(t);
-#endif
+
+void main()
+{
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    if (!in_rect(t, ivec2(CB.tiles_x, CB.tiles_y))) return;
+    atomicAdd(tiles[CACAO_TILE_COUNT_ACTIVE + store_tile_class(t, tile_flags(t))], 1u);
 }
 #endif /* CLASSIFY */
 
