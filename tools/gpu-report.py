@@ -62,10 +62,14 @@ MEASURED = {'final': 'h200-final.json', 'before': 'h200-before.json', 'lists': '
             'counting': 'h200-run-counting.json', 'counting_before': 'h200-run-counting-before.json',
             'tf_final': 'h200-texelfetch-final.json', 'tf_before': 'h200-texelfetch-before.json',
             'forms': 'h200-run-texelfetch.json', 'forms_before': 'h200-run-texelfetch-before.json',
-            'atomics': 'h200-run-atomics.json', 'atomics_before': 'h200-run-atomics-before.json'}
+            'atomics': 'h200-run-atomics.json', 'atomics_before': 'h200-run-atomics-before.json',
+            'fused': 'h200-run-fused.json', 'fused_before': 'h200-run-fused-before.json'}
 # The commit each role's build was (said with the tables: a run measures its code).
 MEASURED_COMMITS = {'final': '349c7a2', 'before': 'abd0c77', 'lists': '0c7a571', 'horizon': '1065bc3',
-                    'tf_before': '6588704', 'tf_final': '8ba0da9'}
+                    'tf_before': '6588704', 'tf_final': '8ba0da9', 'fused': '35f1533', 'fused_before': '16e6be8'}
+# The per-pass timings of the 'fused' run's two builds (.gpu/steps.sh of that session: cacao --timings,
+# the builds alternating, two rounds, 960x540).
+FUSED_STEPS = 'h200-fused-steps.txt'
 C = MEASURED_COMMITS
 MEASURED_CODE = ('The final run is of commit %s; in the same run, interleaved with it, its "before" is '
                  'commit %s (the previous main: generate and the blur skip unneeded groups in the shader, '
@@ -461,6 +465,108 @@ def us_range(values):
     return '%s-%s' % (us(min(values)), us(max(values))) if values else '-'
 
 
+def steps_of(text, build, scene, flags):
+    """{pass: median ms} of the first block of FUSED_STEPS for build, scene and cacao flags."""
+    head = '== %s %s %s (round 1)' % (build, scene, flags)
+    lines = text.splitlines()
+    if head not in lines:
+        return {}
+    out = {}
+    for l in lines[lines.index(head) + 2:]:
+        if l.startswith('tiles:') or l.startswith('=='):
+            break
+        f = l.split()
+        if len(f) >= 2:
+            out[f[0]] = float(f[1])
+    return out
+
+
+def fused_section(fused, before):
+    """The classification inside the GPU form of prepare: the run of that change against its parent."""
+    out = ['', '### The tile classes from the prepare, measured (commit %s against %s)' % (C['fused'], C['fused_before']),
+           '',
+           'In the GPU forms with normals reconstructed from depth (AMD\'s reference setting), native, the prepare '
+           'classifies the tiles of the texels it stores and no classify pass runs: the classify pass, its '
+           'dispatch and its barrier took %s microseconds of each native frame in the run before (its tiles '
+           'stage), for a few microseconds of work. Downsampled, and with the caller\'s normals, the classify '
+           'pass still runs: with the classification in it, gfx11 spilled two registers of the downsampled '
+           'prepare wherever it was placed (a register through its unrolled block, shared memory, the depths read '
+           'again before or after the block). cacao/AMD, before / after, interleaved with AMD in one run of both '
+           'builds (`%s`, `%s`; the same procedure as above):' % (
+               us_range([stage_of(before, sc, c, 'other') for sc in SCENES for c in AMD_CONFIGS if c.endswith('native')]),
+               MEASURED['fused_before'], MEASURED['fused']),
+           '', '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
+    def cell(sc, cfg):
+        b, f = results_of(before, 'cacao', sc).get(cfg), results_of(fused, 'cacao', sc).get(cfg)
+        return '%.2f / %.2f' % (b['ratio'], f['ratio']) if b and f else '-'
+    out += scene_rows(cell)
+    native = [c for c in AMD_CONFIGS if c.endswith('native')]
+    pairs = [(results_of(before, 'cacao', sc).get(c), results_of(fused, 'cacao', sc).get(c)) for sc in SCENES for c in native]
+    saved = [1000.0 * (b['cacao']['total_ms'] - f['cacao']['total_ms']) for b, f in pairs if b and f]
+    after = [f['ratio'] for b, f in pairs if f]
+    if saved:
+        out += ['', 'Native, the frame is %.1f-%.1f microseconds shorter (cacao/AMD after: %.2f-%.2f over the 15 '
+                'native pairs); downsampled nothing changed beyond the noise: there classify scans a tile\'s every '
+                'layer until a texel that is not quiet (it stopped at the first layer with a texel that was not '
+                'background, which called tiles faded whose other layers were active: a bug, found while building '
+                'this), a little more work on faded tiles.' % (min(saved), max(saved), min(after), max(after))]
+    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'docs', 'gpu-measured', FUSED_STEPS)
+    if os.path.exists(path):
+        text = open(path).read()
+        rows = []
+        for sc in ('interior_fzkhaus', 'street_track'):
+            for flags in ('--quality high', '--quality lowest --downsample'):
+                b, f = steps_of(text, 'old', sc, flags), steps_of(text, 'new', sc, flags)
+                if b and f:
+                    prep = next((k for k in f if k.startswith('prepare')), None)
+                    rows.append('| %s %s | %s | %s | %s / %s | %.0f / %.0f |' % (
+                        sc, flags.replace('--', ''), '%.0f' % (1000 * b[prep]) if prep in b else '-',
+                        '%.0f' % (1000 * b['classify']) if 'classify' in b else '-',
+                        '%.0f' % (1000 * f[prep]) if prep in f else '-',
+                        '%.0f' % (1000 * f['classify']) if 'classify' in f else '-',
+                        1000 * b['total'], 1000 * f['total']))
+        if rows:
+            out += ['', 'Per pass (`cacao --timings --repeat 30 --no-normals`, 960x540, the two builds alternating, '
+                    '`%s`), microseconds: prepare and classify before; prepare and classify after; total before / '
+                    'after:' % FUSED_STEPS, '',
+                    '| scene, settings | prepare before | classify before | prepare / classify after | total |',
+                    '|---|---:|---:|---:|---:|'] + rows
+    return out
+
+
+# Per-pass timings of two classify shapes tried for the GPU forms before the prepare took the
+# classification over (.gpu/steps.sh of that session; "new" the shape, "old" commit 16e6be8).
+CLASSIFY_SHAPES = [('h100-classify-pertile-steps.txt', 'an NVIDIA H100',
+                    'a workgroup per tile, an invocation per texel (its four layers), the flags met in shared memory'),
+                   ('h200-classify-batched-steps.txt', 'an NVIDIA H200',
+                    'an invocation per tile reading a layer\'s 16 gathers at once, the classes counted per '
+                    'workgroup in shared memory; with compact\'s entries reserved per workgroup and list')]
+
+
+def classify_shapes():
+    """Lines on the classify shapes tried (their per-pass files in docs/gpu-measured)."""
+    out = []
+    here = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'docs', 'gpu-measured')
+    for name, gpu, what in CLASSIFY_SHAPES:
+        path = os.path.join(here, name)
+        if not os.path.exists(path):
+            continue
+        text = open(path).read()
+        cells = []
+        for sc in ('interior_fzkhaus', 'street_track'):
+            for flags, label in (('--quality high', 'CACAO HIGH'), ('--estimator gtao --quality high', 'GTAO HIGH')):
+                b, f = steps_of(text, 'old', sc, flags), steps_of(text, 'new', sc, flags)
+                kb = next((k for k in b if k.startswith('classify')), None)
+                kf = next((k for k in f if k.startswith('classify')), None)
+                if kb and kf:
+                    cells.append('%s %s %.0f -> %.0f' % (sc, label, 1000 * b[kb], 1000 * f[kf]))
+        if cells:
+            out.append('- A GPU shape of classify, %s (`%s`, %s, 960x540, per-pass microseconds before -> after): '
+                       '%s. Not kept: what the pass costs is its dispatch and barrier, not its work (the prepare '
+                       'took it over, above).' % (what, name, gpu, '; '.join(cells)))
+    return out
+
+
 def measured_section(runs, results):
     """The real GPU's timings as markdown lines (none without the 'final' run)."""
     if 'final' not in runs:
@@ -561,6 +667,8 @@ def measured_section(runs, results):
                     us_range(stage_values(bef, 'other')), us_range(stage_values(fin, 'other')),
                     us(stage_of(bef, SCENES[0], 'LOWEST_native', 'generate')),
                     us(stage_of(fin, SCENES[0], 'LOWEST_native', 'generate')))]
+    if 'fused' in runs and 'fused_before' in runs:
+        out += fused_section(runs['fused'], runs['fused_before'])
     # experiments
     exp = []
     if 'upsample' in runs and 'upsample_before' in runs:
@@ -594,6 +702,7 @@ def measured_section(runs, results):
                        '(`%s`): the tiles stage after / before %.2f-%.2f; not kept. What paid this session was '
                        'the chain of atomics each active tile waited on (above).' % (
                            MEASURED['atomics'], min(ratios_a), max(ratios_a)))
+    exp += classify_shapes()
     if exp:
         out += ['', '### Tried and not kept, or diagnostic', ''] + exp
     # an earlier change
