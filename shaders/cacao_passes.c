@@ -105,6 +105,34 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
       W_NATIVE(TILES, TILES, tiles_variants)},                                                      \
      .quad = {[CACAO_DEPTHS_HALF] = 2, [CACAO_DEPTHS_FULL] = 2, [CACAO_DEPTHS_MIPS] = 2}}
 
+/* The horizon estimators' rows, for the CPU forms (tiles: R, over lists) and the GPU forms
+ * (tiles: W, direct grids: the prepare classifies, the others count the needed groups). */
+#define HORIZON_PREPARE_ROW(name, tiles, ...)                                                   \
+    {name, {"depth", "input"}, 2, false, false, false, WG(HORIZON), CACAOI_GRID_OUTPUT, 6,                  \
+     {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), R(SRC_NORMALS, NORMALS_INPUT, V(CACAO_HORIZON_NORMALS_INPUT)), \
+      W(VIEW_DEPTH, VIEW_DEPTH, ALL), W(VIEW_NORMALS, VIEW_NORMALS, ALL), tiles(TILES, TILES, ALL)},           \
+     .lists = {__VA_ARGS__}}
+#define HORIZON_MAIN_ROW(name, count, tiles, half_grid, ...)                                               \
+    {name, {"gtao", "bitmask", "gtao_direct", "bitmask_direct", "gtao_half", "bitmask_half"}, count, false, false, \
+     false, WG(HORIZON), CACAOI_GRID_OUTPUT, 7,                                                               \
+     {CONSTANTS, R(VIEW_DEPTH, VIEW_DEPTH, ALL), R(VIEW_NORMALS, VIEW_NORMALS, ALL),                           \
+      W(HORIZON_AO_OUT, AO_RAW, V(CACAO_HORIZON_GTAO) | V(CACAO_HORIZON_BITMASK)),                            \
+      W(HORIZON_AO_OUT, AO_HALF, V(CACAO_HORIZON_GTAO_HALF) | V(CACAO_HORIZON_BITMASK_HALF)),                 \
+      W(OUTPUT, OUTPUT, V(CACAO_HORIZON_GTAO_DIRECT) | V(CACAO_HORIZON_BITMASK_DIRECT)),                      \
+      tiles(TILES, TILES, V(CACAO_HORIZON_GTAO) | V(CACAO_HORIZON_BITMASK) | V(CACAO_HORIZON_GTAO_DIRECT) |   \
+                              V(CACAO_HORIZON_BITMASK_DIRECT))},                                              \
+     .lists = {__VA_ARGS__},                                                                                        \
+     .grids = {[CACAO_HORIZON_GTAO_HALF] = half_grid, [CACAO_HORIZON_BITMASK_HALF] = half_grid}}
+#define HORIZON_DENOISE_ROW(name, tiles, ...)                                                   \
+    {name, {"intermediate", "final", "upsample", "upsample_final"}, 4, false, false, false, WG(HORIZON),     \
+     CACAOI_GRID_OUTPUT, 8,                                                                                   \
+     {CONSTANTS, R(HORIZON_AO, AO_RAW, V(CACAO_DENOISE_INTERMEDIATE) | V(CACAO_DENOISE_FINAL)),                \
+      R(HORIZON_AO, AO_HALF, V(CACAO_DENOISE_UPSAMPLE) | V(CACAO_DENOISE_UPSAMPLE_FINAL)),                    \
+      R(VIEW_DEPTH, VIEW_DEPTH, ALL), R(VIEW_NORMALS, VIEW_NORMALS, ALL),                                     \
+      W(HORIZON_AO_OUT, AO_PONG, V(CACAO_DENOISE_INTERMEDIATE) | V(CACAO_DENOISE_UPSAMPLE)),                  \
+      W(OUTPUT, OUTPUT, V(CACAO_DENOISE_FINAL) | V(CACAO_DENOISE_UPSAMPLE_FINAL)), tiles(TILES, TILES, ALL)}, \
+     .lists = {__VA_ARGS__}}
+
 const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     /* spec: prepare.md. HALF = slices 0 and 3 (LOWEST), FULL = four slices, MIPS = + mips 1..3,
      * all levels in one atlas image (cacao_shared.h). Where the caller gives normals; with
@@ -149,35 +177,19 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     /* spec: estimators.md. Full-resolution intermediates, read and written as storage images. */
     /* Over the tiles classification found not all background (the fill of the background list
      * stores there what it would). */
-    PASS(HORIZON_PREPARE) = {"horizon_prepare", {"depth", "input"}, 2, false, false, false, WG(HORIZON), CACAOI_GRID_OUTPUT,
-                           6,
-                           {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL),
-                            R(SRC_NORMALS, NORMALS_INPUT, V(CACAO_HORIZON_NORMALS_INPUT)),
-                            W(VIEW_DEPTH, VIEW_DEPTH, ALL), W(VIEW_NORMALS, VIEW_NORMALS, ALL), R(TILES, TILES, ALL)},
-                           .lists = {CACAO_LIST_PREPARE, CACAO_LIST_PREPARE}},
+    PASS(HORIZON_PREPARE) = HORIZON_PREPARE_ROW("horizon_prepare", R, CACAO_LIST_PREPARE, CACAO_LIST_PREPARE),
     /* The estimator and the denoise passes run over the needed tiles (docs/tiles.md: a group is a
      * tile of 8x8 pixels); the fills give the rest their AO 1. Downsampled, the estimator runs on
      * a direct grid of half the size (background pixels return at once) and the upsample over the
      * needed tiles. */
-    PASS(HORIZON_MAIN) = {"horizon_main", {"gtao", "bitmask", "gtao_direct", "bitmask_direct", "gtao_half", "bitmask_half"},
-                        6, false, false, false, WG(HORIZON), CACAOI_GRID_OUTPUT, 7,
-                        {CONSTANTS, R(VIEW_DEPTH, VIEW_DEPTH, ALL), R(VIEW_NORMALS, VIEW_NORMALS, ALL),
-                         W(HORIZON_AO_OUT, AO_RAW, V(CACAO_HORIZON_GTAO) | V(CACAO_HORIZON_BITMASK)),
-                         W(HORIZON_AO_OUT, AO_HALF, V(CACAO_HORIZON_GTAO_HALF) | V(CACAO_HORIZON_BITMASK_HALF)),
-                         W(OUTPUT, OUTPUT, V(CACAO_HORIZON_GTAO_DIRECT) | V(CACAO_HORIZON_BITMASK_DIRECT)),
-                         R(TILES, TILES, V(CACAO_HORIZON_GTAO) | V(CACAO_HORIZON_BITMASK) | V(CACAO_HORIZON_GTAO_DIRECT) |
-                                             V(CACAO_HORIZON_BITMASK_DIRECT))},
-                        .lists = {GEN, GEN, GEN, GEN, CACAO_LIST_NONE, CACAO_LIST_NONE},
-                        .grids = {[CACAO_HORIZON_GTAO_HALF] = CACAOI_GRID_HALF, [CACAO_HORIZON_BITMASK_HALF] = CACAOI_GRID_HALF}},
-    PASS(HORIZON_DENOISE) = {"horizon_denoise", {"intermediate", "final", "upsample", "upsample_final"}, 4, false, false,
-                           false, WG(HORIZON), CACAOI_GRID_OUTPUT, 8,
-                           {CONSTANTS, R(HORIZON_AO, AO_RAW, V(CACAO_DENOISE_INTERMEDIATE) | V(CACAO_DENOISE_FINAL)),
-                            R(HORIZON_AO, AO_HALF, V(CACAO_DENOISE_UPSAMPLE) | V(CACAO_DENOISE_UPSAMPLE_FINAL)),
-                            R(VIEW_DEPTH, VIEW_DEPTH, ALL),
-                            R(VIEW_NORMALS, VIEW_NORMALS, ALL),
-                            W(HORIZON_AO_OUT, AO_PONG, V(CACAO_DENOISE_INTERMEDIATE) | V(CACAO_DENOISE_UPSAMPLE)),
-                            W(OUTPUT, OUTPUT, V(CACAO_DENOISE_FINAL) | V(CACAO_DENOISE_UPSAMPLE_FINAL)), R(TILES, TILES, ALL)},
-                           .lists = {GEN, GEN, GEN, GEN}},
+    PASS(HORIZON_MAIN) = HORIZON_MAIN_ROW("horizon_main", 6, R, CACAOI_GRID_HALF, GEN, GEN, GEN, GEN, CACAO_LIST_NONE, CACAO_LIST_NONE),
+    PASS(HORIZON_DENOISE) = HORIZON_DENOISE_ROW("horizon_denoise", R, GEN, GEN, GEN, GEN),
+    /* The GPU forms (CACAO_PASS_HORIZON_*_GPU): direct grids; the prepare writes every tile and its
+     * classes, the estimator's and denoise passes' groups that are not needed store AO 1 (and
+     * count: group_work). The downsampled estimator keeps HORIZON_MAIN's direct half grid. */
+    PASS(HORIZON_PREPARE_GPU) = HORIZON_PREPARE_ROW("horizon_prepare_gpu", W, CACAO_LIST_NONE),
+    PASS(HORIZON_MAIN_GPU) = HORIZON_MAIN_ROW("horizon_main_gpu", 4, W, CACAOI_GRID_ROW, CACAO_LIST_NONE),
+    PASS(HORIZON_DENOISE_GPU) = HORIZON_DENOISE_ROW("horizon_denoise_gpu", W, CACAO_LIST_NONE),
     /* docs/tiles.md: classes (one invocation per tile), then the lists. CACAO classifies its
      * deinterleaved depths (variant 0 keeps the pass's name), the horizon estimators the caller's
      * depth before their prepare. */
@@ -215,20 +227,17 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * normals for background: clears of the whole image before the passes that write the needed
      * tiles (on lavapipe a clear of a 16-bit image costs a full frame of CACAO about 4%, a fill
      * over an empty list nothing: docs/tiles.md). */
-    PASS(FILL) = {"fill", {NULL, "horizon", "output", "view", "horizon_all", "view_all"}, 6, false, false, false,
+    PASS(FILL) = {"fill", {NULL, "horizon", "output", "view"}, 4, false, false, false,
                   {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE, 7,
                   {CONSTANTS,
-                   R(TILES, TILES, V(CACAO_FILL_SLICES) | V(CACAO_FILL_OUTPUT) | V(CACAO_FILL_HORIZON_ALL) | V(CACAO_FILL_VIEW_ALL)),
+                   R(TILES, TILES, V(CACAO_FILL_SLICES) | V(CACAO_FILL_OUTPUT)),
                    W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),
-                   W(HORIZON_AO_OUT, AO_RAW, V(CACAO_FILL_HORIZON) | V(CACAO_FILL_HORIZON_ALL)),
+                   W(HORIZON_AO_OUT, AO_RAW, V(CACAO_FILL_HORIZON)),
                    W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT)),
-                   W(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_FILL_VIEW) | V(CACAO_FILL_VIEW_ALL)),
-                   W(VIEW_NORMALS, VIEW_NORMALS, V(CACAO_FILL_VIEW) | V(CACAO_FILL_VIEW_ALL))},
+                   W(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_FILL_VIEW)),
+                   W(VIEW_NORMALS, VIEW_NORMALS, V(CACAO_FILL_VIEW))},
                   /* the horizon estimators' own images are cleared (cacao_plan_step.clear) */
-                  .lists = {[CACAO_FILL_SLICES] = CACAO_LIST_FILL_SLICES, [CACAO_FILL_OUTPUT] = CACAO_LIST_FILL_SLICES},
-                  /* the GPU forms' whole-image fills: a clear costs an H200 about 20x a dispatch
-                   * (docs/gpu.md); lavapipe the other way round (docs/tiles.md) */
-                  .grids = {[CACAO_FILL_HORIZON_ALL] = CACAOI_GRID_OUTPUT, [CACAO_FILL_VIEW_ALL] = CACAOI_GRID_OUTPUT}},
+                  .lists = {[CACAO_FILL_SLICES] = CACAO_LIST_FILL_SLICES, [CACAO_FILL_OUTPUT] = CACAO_LIST_FILL_SLICES}},
     /* docs/tiles.md "Reusing the previous frame": the diff, one invocation per tile, compares the
      * caller's depth (and normals) with the copies the previous frame kept and updates them; the
      * prefix sums each row of tiles' changed flags (one invocation per row); the reach marks the
@@ -256,6 +265,9 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
 #undef DIFFS_NORMALS
 #undef GENERATE_ROW
 #undef PREPARE_ROW
+#undef HORIZON_PREPARE_ROW
+#undef HORIZON_MAIN_ROW
+#undef HORIZON_DENOISE_ROW
 
 static bool binding_active(const cacaoi_pass_binding *b, unsigned variant, unsigned downsampled) {
     return ((b->variants >> variant) & 1u) && !(b->native_only && downsampled);
@@ -295,7 +307,8 @@ size_t cacaoi_variant_bindings(unsigned pass, unsigned variant, unsigned downsam
 }
 
 bool cacaoi_skips_by_class(unsigned pass, unsigned variant) {
-    return (pass == CACAO_PASS_GENERATE_GPU && variant != CACAO_GENERATE_Q3_BASE) || pass == CACAO_PASS_BLUR_GPU;
+    return (pass == CACAO_PASS_GENERATE_GPU && variant != CACAO_GENERATE_Q3_BASE) || pass == CACAO_PASS_BLUR_GPU ||
+           pass == CACAO_PASS_HORIZON_MAIN_GPU || pass == CACAO_PASS_HORIZON_DENOISE_GPU;
 }
 
 bool cacaoi_fill_is_clear(unsigned pass, unsigned variant) {

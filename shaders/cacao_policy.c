@@ -62,12 +62,12 @@ _Static_assert(15 <= CACAOI_SEQUENCE_MAX && 8 + CACAO_KEY_MAX_BLUR_PASSES <= CAC
 _Static_assert(CACAO_WG_HORIZON_X == CACAO_TILE && CACAO_WG_HORIZON_Y == CACAO_TILE,
                "a horizon estimator's group is one tile of the list it runs over");
 
-/* Denoise passes first..last over the needed tiles, the first reading `ao`, ping-ponging between
- * AO_RAW and AO_PONG, the last into the output. */
-static void push_denoise_passes(cacaoi_step *out, size_t *n, unsigned first, unsigned last, cacao_resource ao) {
+/* Denoise passes first..last over the needed tiles (pass: the form's), the first reading `ao`,
+ * ping-ponging between AO_RAW and AO_PONG, the last into the output. */
+static void push_denoise_passes(cacaoi_step *out, size_t *n, unsigned pass_id, unsigned first, unsigned last,
+                                cacao_resource ao) {
     for (unsigned pass = first; pass <= last; ++pass) {
-        cacaoi_step *s = push(out, n, CACAO_PASS_HORIZON_DENOISE, pass == last ? CACAO_DENOISE_FINAL : CACAO_DENOISE_INTERMEDIATE,
-                              0, 0, 0);
+        cacaoi_step *s = push(out, n, pass_id, pass == last ? CACAO_DENOISE_FINAL : CACAO_DENOISE_INTERMEDIATE, 0, 0, 0);
         const cacao_resource next = ao == CACAO_RES_AO_RAW ? CACAO_RES_AO_PONG : CACAO_RES_AO_RAW;
         rebind(s, CACAO_BINDING_HORIZON_AO, ao);
         if (pass != last) rebind(s, CACAO_BINDING_HORIZON_AO_OUT, next);
@@ -75,45 +75,49 @@ static void push_denoise_passes(cacaoi_step *out, size_t *n, unsigned first, uns
     }
 }
 
-/* Horizon estimators: classification from the caller's depth (docs/tiles.md), prepare over the
- * tiles that are not all background (a clear before it gives the others the view z and normal
- * the prepare would store there; in the GPU forms a fill dispatch, which a GPU runs in a twentieth
- * of a clear's time, docs/gpu.md: every "clear" below). Native: the intermediates the denoise passes read cleared to AO
- * 1, the estimator over the needed tiles (into the output when no denoise pass runs), the fill
- * of the output's other tiles with AO 1, then the denoise passes over the needed tiles.
- * Downsampled: the estimator at one pixel of each 2x2 block (a direct grid of half the size, into
- * AO_HALF), then the upsample over the needed tiles as the first filter pass (into the output, or
- * AO_PONG when denoise passes follow); the clears give the later passes' inputs their 1 on the
- * tiles they skip. */
+/* Horizon estimators, the CPU forms: classification from the caller's depth (docs/tiles.md),
+ * prepare over the tiles that are not all background (a clear before it gives the others the view
+ * z and normal the prepare would store there). Native: the intermediates the denoise passes read
+ * cleared to AO 1, the estimator over the needed tiles (into the output when no denoise pass
+ * runs), the fill of the output's other tiles with AO 1, then the denoise passes over the needed
+ * tiles. Downsampled: the estimator at one pixel of each 2x2 block (a direct grid of half the
+ * size, into AO_HALF), then the upsample over the needed tiles as the first filter pass (into the
+ * output, or AO_PONG when denoise passes follow); the clears give the later passes' inputs their
+ * 1 on the tiles they skip. The GPU forms: the same passes on direct grids, with no classify,
+ * compact, clear or fill: the prepare stores every pixel and classifies, the estimator and the
+ * denoise passes store AO 1 in the groups that are not needed (a GPU ran the clears in 40-90
+ * microseconds, the four small dispatches in 30: docs/gpu.md). */
 static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENCE_MAX]) {
     size_t n = 0;
-    const bool half = c->downsampled;
+    const bool half = c->downsampled, gpu = c->gpu_forms;
     const unsigned blur = half && c->blur_passes < 1 ? 1 : c->blur_passes; /* downsampled: the upsample always runs */
     const bool gtao = c->estimator == CACAO_KEY_ESTIMATOR_GTAO;
-    push(out, &n, CACAO_PASS_CLASSIFY, CACAO_CLASSIFY_HORIZON, 0, 0, 0);
-    push(out, &n, CACAO_PASS_COMPACT, CACAO_COMPACT_HORIZON, 0, 0, 0);
-    /* a clear in the CPU forms, a dispatch over every pixel in the GPU forms (docs/gpu.md) */
-    const unsigned fill_view = c->gpu_forms ? CACAO_FILL_VIEW_ALL : CACAO_FILL_VIEW;
-    const unsigned fill_ao = c->gpu_forms ? CACAO_FILL_HORIZON_ALL : CACAO_FILL_HORIZON;
-    push(out, &n, CACAO_PASS_FILL, fill_view, 0, 0, 0);
-    push(out, &n, CACAO_PASS_HORIZON_PREPARE, c->normals_from_input ? CACAO_HORIZON_NORMALS_INPUT : CACAO_HORIZON_NORMALS_DEPTH,
-         0, 0, 0);
-    /* the AO intermediates the denoise passes read, cleared to AO 1 (AO_RAW, AO_PONG) */
-    const bool raw = half ? blur >= 3 : blur >= 1, pong = blur >= 2;
-    if (raw) push(out, &n, CACAO_PASS_FILL, fill_ao, 0, 0, 0);
-    if (pong) rebind(push(out, &n, CACAO_PASS_FILL, fill_ao, 0, 0, 0), CACAO_BINDING_HORIZON_AO_OUT,
-                     CACAO_RES_AO_PONG);
+    const unsigned normals = c->normals_from_input ? CACAO_HORIZON_NORMALS_INPUT : CACAO_HORIZON_NORMALS_DEPTH;
+    const unsigned denoise = gpu ? CACAO_PASS_HORIZON_DENOISE_GPU : CACAO_PASS_HORIZON_DENOISE;
+    if (gpu) {
+        push(out, &n, CACAO_PASS_HORIZON_PREPARE_GPU, normals, 0, 0, 0);
+    } else {
+        push(out, &n, CACAO_PASS_CLASSIFY, CACAO_CLASSIFY_HORIZON, 0, 0, 0);
+        push(out, &n, CACAO_PASS_COMPACT, CACAO_COMPACT_HORIZON, 0, 0, 0);
+        push(out, &n, CACAO_PASS_FILL, CACAO_FILL_VIEW, 0, 0, 0);
+        push(out, &n, CACAO_PASS_HORIZON_PREPARE, normals, 0, 0, 0);
+        /* the AO intermediates the denoise passes read, cleared to AO 1 (AO_RAW, AO_PONG) */
+        const bool raw = half ? blur >= 3 : blur >= 1, pong = blur >= 2;
+        if (raw) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0);
+        if (pong) rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0), CACAO_BINDING_HORIZON_AO_OUT,
+                         CACAO_RES_AO_PONG);
+    }
     if (half) {
         push(out, &n, CACAO_PASS_HORIZON_MAIN, gtao ? CACAO_HORIZON_GTAO_HALF : CACAO_HORIZON_BITMASK_HALF, 0, 0, 0);
-        push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT, 0, 0, 0);
-        push(out, &n, CACAO_PASS_HORIZON_DENOISE, blur == 1 ? CACAO_DENOISE_UPSAMPLE_FINAL : CACAO_DENOISE_UPSAMPLE, 0, 0, 0);
-        push_denoise_passes(out, &n, 2, blur, CACAO_RES_AO_PONG);
+        if (!gpu) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT, 0, 0, 0);
+        push(out, &n, denoise, blur == 1 ? CACAO_DENOISE_UPSAMPLE_FINAL : CACAO_DENOISE_UPSAMPLE, 0, 0, 0);
+        push_denoise_passes(out, &n, denoise, 2, blur, CACAO_RES_AO_PONG);
         return n;
     }
-    push(out, &n, CACAO_PASS_HORIZON_MAIN,
+    push(out, &n, gpu ? CACAO_PASS_HORIZON_MAIN_GPU : CACAO_PASS_HORIZON_MAIN,
          (gtao ? CACAO_HORIZON_GTAO : CACAO_HORIZON_BITMASK) + (blur == 0 ? CACAO_HORIZON_GTAO_DIRECT : 0), 0, 0, 0);
-    push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT, 0, 0, 0);
-    push_denoise_passes(out, &n, 1, blur, CACAO_RES_AO_RAW);
+    if (!gpu) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT, 0, 0, 0);
+    push_denoise_passes(out, &n, denoise, 1, blur, CACAO_RES_AO_RAW);
     return n;
 }
 

@@ -46,7 +46,14 @@
 /* Reuse of the previous frame (cacao_settings.reuse_unchanged, docs/tiles.md "Reusing the previous
  * frame"): which tiles' inputs changed, and which tiles' output a change can reach. */
 #define CACAO_PASS_REUSE 19
-#define CACAO_PASS_COUNT 20
+/* The horizon estimators' GPU forms: the same passes on direct grids, with no classify, compact or
+ * fill pass. The prepare classifies the tiles of the pixels it stores (every tile), the estimator
+ * and the denoise passes run every group and store AO 1 in a group that is not needed (the CPU
+ * forms: lists of the needed tiles, clears and fills for the rest; docs/tiles.md). */
+#define CACAO_PASS_HORIZON_PREPARE_GPU 20
+#define CACAO_PASS_HORIZON_MAIN_GPU 21
+#define CACAO_PASS_HORIZON_DENOISE_GPU 22
+#define CACAO_PASS_COUNT 23
 
 /* Depth-prepare variants (spec: prepare.md). HALF = slices 0 and 3 only (LOWEST), FULL = four
  * slices, MIPS = four slices plus mips 1..3 (HIGH and HIGHEST; MEDIUM never reads mips). */
@@ -102,8 +109,6 @@
 #define CACAO_FILL_HORIZON 1
 #define CACAO_FILL_OUTPUT 2
 #define CACAO_FILL_VIEW 3
-#define CACAO_FILL_HORIZON_ALL 4 /* the GPU forms: HORIZON's and VIEW's values by a dispatch over */
-#define CACAO_FILL_VIEW_ALL 5    /* every pixel, where the CPU forms clear (docs/gpu.md) */
 
 /* Reuse variants: compare the caller's depth (and normals) with the copy the previous frame kept,
  * per tile; sum the changed tiles along each row of tiles; mark the tiles to recompute. */

@@ -114,8 +114,12 @@ static void test_subset(void) {
                               "blur_gpu.5.fp32", "blur_gpu.6.fp32", "blur_gpu.7.fp32", "blur_gpu.8.fp32",
                               "apply_gpu.smart.fp32", "prepare_gpu.full.native", "prepare_gpu.mips.native",
                               "generate_gpu.q1", "generate_gpu.q2",
-                              /* the horizon estimators' fills where the CPU forms clear */
-                              "fill.horizon_all", "fill.view_all",
+                              /* the horizon estimators' GPU forms: direct grids, no classify,
+                               * compact or fill (native: the upsample serves downsampled only) */
+                              "horizon_prepare_gpu.depth", "horizon_prepare_gpu.input", "horizon_main_gpu.gtao",
+                              "horizon_main_gpu.bitmask", "horizon_main_gpu.gtao_direct",
+                              "horizon_main_gpu.bitmask_direct", "horizon_denoise_gpu.intermediate",
+                              "horizon_denoise_gpu.final",
                               /* reuse_unchanged (no axis: any CACAO configuration may ask for it) */
                               "reuse.diff", "reuse.diff_normals", "reuse.prefix", "reuse.reach", "reuse.diff_gpu",
                               "reuse.diff_normals_gpu"};

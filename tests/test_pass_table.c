@@ -196,20 +196,19 @@ static void check_config(const cacao_settings *s) {
         CHECK(cacaoi_key_compare(&key, &steps[i].key) == 0);
         CHECK(st->clear == cacaoi_fill_is_clear(steps[i].key.pass, steps[i].key.variant));
         /* a step reading the tile buffer is a list dispatch, classify or compact, a GPU form that
-         * skips by the classes itself (generate and the blur then write their count there; the
-         * horizon estimators' whole-image fills read a tile's class), or the GPU form of the fused
-         * prepare, native, which classifies (then no classify pass runs) */
-        const bool prepare_classifies = st->key[0] == CACAO_PASS_PREPARE_GPU && !st->key[2];
-        if (prepare_classifies) CHECK(cacaoi_prepare_classifies(&config) && config.gpu_forms && !config.downsampled);
-        const bool class_fill = st->key[0] == CACAO_PASS_FILL &&
-                                (st->key[1] == CACAO_FILL_HORIZON_ALL || st->key[1] == CACAO_FILL_VIEW_ALL);
-        if (class_fill) CHECK(st->list == CACAO_LIST_NONE && config.gpu_forms && !st->clear);
+         * skips by the classes itself (it then writes its count there), or a GPU form of a prepare
+         * that classifies (then no classify pass runs): the fused prepare native, the horizon
+         * estimators' */
+        const bool prepare_classifies = (st->key[0] == CACAO_PASS_PREPARE_GPU && !st->key[2]) ||
+                                        st->key[0] == CACAO_PASS_HORIZON_PREPARE_GPU;
+        if (prepare_classifies)
+            CHECK(config.gpu_forms && (st->key[0] == CACAO_PASS_HORIZON_PREPARE_GPU || cacaoi_prepare_classifies(&config)));
         if (cacaoi_skips_by_class(st->key[0], st->key[1]))
             CHECK(st->list == CACAO_LIST_NONE && config.gpu_forms);
         for (uint32_t j = 0; j < st->binding_count; ++j)
             if (st->bindings[j].resource == CACAO_RES_TILES)
                 CHECK(st->list != CACAO_LIST_NONE || st->key[0] == CACAO_PASS_CLASSIFY || st->key[0] == CACAO_PASS_COMPACT ||
-                      cacaoi_skips_by_class(st->key[0], st->key[1]) || class_fill || prepare_classifies);
+                      cacaoi_skips_by_class(st->key[0], st->key[1]) || prepare_classifies);
         if (st->clear) { /* a transfer: it only writes cacao's own images, each with a clear value; no module */
             CHECK(st->dispatch[0] == 0 && st->list == CACAO_LIST_NONE && st->binding_count >= 1);
             for (uint32_t j = 0; j < st->binding_count; ++j) {

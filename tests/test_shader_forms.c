@@ -11,7 +11,8 @@
  *     cacao_context_desc.shader_forms = GPU it plans the GPU passes (blur_gpu, apply_gpu,
  *     prepare_gpu with normals from depth, generate_gpu; the upsample has one form) and no CPU
  *     form; the settings' own shader_forms wins over the desc's;
- *   - the horizon estimators: fills (GPU forms) where the CPU forms clear, the output bit-identical.
+ *   - the horizon estimators: direct grids with no classify, compact, clear or fill (GPU forms)
+ *     where the CPU forms run lists, the output bit-identical.
  * The prepare's and generate's intermediates (depths, mips, normals, AO and edges, the importance
  * map and load counter) feed every later pass, so an output identical at every quality, from
  * depth and from given normals, checks them; the GPU prepare runs only with normals from depth. */
@@ -95,10 +96,11 @@ static void compare_forms(vkdev *dev, uint32_t w, uint32_t h, unsigned *runs, do
     scene_buffers_free(&sb);
 }
 
-/* The horizon estimators: the CPU forms clear their intermediates, the GPU forms fill them with a
- * dispatch (fill.view_all, fill.horizon_all) that skips the tiles later passes write; the output
- * is the same to the bit, with tiles of every class (a fade-out that fades part of the scene),
- * every estimator, native and downsampled, and the blur counts that use AO_RAW and AO_PONG. */
+/* The horizon estimators: the CPU forms classify, compact lists, clear their intermediates and
+ * fill the output; the GPU forms run their passes on direct grids with none of those (the prepare
+ * classifies, the others store 1 in the groups that are not needed); the output is the same to
+ * the bit, with tiles of every class (a fade-out that fades part of the scene), every estimator,
+ * native and downsampled, and the blur counts that use AO_RAW and AO_PONG. */
 static void compare_horizon_forms(vkdev *dev, uint32_t w, uint32_t h, unsigned *runs) {
     scene_buffers sb;
     scene_buffers_default(w, h, &sb);
@@ -118,8 +120,10 @@ static void compare_horizon_forms(vkdev *dev, uint32_t w, uint32_t h, unsigned *
                         !run_forms(dev, CACAO_SHADER_FORMS_GPU, &s, &f, gpu, &pg))
                         continue;
                     ++*runs;
-                    CHECK(plan_has(&pc, "clear.view_depth") && !plan_has(&pc, "fill.view_all"));
-                    CHECK(plan_has(&pg, "fill.view_all") && !plan_has(&pg, "clear."));
+                    CHECK(plan_has(&pc, "clear.view_depth") && plan_has(&pc, "classify.horizon") &&
+                          !plan_has(&pc, "horizon_prepare_gpu."));
+                    CHECK(plan_has(&pg, "horizon_prepare_gpu.") && !plan_has(&pg, "clear.") && !plan_has(&pg, "fill") &&
+                          !plan_has(&pg, "classify") && !plan_has(&pg, "compact") && !plan_has(&pg, "horizon_prepare."));
                     if (memcmp(cpu, gpu, sizeof(float) * n) != 0)
                         fprintf(stderr, "%ux%u estimator %d ds%d blur %d fade %d: the GPU forms differ\n", w, h, e, ds,
                                 blur, fade);

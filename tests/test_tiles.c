@@ -21,9 +21,9 @@
  *   - the horizon estimators (GTAO, bitmask) likewise: identical to their reference, exactly 1
  *     with nothing estimated on an all-background frame, more than half the tiles skipped when
  *     three quarters of the pixels lie beyond the fade-out (test_horizon).
- * The CACAO cases run with both shader forms: the CPU forms skip through tile lists and clears,
- * the GPU forms in the shader (a group that is not needed stores the 1 and returns), counting the
- * same tiles. The counts come from the runtime (cacao_record_tile_counts) through vkdev's
+ * The CACAO and horizon cases run with both shader forms: the CPU forms skip through tile lists
+ * and clears, the GPU forms in the shader (a group that is not needed stores the 1 and returns;
+ * the prepare classifies where it can), counting the same tiles. The counts come from the runtime (cacao_record_tile_counts) through vkdev's
  * timings. */
 #include <math.h>
 #include <stdlib.h>
@@ -44,7 +44,7 @@ static bool run_counts(vkdev *dev, const cacao_settings *s, const vkdev_frame *f
     char err[512];
     cacao_timings t;
     cacao_settings settings = *s;
-    settings.shader_forms = forms; /* the horizon estimators have one form */
+    settings.shader_forms = forms;
     const cacao_result r = vkdev_run(dev, &settings, f, 1, ao, &t, err, sizeof err);
     if (r != CACAO_SUCCESS || !t.has_tiles) {
         fprintf(stderr, "cacao run failed: %s: %s\n", cacao_result_string(r), err);
@@ -346,6 +346,9 @@ int main(void) {
     test_nan_depth(&dev, &sb);
     test_faded_layer(&dev, &sb, &scene.camera);
     forms = CACAO_SHADER_FORMS_CPU;
+    test_horizon(&dev, &sb, &sb, first_quartile_z(&sb, &scene.camera));
+    /* the horizon estimators' GPU forms: the prepare classifies, the other passes skip in the shader */
+    forms = CACAO_SHADER_FORMS_GPU;
     test_horizon(&dev, &sb, &sb, first_quartile_z(&sb, &scene.camera));
     scene_buffers_free(&sb);
     vkdev_destroy(&dev);

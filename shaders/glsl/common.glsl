@@ -146,7 +146,8 @@ ivec2 full_res_pixel(ivec2 t, int slice)
 #endif
 }
 
-#if CACAO_PASS == CACAO_PASS_HORIZON_PREPARE || (CACAO_PASS == CACAO_PASS_CLASSIFY && CACAO_VARIANT == CACAO_CLASSIFY_HORIZON)
+#if CACAO_PASS == CACAO_PASS_HORIZON_PREPARE || CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU || \
+    (CACAO_PASS == CACAO_PASS_CLASSIFY && CACAO_VARIANT == CACAO_CLASSIFY_HORIZON)
 /* Horizon estimators: raw depth -> view z, -1 for background (estimators.md section 1: the
  * denominator keeps 1 - d exact where d is near 1). Their prepare stores it; their classification
  * reads it from the caller's depth before that. */

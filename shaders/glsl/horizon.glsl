@@ -1,8 +1,11 @@
 /* horizon.glsl - the horizon estimators (GTAO and the visibility bitmask): prepare, the estimator,
  * and the denoise passes. */
 
-#if CACAO_PASS == CACAO_PASS_HORIZON_PREPARE || CACAO_PASS == CACAO_PASS_HORIZON_MAIN || \
-    CACAO_PASS == CACAO_PASS_HORIZON_DENOISE
+/* The GPU forms (CACAO_PASS_HORIZON_*_GPU) are the same code on direct grids (cacao_shared.h). */
+#define HORIZON_PREPARE_PASS (CACAO_PASS == CACAO_PASS_HORIZON_PREPARE || CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU)
+#define HORIZON_MAIN_PASS (CACAO_PASS == CACAO_PASS_HORIZON_MAIN || CACAO_PASS == CACAO_PASS_HORIZON_MAIN_GPU)
+#define HORIZON_DENOISE_PASS (CACAO_PASS == CACAO_PASS_HORIZON_DENOISE || CACAO_PASS == CACAO_PASS_HORIZON_DENOISE_GPU)
+#if HORIZON_PREPARE_PASS || HORIZON_MAIN_PASS || HORIZON_DENOISE_PASS
 /* spec: estimators.md. GTAO and the cosine-weighted visibility bitmask, at full resolution, one
  * invocation per pixel, all in fp32. View z of background pixels (the far plane, or depth that
  * gives no finite positive z: NaN, Inf, an infinite far plane) is stored as -1: such pixels output
@@ -25,7 +28,7 @@ vec3 horizon_normal(vec3 stored, vec3 to_camera)
     return (len2 > 1e-12 && len2 < 1e30) ? stored * inversesqrt(len2) : to_camera;
 }
 
-#if CACAO_PASS == CACAO_PASS_HORIZON_PREPARE
+#if HORIZON_PREPARE_PASS
 
 float load_view_z(ivec2 p, ivec2 size) { return in_rect(p, size) ? horizon_view_z(texelFetch(src_depth, p, 0).r) : -1.0; }
 
@@ -41,14 +44,9 @@ vec3 neighbour_dir(vec3 pc, ivec2 q, float zq)
 }
 #endif
 
-/* Over the tiles that are not all background (docs/tiles.md): a workgroup is one tile. */
-void main()
+/* The view z and normal of pixel p (inside the image). */
+void prepare_pixel(ivec2 p, ivec2 size)
 {
-    ivec2 group;
-    if (!group_of(group)) return;
-    ivec2 p = texel_of(group);
-    ivec2 size = textureSize(src_depth, 0);
-    if (!in_rect(p, size)) return;
     float z = load_view_z(p, size);
     vec3 n = vec3(0.0, 0.0, -1.0);
     if (z > 0.0) {
@@ -73,9 +71,42 @@ void main()
     imageStore(view_depth, p, vec4(z));
     imageStore(view_normals, p, vec4(n, 0.0));
 }
+
+#if CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU
+shared uint s_tile_flags;
+#endif
+
+/* A workgroup is one tile: the CPU forms run over the tiles that are not all background
+ * (docs/tiles.md), the GPU form over every tile, classifying it (the classify pass's rules,
+ * tiles.glsl depth_flags: its class, its count and the needed tiles around an active one). */
+void main()
+{
+    ivec2 group;
+#if CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU
+    group = ivec2(gl_WorkGroupID.xy);
+    if (gl_LocalInvocationIndex == 0u) s_tile_flags = CB.tiles_all != 0 ? FLAGS_ALL : 0u;
+    barrier();
+    ivec2 p = texel_of(group);
+    ivec2 size = textureSize(src_depth, 0);
+    if (in_rect(p, size)) {
+        uint flags = depth_flags(texelFetch(src_depth, p, 0).r);
+        if (flags != 0u) atomicOr(s_tile_flags, flags);
+        prepare_pixel(p, size);
+    }
+    barrier();
+    if (gl_LocalInvocationIndex == 0u)
+        atomicAdd(tiles[CACAO_TILE_COUNT_ACTIVE + store_tile_class(group, s_tile_flags)], 1u);
+#else
+    if (!group_of(group)) return;
+    ivec2 p = texel_of(group);
+    ivec2 size = textureSize(src_depth, 0);
+    if (in_rect(p, size)) prepare_pixel(p, size);
+#endif
+}
 #endif /* HORIZON_PREPARE */
 
-#if CACAO_PASS == CACAO_PASS_HORIZON_MAIN || CACAO_PASS == CACAO_PASS_HORIZON_DENOISE
+
+#if HORIZON_MAIN_PASS || HORIZON_DENOISE_PASS
 float fetch_view_z(ivec2 p) { return imageLoad(view_depth, p).r; }
 vec3 fetch_stored_normal(ivec2 p) { return imageLoad(view_normals, p).xyz; }
 vec3 fetch_normal(ivec2 p, vec3 to_camera) { return horizon_normal(fetch_stored_normal(p), to_camera); }
@@ -88,7 +119,7 @@ void store_visibility(ivec2 p, float v) { imageStore(horizon_ao_out, p, vec4(v))
 #endif
 #endif
 
-#if CACAO_PASS == CACAO_PASS_HORIZON_MAIN
+#if HORIZON_MAIN_PASS
 #define HORIZON_BITMASK                                                                                    \
     (CACAO_VARIANT == CACAO_HORIZON_BITMASK || CACAO_VARIANT == CACAO_HORIZON_BITMASK_DIRECT ||             \
      CACAO_VARIANT == CACAO_HORIZON_BITMASK_HALF)
@@ -313,13 +344,17 @@ float horizon_visibility(ivec2 p, ivec2 noise_p, float z, float fade, ivec2 size
 float horizon_fade(float z) { return sat(z * CB.effect_fade_out_mul + CB.effect_fade_out_add); }
 
 /* Native: over the needed tiles (docs/tiles.md), a workgroup is one tile of pixels, invocation t
- * computes pixel t. Downsampled: a direct grid over every 2x2 block, invocation t computes pixel
- * 2t, the top-left of its block, into texel t of the half-size intermediate (background blocks
- * store 1 at once). The noise follows t. */
+ * computes pixel t (the GPU form: every tile; one that is not needed stores 1). Downsampled: a
+ * direct grid over every 2x2 block, invocation t computes pixel 2t, the top-left of its block,
+ * into texel t of the half-size intermediate (background blocks store 1 at once). The noise
+ * follows t. */
 void main()
 {
     ivec2 group;
     if (!group_of(group)) return;
+#if CACAO_SKIPS_BY_CLASS
+    bool needed = group_work(group) == GROUP_COMPUTE;
+#endif
     ivec2 t = texel_of(group);
     ivec2 size = imageSize(view_depth);
 #if HORIZON_HALF
@@ -329,12 +364,18 @@ void main()
     if (!in_rect(t, size)) return;
     ivec2 p = t;
 #endif
+#if CACAO_SKIPS_BY_CLASS
+    if (!needed) {
+        store_visibility(t, 1.0);
+        return;
+    }
+#endif
     float z = fetch_view_z(p), fade = horizon_fade(z);
     store_visibility(t, z > 0.0 && fade > 0.0 ? horizon_visibility(p, t, z, fade, size) : 1.0);
 }
 #endif /* HORIZON_MAIN */
 
-#if CACAO_PASS == CACAO_PASS_HORIZON_DENOISE
+#if HORIZON_DENOISE_PASS
 
 /* Weight of neighbour point q (view z zq) for a pixel at pos with normal nrm (estimators.md
  * section 5): its distance from the pixel's tangent plane relative to sigma z, and the agreement
@@ -347,14 +388,21 @@ float denoise_weight(vec3 pos, vec3 nrm, float inv_scale, ivec2 q, float zq)
     return exp2(-1.44269504 * plane * plane) * agree * agree; /* exp(-plane^2) */
 }
 
+/* Over the needed tiles (the GPU form: every tile; one that is not needed stores 1). */
 void main()
 {
     ivec2 group;
     if (!group_of(group)) return;
+#if CACAO_SKIPS_BY_CLASS
+    bool needed = group_work(group) == GROUP_COMPUTE;
+#endif
     ivec2 p = texel_of(group);
     ivec2 size = imageSize(view_depth);
     if (!in_rect(p, size)) return;
     float z = fetch_view_z(p);
+#if CACAO_SKIPS_BY_CLASS
+    if (!needed) z = -1.0; /* stores 1, as the CPU forms' fills and clears */
+#endif
     if (!(z > 0.0)) {
         store_visibility(p, 1.0);
         return;

@@ -25,9 +25,13 @@ bool group_of(out ivec2 g)
 #endif
 }
 
-/* The passes that classify tiles: classify, and the GPU form of the fused prepare, which
- * classifies the texels it stores, native. */
-#define CACAO_CLASSIFIES (CACAO_PASS == CACAO_PASS_CLASSIFY || (CACAO_PASS == CACAO_PASS_PREPARE_GPU && CACAO_DOWNSAMPLED == 0))
+/* The passes that classify tiles: classify, the GPU form of the fused prepare, which classifies
+ * the texels it stores, native, and the GPU form of the horizon estimators' prepare. */
+#define CACAO_CLASSIFIES (CACAO_PASS == CACAO_PASS_CLASSIFY || CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU || \
+                          (CACAO_PASS == CACAO_PASS_PREPARE_GPU && CACAO_DOWNSAMPLED == 0))
+/* The classes of the horizon estimators' pixels, from the caller's depth */
+#define CACAO_CLASSIFIES_DEPTH ((CACAO_PASS == CACAO_PASS_CLASSIFY && CACAO_VARIANT == CACAO_CLASSIFY_HORIZON) || \
+                                CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU)
 
 #if CACAO_CLASSIFIES || CACAO_PASS == CACAO_PASS_COMPACT || CACAO_PASS == CACAO_PASS_FILL || \
     CACAO_PASS == CACAO_PASS_REUSE || CACAO_SKIPS_BY_CLASS
@@ -121,8 +125,15 @@ int group_work(ivec2 g)
     bool needed = tiles[needed_base() + tile_index(g)] == 0u;
     const uint count = CACAO_TILE_COUNT_NEEDED;
 #endif
-    /* counted once per group of the first layer (cacao_tile_counts) */
-    if (needed && gl_WorkGroupID.z == 0u && gl_LocalInvocationIndex == 0u) atomicAdd(tiles[count], 1u);
+    /* counted once per group of the first layer (cacao_tile_counts), by the first of the horizon
+     * estimators' passes over the tiles (the later denoise passes run the same groups) */
+#if CACAO_PASS == CACAO_PASS_HORIZON_DENOISE_GPU && CACAO_VARIANT != CACAO_DENOISE_UPSAMPLE && \
+    CACAO_VARIANT != CACAO_DENOISE_UPSAMPLE_FINAL
+    const bool counts = false;
+#else
+    const bool counts = true;
+#endif
+    if (counts && needed && gl_WorkGroupID.z == 0u && gl_LocalInvocationIndex == 0u) atomicAdd(tiles[count], 1u);
     return needed ? GROUP_COMPUTE : GROUP_FILL;
 }
 #endif
@@ -134,13 +145,30 @@ int group_work(ivec2 g)
 #define FLAG_NOT_BACKGROUND 2u
 #define FLAGS_ALL (FLAG_NOT_QUIET | FLAG_NOT_BACKGROUND)
 
-#if CACAO_PASS == CACAO_PASS_PREPARE_GPU || CACAO_VARIANT == CACAO_CLASSIFY_SLICES
+#if CACAO_PASS == CACAO_PASS_PREPARE_GPU || (CACAO_PASS == CACAO_PASS_CLASSIFY && CACAO_VARIANT == CACAO_CLASSIFY_SLICES)
 /* CACAO's stored view z (deinterleaved, R16F): background at or past background_z; quiet by fade
  * with the margin of CB.quiet_margin, so that generate finds it faded too. */
 uint slice_z_flags(float z)
 {
     bool background = z >= CB.background_z;
     bool faded = (z * CB.depth_precision_offset_mod) * CB.effect_fade_out_mul + CB.effect_fade_out_add < -CB.quiet_margin;
+    return (background ? 0u : FLAG_NOT_BACKGROUND) | (background || faded ? 0u : FLAG_NOT_QUIET);
+}
+#endif
+
+#if CACAO_CLASSIFIES_DEPTH
+/* The horizon estimators' pixels, from the caller's depth, before their prepare: background where
+ * the depth is the far plane's or NaN (their prepare stores view z -1 there by the same exact
+ * tests, and the estimator and the denoise write 1); quiet by fade where the view z the prepare
+ * computes is positive and the fade factor of horizon_visibility is 0 with the margin (the margin
+ * covers the ulps by which two passes may evaluate z differently). A depth whose z is invalid in
+ * another way is neither: the passes compute it (and write 1). In the CPU forms a background tile
+ * is left to the clear, which stores what the prepare would. */
+uint depth_flags(float d)
+{
+    bool background = d == CB.horizon_far_depth || isnan(d);
+    float z = background ? -1.0 : horizon_view_z(d);
+    bool faded = z > 0.0 && z * CB.effect_fade_out_mul + CB.effect_fade_out_add < -CB.quiet_margin;
     return (background ? 0u : FLAG_NOT_BACKGROUND) | (background || faded ? 0u : FLAG_NOT_QUIET);
 }
 #endif
@@ -152,11 +180,12 @@ uint store_tile_class(ivec2 t, uint flags)
     uint cls = (flags & FLAG_NOT_QUIET) != 0u ? CACAO_TILE_CLASS_ACTIVE
              : (flags & FLAG_NOT_BACKGROUND) != 0u ? CACAO_TILE_CLASS_FADED : CACAO_TILE_CLASS_BACKGROUND;
     tiles[class_index(t)] = cls;
-#if CACAO_PASS == CACAO_PASS_PREPARE_GPU || CACAO_VARIANT == CACAO_CLASSIFY_SLICES
+#if CACAO_PASS == CACAO_PASS_PREPARE_GPU || CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU || \
+    (CACAO_PASS == CACAO_PASS_CLASSIFY && CACAO_VARIANT == CACAO_CLASSIFY_SLICES)
     /* Active tile t makes needed the tiles within one tile of it, and the blur groups whose output
-     * touches one of those: compact's tests, turned around, in the GPU forms' flags (the CPU forms
-     * run from compact's lists). The GPU forms' generate and blur count the needed groups they run
-     * (group_work). */
+     * touches one of those (none for the horizon estimators): compact's tests, turned around, in the
+     * GPU forms' flags (the CPU forms run from compact's lists). The GPU forms' passes that skip by
+     * them count the needed groups they run (group_work). */
     if (cls == CACAO_TILE_CLASS_ACTIVE) mark_around(t, needed_base(), blur_needed_base());
 #endif
     return cls;
@@ -171,21 +200,6 @@ uint store_tile_class(ivec2 t, uint flags)
 layout(local_size_x = CACAO_WG_CLASSIFY, local_size_y = CACAO_WG_CLASSIFY) in;
 
 #if CACAO_VARIANT == CACAO_CLASSIFY_HORIZON
-/* The horizon estimators' pixels, from the caller's depth, before their prepare: background where
- * the depth is the far plane's or NaN (their prepare stores view z -1 there by the same exact
- * tests, and the estimator and the denoise write 1); quiet by fade where the view z the prepare
- * computes is positive and the fade factor of horizon_visibility is 0 with the margin (the margin
- * covers the ulps by which two passes may evaluate z differently). A depth whose z is invalid in
- * another way is neither: the passes compute it (and write 1). A background tile is left to the
- * fill of the background list, which stores what the prepare would. */
-uint depth_flags(float d)
-{
-    bool background = d == CB.horizon_far_depth || isnan(d);
-    float z = background ? -1.0 : horizon_view_z(d);
-    bool faded = z > 0.0 && z * CB.effect_fade_out_mul + CB.effect_fade_out_add < -CB.quiet_margin;
-    return (background ? 0u : FLAG_NOT_BACKGROUND) | (background || faded ? 0u : FLAG_NOT_QUIET);
-}
-
 uint tile_flags(ivec2 t)
 {
     ivec2 size = textureSize(src_depth, 0);
@@ -290,22 +304,6 @@ void main()
     ivec2 p = texel_of(group);
 #if CACAO_VARIANT == CACAO_FILL_OUTPUT
     if (in_rect(p, imageSize(output_image))) imageStore(output_image, p, vec4(1.0, 0.0, 0.0, 0.0));
-#elif CACAO_VARIANT == CACAO_FILL_HORIZON_ALL || CACAO_VARIANT == CACAO_FILL_VIEW_ALL
-    /* The GPU forms' fills of the horizon estimators' images (a group is a tile of the direct grid),
-     * with the values cacaoi_clear_value gives the CPU forms' clears, where a later pass does not
-     * write them: prepare writes every pixel of the tiles that are not all background (its list),
-     * the estimator and the denoise passes every pixel of the needed tiles, which hold every
-     * active tile. The test is the same for the whole group. */
-    uint cls = tiles[class_index(group)];
-#if CACAO_VARIANT == CACAO_FILL_HORIZON_ALL
-    if (cls != CACAO_TILE_CLASS_ACTIVE && in_rect(p, imageSize(horizon_ao_out)))
-        imageStore(horizon_ao_out, p, vec4(1.0, 0.0, 0.0, 0.0));
-#else
-    if (cls == CACAO_TILE_CLASS_BACKGROUND && in_rect(p, imageSize(view_depth))) {
-        imageStore(view_depth, p, vec4(-1.0, 0.0, 0.0, 0.0));
-        imageStore(view_normals, p, vec4(0.0, 0.0, -1.0, 0.0));
-    }
-#endif
 #else
     if (in_rect(p, imageSize(ssao_image).xy))
         for (int layer = 0; layer < CB.slice_count; ++layer) imageStore(ssao_image, ivec3(p, layer), vec4(1.0, 1.0, 0.0, 0.0));

@@ -30,7 +30,7 @@ endforeach()
 # prepare_normals; from depth: prepare, both in one pass); blur 1..8; fp32 only; native only;
 # every key of the horizon-slice estimators (full resolution, fp32, no quality axis) and the
 # tile passes (no axis: every CACAO configuration runs them); and the GPU forms of the blur,
-# apply, prepare and generate, and the horizon estimators' fills where the CPU forms clear (a build
+# apply, prepare and generate, and of the horizon estimators' passes (a build
 # embeds both forms: the device chooses); the reuse passes (no axis: a setting of any CACAO
 # configuration).
 set(expected prepare_depths.full.native prepare_depths.mips.native prepare_normals.native
@@ -38,11 +38,14 @@ set(expected prepare_depths.full.native prepare_depths.mips.native prepare_norma
     blur.4.fp32 blur.5.fp32 blur.6.fp32 blur.7.fp32 blur.8.fp32 apply.smart.fp32
     horizon_prepare.depth horizon_prepare.input horizon_main.gtao horizon_main.bitmask horizon_main.gtao_direct
     horizon_main.bitmask_direct horizon_denoise.intermediate horizon_denoise.final classify classify.horizon compact
-    compact.horizon fill fill.output fill.horizon_all fill.view_all
+    compact.horizon fill fill.output
     prepare.full.native prepare.mips.native
     blur_gpu.1.fp32 blur_gpu.2.fp32 blur_gpu.3.fp32 blur_gpu.4.fp32 blur_gpu.5.fp32 blur_gpu.6.fp32 blur_gpu.7.fp32
     blur_gpu.8.fp32 apply_gpu.smart.fp32 prepare_gpu.full.native prepare_gpu.mips.native generate_gpu.q1 generate_gpu.q2
-    reuse.diff reuse.diff_normals reuse.prefix reuse.reach reuse.diff_gpu reuse.diff_normals_gpu)
+    reuse.diff reuse.diff_normals reuse.prefix reuse.reach reuse.diff_gpu reuse.diff_normals_gpu
+    horizon_prepare_gpu.depth horizon_prepare_gpu.input horizon_main_gpu.gtao horizon_main_gpu.bitmask
+    horizon_main_gpu.gtao_direct horizon_main_gpu.bitmask_direct horizon_denoise_gpu.intermediate
+    horizon_denoise_gpu.final)
 if(NOT names STREQUAL expected)
   message(FATAL_ERROR "subset table holds [${names}]\nexpected [${expected}]")
 endif()

@@ -60,9 +60,9 @@ static const struct {
     {"apply.", GPU_STAGE_APPLY},
     {"apply_gpu.", GPU_STAGE_APPLY},
     {"upsample.", GPU_STAGE_APPLY},
-    {"horizon_prepare.", GPU_STAGE_HORIZON_PREPARE},
-    {"horizon_main.", GPU_STAGE_HORIZON_MAIN},
-    {"horizon_denoise.", GPU_STAGE_HORIZON_DENOISE},
+    {"horizon_prepare", GPU_STAGE_HORIZON_PREPARE}, /* and the GPU forms: horizon_prepare_gpu.* */
+    {"horizon_main", GPU_STAGE_HORIZON_MAIN},
+    {"horizon_denoise", GPU_STAGE_HORIZON_DENOISE},
 };
 
 bool gpu_stage_of_key(const char *key_name, gpu_stage *out) {
