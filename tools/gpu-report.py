@@ -63,10 +63,12 @@ MEASURED = {'final': 'h200-final.json', 'before': 'h200-before.json', 'lists': '
             'tf_final': 'h200-texelfetch-final.json', 'tf_before': 'h200-texelfetch-before.json',
             'forms': 'h200-run-texelfetch.json', 'forms_before': 'h200-run-texelfetch-before.json',
             'atomics': 'h200-run-atomics.json', 'atomics_before': 'h200-run-atomics-before.json',
-            'fused': 'h200-run-fused.json', 'fused_before': 'h200-run-fused-before.json'}
+            'fused': 'h200-run-fused.json', 'fused_before': 'h200-run-fused-before.json',
+            'horizon_direct': 'h200-horizon-direct.json', 'horizon_direct_before': 'h200-horizon-direct-before.json'}
 # The commit each role's build was (said with the tables: a run measures its code).
 MEASURED_COMMITS = {'final': '349c7a2', 'before': 'abd0c77', 'lists': '0c7a571', 'horizon': '1065bc3',
-                    'tf_before': '6588704', 'tf_final': '8ba0da9', 'fused': '35f1533', 'fused_before': '16e6be8'}
+                    'tf_before': '6588704', 'tf_final': '8ba0da9', 'fused': '35f1533', 'fused_before': '16e6be8',
+                    'horizon_direct': '269c67e', 'horizon_direct_before': '16e6be8'}
 # The per-pass timings of the 'fused' run's two builds (.gpu/steps.sh of that session: cacao --timings,
 # the builds alternating, two rounds, 960x540).
 FUSED_STEPS = 'h200-fused-steps.txt'
@@ -416,10 +418,20 @@ def estimator_results(parts):
                  for sc in SCENES]) for n in names]
 
 
+HORIZON_ROLES = ('horizon_direct', 'horizon', 'final', 'forms')
+
+
+def horizon_role(runs):
+    """The role of the run whose estimators part reports the horizon estimators: the latest, with
+    their direct grids ('horizon_direct'), else the one after their GPU fills ('horizon'), else the
+    final run's, else the older 'forms' run's (None without any)."""
+    return next((r for r in HORIZON_ROLES if estimator_results(runs.get(r, {}))), None)
+
+
 def horizon_run(runs):
-    """The run whose estimators part reports the horizon estimators: the later run made after their
-    GPU fills ('horizon'), else the final run's, else the older 'forms' run's ({} without any)."""
-    return next((runs[r] for r in ('horizon', 'final', 'forms') if estimator_results(runs.get(r, {}))), {})
+    """That run's parts ({} without any)."""
+    role = horizon_role(runs)
+    return runs[role] if role else {}
 
 
 def sm_clock(text):
@@ -754,13 +766,52 @@ def measured_section(runs, results):
     hor = horizon_run(runs)
     rows = estimator_results(hor)
     if rows:
+        role = horizon_role(runs)
         out += ['', '### The horizon-slice estimators against AMD HIGH (%s)' % (
-            'a later run, commit %s' % C['horizon'] if hor is not fin else 'the final run'), '',
+            'a later run, commit %s' % C[role] if hor is not fin else 'the final run'), '',
                 '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
         for n, per in rows:
             out.append('| %s (1 denoise pass) | %s |' % (n, ' | '.join(
                 '%.3f ms / %.3f ms = %.2f' % (r['cacao']['total_ms'], r['amd']['total_ms'], r['ratio']) if r else '-'
                 for r in per)))
+    before = runs.get('horizon_direct_before', {})
+    if rows and estimator_results(before):
+        prev = dict(estimator_results(before))
+        saved = []
+        out += ['', '**Since commit %s the GPU forms of the horizon estimators run no classify, compact, clear or '
+                'fill pass**: the prepare (`horizon_prepare_gpu`) stores every pixel and classifies its tile (a '
+                'workgroup is one), the estimator and the denoise passes (`horizon_main_gpu`, '
+                '`horizon_denoise_gpu`; the downsampled estimator was already a direct grid) run every tile and '
+                'store AO 1 in the tiles that are not needed, as CACAO\'s generate and blur do. cacao/AMD HIGH, '
+                'before (commit %s) / after, each build timed against AMD in the same session (`%s`, `%s`):' % (
+                    C['horizon_direct'], C['horizon_direct_before'], MEASURED['horizon_direct_before'],
+                    MEASURED['horizon_direct']), '',
+                '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
+        for n, per in rows:
+            cells = []
+            for sc, r, b in zip(SCENES, per, prev.get(n, [None] * len(SCENES))):
+                cells.append('%.2f / %.2f' % (b['ratio'], r['ratio']) if r and b else '-')
+                if r and b:
+                    saved.append(1000.0 * (b['cacao']['total_ms'] - r['cacao']['total_ms']))
+            out.append('| %s | %s |' % (n, ' | '.join(cells)))
+        if saved:
+            cells = []
+            path = os.path.join(ROOT, 'docs', 'gpu-measured', 'h200-horizon-direct-steps.txt')
+            if os.path.isfile(path):
+                text = open(path).read()
+                for sc in ('interior_fzkhaus', 'street_track'):
+                    for flags in ('--estimator gtao --quality high', '--estimator bitmask --quality highest --downsample'):
+                        b, f = steps_of(text, 'old', sc, flags), steps_of(text, 'new', sc, flags)
+                        small = sum(v for k, v in b.items() if k.split('.')[0] in ('classify', 'compact', 'fill', 'horizon_prepare'))
+                        prep = sum(v for k, v in f.items() if k.startswith('horizon_prepare'))
+                        if b and f:
+                            cells.append('%s %s: %.0f -> %.0f (total %.0f -> %.0f)' % (
+                                sc, flags.replace('--estimator ', '').replace('--quality ', '').replace('--', ''),
+                                1000 * small, 1000 * prep, 1000 * b['total'], 1000 * f['total']))
+            out += ['', 'The frames became %.0f-%.0f microseconds shorter. Per pass at 960x540 '
+                    '(`docs/gpu-measured/h200-horizon-direct-steps.txt`, `cacao --timings --repeat 30 --no-normals`, '
+                    'the two builds alternating), classify, compact, the fills and the prepare before against the '
+                    'prepare after, microseconds: %s.' % (min(saved), max(saved), '; '.join(cells) or '-')]
     steps = os.path.join(ROOT, 'docs', 'gpu-measured', 'h200-horizon-steps.txt')
     if rows and os.path.isfile(steps):
         with open(steps) as f:
@@ -768,11 +819,13 @@ def measured_section(runs, results):
         out += ['', '**Commit 97cb2c7 had made these frames about twice as long on this GPU**: it gave the '
                 'horizon estimators clear steps (`vkCmdClearColorImage`) where fill dispatches wrote their '
                 'intermediates, and on this GPU a clear of the view z costs 90 microseconds and one of the AO 41 '
-                'at 960x540, where the fills took 4 each. Since commit %s the GPU forms fill with a dispatch '
-                'over every tile that skips the tiles a later pass writes (`fill.view_all`, `fill.horizon_all`); '
-                'the CPU forms keep the clears, which lavapipe runs faster (docs/tiles.md). Per-pass `--timings` '
+                'at 960x540, where the fills took 4 each. From commit %s to %s the GPU forms filled with a '
+                'dispatch over every tile that skipped the tiles a later pass writes (`fill.view_all`, '
+                '`fill.horizon_all`; since then they need no fill, above); the CPU forms keep the clears, which '
+                'lavapipe runs faster (docs/tiles.md). Per-pass `--timings` '
                 '(`docs/gpu-measured/h200-horizon-steps.txt`: median ms, min, max; "final" %s, "fixed" '
-                '%s, "old" %s):' % (C['horizon'], C['final'], C['horizon'], C['lists']), '', '```'] + body + ['```']
+                '%s, "old" %s):' % (C['horizon'], C['horizon_direct'], C['final'], C['horizon'], C['lists']), '',
+                '```'] + body + ['```']
     # the driver's statistics
     text = text_part(fin, 'stats.cacao')
     if text:
