@@ -399,10 +399,13 @@ void main()
     ivec2 p = texel_of(group);
     ivec2 size = imageSize(view_depth);
     if (!in_rect(p, size)) return;
-    float z = fetch_view_z(p);
 #if CACAO_SKIPS_BY_CLASS
-    if (!needed) z = -1.0; /* stores 1, as the CPU forms' fills and clears */
+    if (!needed) { /* the 1 of the CPU forms' fills and clears */
+        store_visibility(p, 1.0);
+        return;
+    }
 #endif
+    float z = fetch_view_z(p);
     if (!(z > 0.0)) {
         store_visibility(p, 1.0);
         return;
