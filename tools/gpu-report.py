@@ -68,7 +68,8 @@ MEASURED = {'final': 'h200-final.json', 'before': 'h200-before.json', 'lists': '
 # The commit each role's build was (said with the tables: a run measures its code).
 MEASURED_COMMITS = {'final': '349c7a2', 'before': 'abd0c77', 'lists': '0c7a571', 'horizon': '1065bc3',
                     'tf_before': '6588704', 'tf_final': '8ba0da9', 'fused': '35f1533', 'fused_before': '16e6be8',
-                    'horizon_direct': '269c67e', 'horizon_direct_before': '16e6be8'}
+                    'horizon_direct': 'd643d71', 'horizon_direct_before': '16e6be8',
+                    'horizon_direct_since': '269c67e'}
 # The per-pass timings of the 'fused' run's two builds (.gpu/steps.sh of that session: cacao --timings,
 # the builds alternating, two rounds, 960x540).
 FUSED_STEPS = 'h200-fused-steps.txt'
@@ -783,9 +784,10 @@ def measured_section(runs, results):
                 'workgroup is one), the estimator and the denoise passes (`horizon_main_gpu`, '
                 '`horizon_denoise_gpu`; the downsampled estimator was already a direct grid) run every tile and '
                 'store AO 1 in the tiles that are not needed, as CACAO\'s generate and blur do. cacao/AMD HIGH, '
-                'before (commit %s) / after, each build timed against AMD in the same session (`%s`, `%s`):' % (
-                    C['horizon_direct'], C['horizon_direct_before'], MEASURED['horizon_direct_before'],
-                    MEASURED['horizon_direct']), '',
+                'before (commit %s) / after (commit %s), each build timed against AMD in the same session '
+                '(`%s`, `%s`):' % (
+                    C['horizon_direct_since'], C['horizon_direct_before'], C['horizon_direct'],
+                    MEASURED['horizon_direct_before'], MEASURED['horizon_direct']), '',
                 '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
         for n, per in rows:
             cells = []
@@ -824,7 +826,7 @@ def measured_section(runs, results):
                 '`fill.horizon_all`; since then they need no fill, above); the CPU forms keep the clears, which '
                 'lavapipe runs faster (docs/tiles.md). Per-pass `--timings` '
                 '(`docs/gpu-measured/h200-horizon-steps.txt`: median ms, min, max; "final" %s, "fixed" '
-                '%s, "old" %s):' % (C['horizon'], C['horizon_direct'], C['final'], C['horizon'], C['lists']), '',
+                '%s, "old" %s):' % (C['horizon'], C['horizon_direct_since'], C['final'], C['horizon'], C['lists']), '',
                 '```'] + body + ['```']
     # the driver's statistics
     text = text_part(fin, 'stats.cacao')
