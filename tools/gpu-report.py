@@ -522,7 +522,10 @@ def fused_section(fused, before):
                 'native pairs); downsampled nothing changed beyond the noise: there classify scans a tile\'s every '
                 'layer until a texel that is not quiet (it stopped at the first layer with a texel that was not '
                 'background, which called tiles faded whose other layers were active: a bug, found while building '
-                'this), a little more work on faded tiles.' % (min(saved), max(saved), min(after), max(after))]
+                'this), a little more work on faded tiles. The RADV estimates above do not see the dispatch and '
+                'the barrier: they weigh the classification in the prepare about as they weighed the classify pass '
+                '(its marks of the 3x3 tiles around an active one unrolled, which ACO otherwise weighs as a loop of '
+                '64 iterations), so the estimated totals did not move.' % (min(saved), max(saved), min(after), max(after))]
     path = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'docs', 'gpu-measured', FUSED_STEPS)
     if os.path.exists(path):
         text = open(path).read()

@@ -92,10 +92,13 @@ void mark(uint flag) { atomicAnd(tiles[flag], 0u); }
  * 1, touches tiles a - 1 .. a + 1 when g out < (a + 2) TILE and g out + out > (a - 1) TILE). */
 void mark_around(ivec2 a, uint tile_base, uint blur_base)
 {
-    ivec2 last = ivec2(CB.tiles_x, CB.tiles_y) - 1;
-    for (int y = max(a.y - 1, 0); y <= min(a.y + 1, last.y); ++y)
-        for (int x = max(a.x - 1, 0); x <= min(a.x + 1, last.x); ++x)
-            mark(tile_base + tile_index(ivec2(x, y)));
+    /* unrolled: a GPU compiler then knows the trip count (ACO weighs a loop it cannot count as 8
+     * iterations, a nested one as 64) */
+    [[unroll]] for (int dy = -1; dy <= 1; ++dy)
+        [[unroll]] for (int dx = -1; dx <= 1; ++dx) {
+            ivec2 t = a + ivec2(dx, dy);
+            if (in_rect(t, ivec2(CB.tiles_x, CB.tiles_y))) mark(tile_base + tile_index(t));
+        }
     if (CB.blur_groups_x == 0) return; /* no blur */
     ivec2 out_size = ivec2(CB.blur_out_x, CB.blur_out_y);
     ivec2 g0 = max(a - 1, ivec2(0)) * CACAO_TILE / out_size;
