@@ -119,10 +119,13 @@ typedef enum cacao_visibility {
     CACAO_VISIBILITY_BINARY,      /* occluders within R count fully, beyond R not at all */
 } cacao_visibility;
 
-/* The shapes of the blur, apply, prepare (normals from depth) and generate shaders (the arithmetic,
- * and so the output, is the same: bit for bit on lavapipe in fp32). A CPU rasterizer runs large
- * blocks of texels per invocation in registers fastest; a GPU spills such blocks to memory and wants
- * shared memory, one or a few texels per invocation, its hardware sampler and fewer instructions. */
+/* The shapes of the blur, apply, prepare (normals from depth) and generate shaders, and how the
+ * tiles are skipped (the arithmetic, and so the output, is the same: bit for bit on lavapipe in
+ * fp32). A CPU rasterizer runs large blocks of texels per invocation in registers fastest, and
+ * only fewer dispatched groups save it time (tile lists, clears); a GPU spills such blocks to
+ * memory and wants shared memory, one or a few texels per invocation, its hardware sampler, fewer
+ * instructions and fewer dispatches (the GPU forms skip tiles inside the shader, and their
+ * prepare passes classify the tiles: docs/tiles.md). */
 typedef enum cacao_shader_forms {
     CACAO_SHADER_FORMS_DEFAULT = 0, /* a context picks by its device: CPU on a CPU device (lavapipe),
                                        GPU on every other (cacao_context_desc.shader_forms overrides);

@@ -165,8 +165,8 @@ static const flag_def flags[] = {
      .kind = SET_ENUM,
      .offset = offsetof(cacao_settings, shader_forms),
      .json = "shader_forms",
-     .help = "cpu or gpu: the shapes of the blur and apply shaders (the same output); the "
-             "default picks by the device, cpu on lavapipe",
+     .help = "cpu or gpu: the shapes of the shaders (the same output; gpu: fewer texels per "
+             "invocation, shared memory, no tile lists); the default picks by the device, cpu on lavapipe",
      .name_of = shader_forms_name},
     SECTION("Estimator (docs/estimators.md)"),
     {.name = "--estimator",
