@@ -72,10 +72,6 @@ void prepare_pixel(ivec2 p, ivec2 size)
     imageStore(view_normals, p, vec4(n, 0.0));
 }
 
-#if CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU
-shared uint s_tile_flags;
-#endif
-
 /* A workgroup is one tile: the CPU forms run over the tiles that are not all background
  * (docs/tiles.md), the GPU form over every tile, classifying it (the classify pass's rules,
  * tiles.glsl depth_flags: its class, its count and the needed tiles around an active one). */
@@ -84,18 +80,14 @@ void main()
     ivec2 group;
 #if CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU
     group = ivec2(gl_WorkGroupID.xy);
-    if (gl_LocalInvocationIndex == 0u) s_tile_flags = CB.tiles_all != 0 ? FLAGS_ALL : 0u;
-    barrier();
+    classify_group_begin(1);
     ivec2 p = texel_of(group);
     ivec2 size = textureSize(src_depth, 0);
     if (in_rect(p, size)) {
-        uint flags = depth_flags(texelFetch(src_depth, p, 0).r);
-        if (flags != 0u) atomicOr(s_tile_flags, flags);
+        classify_group_flag(1, ivec2(0), depth_flags(texelFetch(src_depth, p, 0).r));
         prepare_pixel(p, size);
     }
-    barrier();
-    if (gl_LocalInvocationIndex == 0u)
-        atomicAdd(tiles[CACAO_TILE_COUNT_ACTIVE + store_tile_class(group, s_tile_flags)], 1u);
+    classify_group_end(group, 1);
 #else
     if (!group_of(group)) return;
     ivec2 p = texel_of(group);

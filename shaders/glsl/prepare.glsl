@@ -212,8 +212,6 @@ void prep_rows(ivec2 u, int gj, vec2 inv, ivec2 src_size, float z0, inout vec3 p
 #if CACAO_TILE != 8 || CACAO_WG_PREPARE_X != 8 || CACAO_WG_PREPARE_Y != 8
 #error "prepare_gpu classifies the 2x2 tiles of an 8x8 group of 2x2 texels: rewrite it for other sizes"
 #endif
-shared uint s_tile_flags[4];
-
 /* The least view z this invocation stores: +inf for none, -inf where one is NaN (NaN, like -inf,
  * is neither quiet nor background). */
 float g_zmin = uintBitsToFloat(0x7f800000u);
@@ -229,17 +227,11 @@ void classify_texel(float z) { g_zmin = min(g_zmin, isnan(z) ? uintBitsToFloat(0
  * within 2^-10 of a threshold), never the other way. */
 void classify_group()
 {
-    uint l = gl_LocalInvocationIndex;
-    if (l < 4u) s_tile_flags[l] = CB.tiles_all != 0 ? FLAG_NOT_QUIET : 0u;
-    barrier();
     float low = isinf(g_zmin) ? g_zmin : g_zmin - abs(g_zmin) * (1.01 / 1024.0);
     uint flags = g_zmin > 0.0 && isinf(g_zmin) ? 0u : slice_z_flags(low); /* +inf: no texel */
-    ivec2 lt = ivec2(gl_LocalInvocationID.xy) / 4;
-    if (flags != 0u) atomicOr(s_tile_flags[2 * lt.y + lt.x], flags);
-    barrier();
-    ivec2 t = 2 * ivec2(gl_WorkGroupID.xy) + ivec2(l & 1u, l >> 1);
-    if (l < 4u && in_rect(t, ivec2(CB.tiles_x, CB.tiles_y)))
-        atomicAdd(tiles[CACAO_TILE_COUNT_ACTIVE + store_tile_class(t, s_tile_flags[l])], 1u);
+    classify_group_begin(2);
+    classify_group_flag(2, ivec2(gl_LocalInvocationID.xy) / 4, flags);
+    classify_group_end(2 * ivec2(gl_WorkGroupID.xy), 2);
 }
 #define CLASSIFY_TEXEL(z) classify_texel(z)
 #else

@@ -176,23 +176,54 @@ uint depth_flags(float d)
 }
 #endif
 
-/* Stores tile t's class from its flags and (CACAO) marks the needed tiles and blur groups around
- * it; returns the class. */
-uint store_tile_class(ivec2 t, uint flags)
+/* Stores tile t's class from its flags, counts it and marks the needed tiles and blur groups
+ * around it. */
+void store_tile_class(ivec2 t, uint flags)
 {
     uint cls = (flags & FLAG_NOT_QUIET) != 0u ? CACAO_TILE_CLASS_ACTIVE
              : (flags & FLAG_NOT_BACKGROUND) != 0u ? CACAO_TILE_CLASS_FADED : CACAO_TILE_CLASS_BACKGROUND;
     tiles[class_index(t)] = cls;
-#if CACAO_PASS == CACAO_PASS_PREPARE_GPU || CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU || \
-    (CACAO_PASS == CACAO_PASS_CLASSIFY && CACAO_VARIANT == CACAO_CLASSIFY_SLICES)
+    atomicAdd(tiles[CACAO_TILE_COUNT_ACTIVE + cls], 1u);
+#if !(CACAO_PASS == CACAO_PASS_CLASSIFY && CACAO_VARIANT == CACAO_CLASSIFY_HORIZON)
     /* Active tile t makes needed the tiles within one tile of it, and the blur groups whose output
      * touches one of those (none for the horizon estimators): compact's tests, turned around, in the
-     * GPU forms' flags (the CPU forms run from compact's lists). The GPU forms' passes that skip by
-     * them count the needed groups they run (group_work). */
+     * GPU forms' flags (the CPU forms run from compact's lists; classify.horizon serves only them).
+     * The GPU forms' passes that skip by them count the needed groups they run (group_work). */
     if (cls == CACAO_TILE_CLASS_ACTIVE) mark_around(t, needed_base(), blur_needed_base());
 #endif
-    return cls;
 }
+
+#if CACAO_PASS != CACAO_PASS_CLASSIFY
+/* The GPU forms' prepare passes classify what they store: a workgroup covers side x side tiles
+ * from tile0. Every invocation of the group calls classify_group_begin, then gives the flags of its
+ * texels to the group's tile own that holds them (classify_group_flag, any invocation, any number
+ * of times), then calls classify_group_end (barriers). */
+shared uint s_group_flags[4];
+
+void classify_group_begin(int side)
+{
+    if (gl_LocalInvocationIndex < uint(side * side))
+        s_group_flags[gl_LocalInvocationIndex] = CB.tiles_all != 0 ? FLAG_NOT_QUIET : 0u;
+    barrier();
+}
+
+void classify_group_flag(int side, ivec2 own, uint flags)
+{
+    if (flags != 0u) atomicOr(s_group_flags[own.y * side + own.x], flags);
+}
+
+void classify_group_end(ivec2 tile0, int side)
+{
+    barrier();
+    int l = int(gl_LocalInvocationIndex);
+    if (side == 1) { /* a group per tile of the tiles' grid: always inside */
+        if (l == 0) store_tile_class(tile0, s_group_flags[0]);
+    } else if (l < side * side) {
+        ivec2 t = tile0 + ivec2(l % side, l / side);
+        if (in_rect(t, ivec2(CB.tiles_x, CB.tiles_y))) store_tile_class(t, s_group_flags[l]);
+    }
+}
+#endif
 #endif
 
 #if CACAO_PASS == CACAO_PASS_CLASSIFY
@@ -251,7 +282,7 @@ void main()
 {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
     if (!in_rect(t, ivec2(CB.tiles_x, CB.tiles_y))) return;
-    atomicAdd(tiles[CACAO_TILE_COUNT_ACTIVE + store_tile_class(t, tile_flags(t))], 1u);
+    store_tile_class(t, tile_flags(t));
 }
 #endif /* CLASSIFY */
 
