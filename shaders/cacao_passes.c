@@ -84,17 +84,20 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
  * tile list: the CPU form runs over the needed tiles' list; the GPU form over every tile, a group
  * whose tile is not needed (classify's flag) storing AO 1 and returning (docs/tiles.md: a
  * workgroup-uniform branch). */
-#define GENERATE_ROW(name, taps, list, base_grid, tiles)                                                \
-    {name, {"q0", "q1", "q2", "q3", "q3base"}, 5, false, false, false, WG(GENERATE), CACAOI_GRID_SLICE_LAYERS, 11, \
+#define GENERATE_ROW(name, taps, list, base_list, base_grid, tiles)                                     \
+    {name, {"q0", "q1", "q2", "q3", "q3base"}, 5, false, false, false, WG(GENERATE), CACAOI_GRID_SLICE_LAYERS, 12, \
      {CONSTANTS, R(LOAD_COUNTER, LOAD_COUNTER, V(CACAO_GENERATE_Q3)), R(DEPTHS, DEPTHS, ALL),               \
       /* the normals' single texels: imageLoad (cacao.comp) */                                     \
       R(DEPTHS_IMAGE, DEPTHS, taps), R(NORMALS_IMAGE, NORMALS, ALL), R(SSAO_BASE, SSAO_PONG, V(CACAO_GENERATE_Q3)), \
       R(IMPORTANCE_MAP, IMPORTANCE, V(CACAO_GENERATE_Q3)), W(SSAO_IMAGE, SSAO_PING, ALL & ~V(CACAO_GENERATE_Q3_BASE)), \
       W(SSAO_IMAGE, SSAO_PONG, V(CACAO_GENERATE_Q3_BASE)), W(IMPORTANCE_MAP_IMAGE, IMPORTANCE, V(CACAO_GENERATE_Q3_BASE)), \
-      tiles(TILES, TILES, ALL & ~V(CACAO_GENERATE_Q3_BASE))},                                      \
-     /* the Q3 base pass covers every tile: its values feed the importance map and the load     \
-      * counter, which steer the adaptive pass everywhere */                                    \
-     .lists = {list, list, list, list, CACAO_LIST_NONE}, .grids = {[CACAO_GENERATE_Q3_BASE] = base_grid}}
+      tiles(TILES, TILES, ALL & ~V(CACAO_GENERATE_Q3_BASE)), R(TILES, TILES, V(CACAO_GENERATE_Q3_BASE))}, \
+     /* the Q3 base pass computes the tiles holding an active texel (its values feed the         \
+      * importance map and the load counter, which steer the adaptive pass everywhere); a tile   \
+      * that is not active has importance 0 (docs/tiles.md): the CPU form runs over compact's    \
+      * blocks of 2x2 tiles after a clear of the map, the GPU form over every tile, reading the  \
+      * classes */                                                                                \
+     .lists = {list, list, list, list, base_list}, .grids = {[CACAO_GENERATE_Q3_BASE] = base_grid}}
 /* The fused prepare (normals from depth) and its GPU form's row; the GPU form's native keys also
  * classify the tiles (tiles_variants: ALL; the CPU form, and the GPU form downsampled, run the
  * classify pass). */
@@ -151,7 +154,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * load counter; the Q3 base pass writes the second AO buffer and the importance map
      * (importance.md "GenerateImportanceMap"): an invocation per importance texel computes the
      * 2x2 slice texels of every layer that texel reads. */
-    PASS(GENERATE) = GENERATE_ROW("generate", ALL, GEN, CACAOI_GRID_IMPORTANCE, R),
+    PASS(GENERATE) = GENERATE_ROW("generate", ALL, GEN, CACAO_LIST_BASE_BLOCKS, CACAOI_GRID_IMPORTANCE, R),
     /* spec: importance.md: two smoothing passes (ping-pong) of the map the Q3 base pass wrote. */
     PASS(IMPORTANCE_A) = {"importance_a", {NULL}, 1, false, false, false, WG(IMPORTANCE), CACAOI_GRID_IMPORTANCE, 3,
                           {CONSTANTS, R(IMPORTANCE_MAP, IMPORTANCE, ALL), W(IMPORTANCE_MAP_IMAGE, IMPORTANCE_PONG, ALL)}},
@@ -220,23 +223,25 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * integers. */
     PASS(PREPARE_GPU) = PREPARE_ROW("prepare_gpu", ALL),
     PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu", V(CACAO_GENERATE_Q3) | V(CACAO_GENERATE_Q3_BASE), CACAO_LIST_NONE,
-                                      CACAOI_GRID_SLICE, W),
+                                      CACAO_LIST_NONE, CACAOI_GRID_SLICE, W),
     /* The value of the tiles no pass computes: AO 1 over the unneeded tiles into the slices' AO
      * and the blur's output (CACAO's CPU forms, a step rebinding SSAO_IMAGE) and into the caller's
      * output (dispatches); into the horizon estimators' AO intermediates, and their view z and
      * normals for background: clears of the whole image before the passes that write the needed
      * tiles (on lavapipe a clear of a 16-bit image costs a full frame of CACAO about 4%, a fill
      * over an empty list nothing: docs/tiles.md). */
-    PASS(FILL) = {"fill", {NULL, "horizon", "output", "view"}, 4, false, false, false,
-                  {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE, 7,
+    PASS(FILL) = {"fill", {NULL, "horizon", "output", "view", "importance"}, 5, false, false, false,
+                  {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE, 8,
                   {CONSTANTS,
                    R(TILES, TILES, V(CACAO_FILL_SLICES) | V(CACAO_FILL_OUTPUT)),
                    W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),
                    W(HORIZON_AO_OUT, AO_RAW, V(CACAO_FILL_HORIZON)),
                    W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT)),
                    W(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_FILL_VIEW)),
-                   W(VIEW_NORMALS, VIEW_NORMALS, V(CACAO_FILL_VIEW))},
-                  /* the horizon estimators' own images are cleared (cacao_plan_step.clear) */
+                   W(VIEW_NORMALS, VIEW_NORMALS, V(CACAO_FILL_VIEW)),
+                   W(IMPORTANCE_MAP_IMAGE, IMPORTANCE, V(CACAO_FILL_IMPORTANCE))},
+                  /* the horizon estimators' own images, and CACAO's importance map before the CPU
+                   * form of the Q3 base pass, are cleared (cacao_plan_step.clear) */
                   .lists = {[CACAO_FILL_SLICES] = CACAO_LIST_FILL_SLICES, [CACAO_FILL_OUTPUT] = CACAO_LIST_FILL_SLICES}},
     /* docs/tiles.md "Reusing the previous frame": the diff, one invocation per tile, compares the
      * caller's depth (and normals) with the copies the previous frame kept and updates them; the
@@ -312,20 +317,23 @@ bool cacaoi_skips_by_class(unsigned pass, unsigned variant) {
 }
 
 bool cacaoi_fill_is_clear(unsigned pass, unsigned variant) {
-    return pass == CACAO_PASS_FILL && (variant == CACAO_FILL_HORIZON || variant == CACAO_FILL_VIEW);
+    return pass == CACAO_PASS_FILL &&
+           (variant == CACAO_FILL_HORIZON || variant == CACAO_FILL_VIEW || variant == CACAO_FILL_IMPORTANCE);
 }
 
 /* What the passes would store there (the horizon estimators' fill and prepare): R16F AO 1, R32F
- * view z -1, RGBA8_SNORM normal (0, 0, -1). */
+ * view z -1, RGBA8_SNORM normal (0, 0, -1); the Q3 base pass in a tile that is not active:
+ * importance 0. */
 bool cacaoi_clear_value(unsigned resource, float out[4]) {
     static const float ao[4] = {1.0f, 0.0f, 0.0f, 0.0f}, view_z[4] = {-1.0f, 0.0f, 0.0f, 0.0f},
-                       normal[4] = {0.0f, 0.0f, -1.0f, 0.0f};
+                       normal[4] = {0.0f, 0.0f, -1.0f, 0.0f}, zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     const float *v = NULL;
     switch (resource) {
     case CACAO_RES_AO_RAW:
     case CACAO_RES_AO_PONG: v = ao; break;
     case CACAO_RES_VIEW_DEPTH: v = view_z; break;
     case CACAO_RES_VIEW_NORMALS: v = normal; break;
+    case CACAO_RES_IMPORTANCE: v = zero; break;
     default: return false;
     }
     memcpy(out, v, 4 * sizeof(float));

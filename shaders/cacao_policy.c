@@ -150,6 +150,10 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     const bool lists = !c->gpu_forms;
     if (lists) push(out, &n, CACAO_PASS_COMPACT, 0, 0, 0, 0);
     if (c->quality == CACAO_KEY_QUALITY_HIGHEST) {
+        /* The base pass computes the tiles holding an active texel; the others' importance is 0:
+         * the CPU form runs over compact's list of blocks after a clear of the map, the GPU form
+         * over every tile, storing the 0 itself (docs/tiles.md). */
+        if (lists) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_IMPORTANCE, 0, 0, 0);
         push(out, &n, cacaoi_form_pass(CACAO_PASS_GENERATE, c->gpu_forms), CACAO_GENERATE_Q3_BASE, 0, 0, 0);
         push(out, &n, CACAO_PASS_IMPORTANCE_A, 0, 0, 0, 0);
         push(out, &n, CACAO_PASS_IMPORTANCE_B, 0, 0, 0, 0);

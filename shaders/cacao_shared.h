@@ -109,6 +109,7 @@
 #define CACAO_FILL_HORIZON 1
 #define CACAO_FILL_OUTPUT 2
 #define CACAO_FILL_VIEW 3
+#define CACAO_FILL_IMPORTANCE 4 /* a clear of the importance map to 0 (the Q3 base pass over its list) */
 
 /* Reuse variants: compare the caller's depth (and normals) with the copy the previous frame kept,
  * per tile; sum the changed tiles along each row of tiles; mark the tiles to recompute. */
@@ -154,6 +155,8 @@
 #define CACAO_LIST_GENERATE 1            /* needed tiles (one generate group each, z = layers) */
 #define CACAO_LIST_FILL_SLICES 2         /* tiles that are not needed (z 1: a group fills every layer) */
 #define CACAO_LIST_PREPARE 3             /* horizon estimators: tiles not all background (their prepare) */
+#define CACAO_LIST_BASE_BLOCKS 3         /* CACAO at HIGHEST (the same region): blocks of 2x2 tiles holding
+                                            an active tile, one Q3 base pass group each (CPU forms) */
 #define CACAO_LIST_BLUR 4                /* blur groups touching a needed tile (z = layers) */
 #define CACAO_LIST_COUNT 4
 #define CACAO_TILE_HEADER 32
@@ -417,6 +420,7 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(FLOAT, background_z)              /* stored view z at or beyond which a texel is background */ \
     M(FLOAT, quiet_margin)              /* classification: fade argument below -margin is quiet */ \
     M(INT, tiles_all)                   /* 1: every tile active (no skipping: measurement, tests) */ \
+    M(INT, base_blocks)                 /* 1: compact lists the Q3 base pass's blocks (CACAO_LIST_BASE_BLOCKS) */ \
     M(INT, tiles_x)                                                                                \
     M(INT, tiles_y)                                                                                \
     M(INT, blur_groups_x)               /* the blur's full grid and output texels per group */     \

@@ -304,7 +304,11 @@ static void test_adaptive(vkdev *dev) {
  * "PostprocessImportanceMapA") are read back; the host makes the map from the base and smooths it
  * the same way, and the two must agree to one 8-bit step (the sampler's fixed-point weights and
  * the stores' rounding). A map from one layer only, which a wrong texel or layer choice would
- * resemble, misses by more: the check can tell. */
+ * resemble, misses by more: the check can tell. A quiet texel counts 0 (docs/tiles.md, "The Q3
+ * base pass"): in this scene the quiet texels are the sky's (depth at the far plane; nothing lies
+ * beyond the default fade-out), which the host finds from the depth: texel t of layer l is pixel
+ * 2t + (l & 1, l >> 1). Where a block of 2x2 tiles holds no active texel the base stores nothing
+ * and the map keeps the clear's 0, which the host's quiet texels give too. */
 typedef struct importance_readback {
     vkdev_buffer base, smoothed;
     uint32_t sw, sh, iw, ih;
@@ -322,8 +326,8 @@ static float sat(float x) { return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x); }
 
 /* The map made on the host from the base AO (RG8, layers after each other), over layers 0 ..
  * layers - 1, as 8-bit values. */
-static void host_importance_map(const importance_readback *rb, const uint8_t *base, int layers, float strength,
-                                float power, float *map) {
+static void host_importance_map(const importance_readback *rb, const uint8_t *base, const float *depth,
+                                uint32_t width, int layers, float strength, float power, float *map) {
     for (uint32_t y = 0; y < rb->ih; ++y)
         for (uint32_t x = 0; x < rb->iw; ++x) {
             float vmin = 1.0f, vmax = 0.0f;
@@ -331,7 +335,9 @@ static void host_importance_map(const importance_readback *rb, const uint8_t *ba
                 for (uint32_t q = 0; q < 4; ++q) {
                     const int sx = clamp_index(2 * (int)x + (int)(q & 1), rb->sw);
                     const int sy = clamp_index(2 * (int)y + (int)(q >> 1), rb->sh);
-                    const float v = base[(((size_t)l * rb->sh + (size_t)sy) * rb->sw + (size_t)sx) * 2] / 255.0f;
+                    const float d = depth[(size_t)(2 * sy + (l >> 1)) * width + (size_t)(2 * sx + (l & 1))];
+                    const bool quiet = !(d < 1.0f); /* the far plane, or NaN */
+                    const float v = quiet ? 0.0f : base[(((size_t)l * rb->sh + (size_t)sy) * rb->sw + (size_t)sx) * 2] / 255.0f;
                     vmin = v < vmin ? v : vmin;
                     vmax = v > vmax ? v : vmax;
                 }
@@ -381,8 +387,11 @@ static void test_importance_map(vkdev *dev) {
     float *map = malloc(sizeof(float) * n), *map_one_layer = malloc(sizeof(float) * n);
     if (run(dev, &s, &f, ao)) {
         const uint8_t *smoothed = rb.smoothed.mapped;
-        host_importance_map(&rb, rb.base.mapped, 4, strength, power, map);
-        host_importance_map(&rb, rb.base.mapped, 1, strength, power, map_one_layer);
+        host_importance_map(&rb, rb.base.mapped, b.depth, b.width, 4, strength, power, map);
+        host_importance_map(&rb, rb.base.mapped, b.depth, b.width, 1, strength, power, map_one_layer);
+        size_t sky = 0;
+        for (size_t i = 0; i < (size_t)b.width * b.height; ++i) sky += !(b.depth[i] < 1.0f);
+        CHECK(sky > 0); /* the quiet rule is exercised */
         int worst = 0, worst_one_layer = 0;
         size_t busy = 0;
         for (uint32_t y = 0; y < rb.ih; ++y)

@@ -45,7 +45,13 @@ static void test_rows(void) {
             if (row->quad[v] > 1)
                 CHECK((grid == CACAOI_GRID_SLICE || grid == CACAOI_GRID_OUTPUT) && row->lists[v] == CACAO_LIST_NONE);
             CHECK(row->grids[v] <= CACAOI_GRID_TILE_ROWS && (v < row->variants || row->grids[v] == CACAOI_GRID_ROW));
-            if (row->grids[v] != CACAOI_GRID_ROW) CHECK(row->lists[v] == CACAO_LIST_NONE);
+            /* a list's groups are tiles (or blur groups); the one exception, the CPU form of the Q3
+             * base pass, lists blocks of 2x2 tiles: its importance grid's groups (a workgroup of
+             * CACAO_TILE x CACAO_TILE importance texels, 2x2 slice texels each) */
+            if (row->grids[v] != CACAOI_GRID_ROW)
+                CHECK(row->lists[v] == CACAO_LIST_NONE ||
+                      (row->lists[v] == CACAO_LIST_BASE_BLOCKS && row->grids[v] == CACAOI_GRID_IMPORTANCE &&
+                       row->workgroup[0] == CACAO_TILE && row->workgroup[1] == CACAO_TILE));
         }
         for (unsigned v = 0; v < row->variants; ++v) {
             /* one unnamed variant, or all named; a pass that gained variants may keep its first
@@ -196,9 +202,9 @@ static void check_config(const cacao_settings *s) {
         CHECK(cacaoi_key_compare(&key, &steps[i].key) == 0);
         CHECK(st->clear == cacaoi_fill_is_clear(steps[i].key.pass, steps[i].key.variant));
         /* a step reading the tile buffer is a list dispatch, classify or compact, a GPU form that
-         * skips by the classes itself (it then writes its count there), or a GPU form of a prepare
+         * skips by the classes itself (it then writes its count there), a GPU form of a prepare
          * that classifies (then no classify pass runs): the fused prepare native, the horizon
-         * estimators' */
+         * estimators'; or the GPU form of the Q3 base pass, which reads the classes only */
         const bool prepare_classifies = (st->key[0] == CACAO_PASS_PREPARE_GPU && !st->key[2]) ||
                                         st->key[0] == CACAO_PASS_HORIZON_PREPARE_GPU;
         if (prepare_classifies)
@@ -208,7 +214,9 @@ static void check_config(const cacao_settings *s) {
         for (uint32_t j = 0; j < st->binding_count; ++j)
             if (st->bindings[j].resource == CACAO_RES_TILES)
                 CHECK(st->list != CACAO_LIST_NONE || st->key[0] == CACAO_PASS_CLASSIFY || st->key[0] == CACAO_PASS_COMPACT ||
-                      cacaoi_skips_by_class(st->key[0], st->key[1]) || prepare_classifies);
+                      cacaoi_skips_by_class(st->key[0], st->key[1]) || prepare_classifies ||
+                      (st->key[0] == CACAO_PASS_GENERATE_GPU && st->key[1] == CACAO_GENERATE_Q3_BASE &&
+                       !st->bindings[j].write));
         if (st->clear) { /* a transfer: it only writes cacao's own images, each with a clear value; no module */
             CHECK(st->dispatch[0] == 0 && st->list == CACAO_LIST_NONE && st->binding_count >= 1);
             for (uint32_t j = 0; j < st->binding_count; ++j) {

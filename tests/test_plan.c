@@ -25,7 +25,8 @@ static cacao_plan build(cacao_settings s, uint32_t w, uint32_t h) {
 static void test_steps_per_quality(void) {
     /* By hand from the spec's pass graph, with blur 2, native, normals from depth, and the tile
      * passes of docs/tiles.md: classify and compact after the depths, a fill of the AO and of
-     * the blur's output after generate (the CPU forms: lists). */
+     * the blur's output after generate (the CPU forms: lists); at HIGHEST a clear of the
+     * importance map before the Q3 base pass, which runs over compact's blocks. */
 #define TILES "classify", "compact"
 #define FILLS "fill", "fill"
     const char *expected[5][16] = {
@@ -33,7 +34,7 @@ static void test_steps_per_quality(void) {
         {"prepare.full.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.nonsmart.fp32"},
         {"prepare.full.native", TILES, "generate.q1", FILLS, "blur.2.fp32", "apply.smart.fp32"},
         {"prepare.mips.native", TILES, "generate.q2", FILLS, "blur.2.fp32", "apply.smart.fp32"},
-        {"prepare.mips.native", TILES, "generate.q3base", "importance_a", "importance_b",
+        {"prepare.mips.native", TILES, "clear.importance", "generate.q3base", "importance_a", "importance_b",
          "generate.q3", FILLS, "blur.2.fp32", "apply.smart.fp32"},
     };
 #undef TILES
@@ -49,15 +50,23 @@ static void test_steps_per_quality(void) {
             CHECK(strcmp(p.steps[i].key_name, expected[q][i]) == 0);
         }
         /* No barrier before the first step, between the two fills (the AO and the blur's output),
-         * nor before the Q3 base pass (it reads the prepared depths and normals, which the barrier
-         * before classify already ordered, not the tiles); every other step depends on the one
-         * before. */
+         * nor before the clear of the importance map (nothing in the frame touched it yet); every
+         * other step depends on the one before. The clear is a transfer: it writes the map and
+         * dispatches nothing, and the base pass after it waits for it and for compact's list. */
         CHECK(!p.steps[0].barrier_before);
         for (uint32_t i = 1; i < p.step_count; ++i) {
-            CHECK(!p.steps[i].clear);
+            const bool clear = strcmp(p.steps[i].key_name, "clear.importance") == 0;
+            CHECK(p.steps[i].clear == clear);
             const bool independent = (strcmp(p.steps[i].key_name, "fill") == 0 && !strcmp(p.steps[i - 1].key_name, "fill")) ||
-                                     strcmp(p.steps[i].key_name, "generate.q3base") == 0;
+                                     clear;
             CHECK(p.steps[i].barrier_before == !independent);
+            if (clear)
+                CHECK(p.steps[i].binding_count == 1 && p.steps[i].bindings[0].resource == CACAO_RES_IMPORTANCE &&
+                      p.steps[i].bindings[0].write && p.steps[i].dispatch[0] == 0);
+            if (strcmp(p.steps[i].key_name, "generate.q3base") == 0)
+                CHECK(p.steps[i].list == CACAO_LIST_BASE_BLOCKS &&
+                      (p.steps[i].barrier_resources & (1u << CACAO_RES_IMPORTANCE)) &&
+                      (p.steps[i].barrier_resources & (1u << CACAO_RES_TILES)));
         }
     }
 }
@@ -202,24 +211,27 @@ static void test_dispatch_sizes(void) {
     CHECK(given.step_count == p.step_count + 1);
     CHECK(p.steps[1].dispatch[0] == 15 && p.steps[1].dispatch[1] == 9);     /* classify: 120x68 tiles / 8x8 */
     CHECK(p.steps[2].dispatch[0] == (120 * 68 + 15 * 17 + 63) / 64);         /* compact: tiles + blur groups */
-    /* the Q3 base pass: an invocation per importance texel (its 2x2 slice texels in all 4 layers),
-     * ceil(480/8), ceil(270/8), one z; the importance passes the same grid */
-    CHECK(strcmp(p.steps[3].key_name, "generate.q3base") == 0);
-    CHECK(p.steps[3].dispatch[0] == 60 && p.steps[3].dispatch[1] == 34 && p.steps[3].dispatch[2] == 1);
-    CHECK(p.steps[4].dispatch[0] == 60 && p.steps[4].dispatch[1] == 34);    /* importance_a */
-    CHECK(p.steps[6].dispatch[2] == 4);                                     /* generate.q3: 4 slices */
-    CHECK(p.steps[9].dispatch[0] == 15 && p.steps[9].dispatch[1] == 17);    /* blur, N = 2: ceil(960/64), ceil(540/32) */
+    /* the Q3 base pass (after the clear of the map): an invocation per importance texel (its 2x2
+     * slice texels in all 4 layers), at most ceil(480/8), ceil(270/8) groups (a group is a block of
+     * 2x2 tiles), one z; the importance passes the same grid */
+    CHECK(strcmp(p.steps[3].key_name, "clear.importance") == 0);
+    CHECK(strcmp(p.steps[4].key_name, "generate.q3base") == 0);
+    CHECK(p.steps[4].dispatch[0] == 60 && p.steps[4].dispatch[1] == 34 && p.steps[4].dispatch[2] == 1);
+    CHECK(p.steps[5].dispatch[0] == 60 && p.steps[5].dispatch[1] == 34);    /* importance_a */
+    CHECK(p.steps[7].dispatch[2] == 4);                                     /* generate.q3: 4 slices */
+    CHECK(p.steps[10].dispatch[0] == 15 && p.steps[10].dispatch[1] == 17);  /* blur, N = 2: ceil(960/64), ceil(540/32) */
     /* past CACAO_BLUR_REGISTER_PASSES a group computes its 64x32 padded tile less N each side */
     cacao_plan b8 = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .blur_pass_count = 8, .generate_normals = true},
                           1920, 1080);
     CHECK(strcmp(b8.steps[b8.step_count - 2].key_name, "blur.8.fp32") == 0);
     CHECK(b8.blur_groups_x == 20 && b8.blur_groups_y == 34); /* ceil(960/48), ceil(540/16) */
-    CHECK(p.steps[10].dispatch[0] == 60 && p.steps[10].dispatch[1] == 34); /* smart apply: 4x4 per invocation */
+    CHECK(p.steps[11].dispatch[0] == 60 && p.steps[11].dispatch[1] == 34); /* smart apply: 4x4 per invocation */
     /* the list's indirect command takes its z from these: generate and the blur cover the four
-     * layers with z, a fill group loops over them */
-    CHECK(p.steps[7].dispatch[2] == 1 && p.steps[8].dispatch[2] == 1 && p.steps[9].dispatch[2] == 4);
-    CHECK(p.steps[6].list == CACAO_LIST_GENERATE && p.steps[7].list == CACAO_LIST_FILL_SLICES &&
-          p.steps[9].list == CACAO_LIST_BLUR && p.steps[10].list == CACAO_LIST_NONE && p.steps[3].list == CACAO_LIST_NONE);
+     * layers with z, a fill group loops over them, a base pass group covers its block's layers */
+    CHECK(p.steps[8].dispatch[2] == 1 && p.steps[9].dispatch[2] == 1 && p.steps[10].dispatch[2] == 4);
+    CHECK(p.steps[7].list == CACAO_LIST_GENERATE && p.steps[8].list == CACAO_LIST_FILL_SLICES &&
+          p.steps[10].list == CACAO_LIST_BLUR && p.steps[11].list == CACAO_LIST_NONE &&
+          p.steps[4].list == CACAO_LIST_BASE_BLOCKS && p.steps[5].list == CACAO_LIST_NONE);
     cacao_plan d =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true, .generate_normals = true}, 1001, 37);
     CHECK(d.slice_width == 251 && d.slice_height == 10); /* ceil(ceil(1001/2)/2), ceil(ceil(37/2)/2) */

@@ -77,6 +77,13 @@ static bool same_as_all_tiles(vkdev *dev, cacao_settings s, const vkdev_frame *f
         CHECK(on->generate_run >= on->active && on->generate_run <= on->tiles); /* active tiles and a margin */
         CHECK(off.active == off.tiles && off.generate_run == off.tiles && off.blur_run == off.blur_total);
         CHECK(on->generate_total == on->tiles && on->blur_run <= on->blur_total);
+        /* HIGHEST's Q3 base pass: every group without skipping; skipping, the groups holding an
+         * active tile (the GPU forms: the active tiles; the CPU forms: blocks of 2x2 tiles, at
+         * least a quarter as many as the active tiles) */
+        CHECK((s.quality == CACAO_QUALITY_HIGHEST) == (on->base_total > 0) && off.base_run == off.base_total);
+        if (on->base_total && forms == CACAO_SHADER_FORMS_GPU) CHECK(on->base_run == on->active && on->base_total == on->tiles);
+        else if (on->base_total)
+            CHECK(on->base_run <= on->base_total && 4 * on->base_run >= on->active && on->base_run <= on->active);
     }
     free(a);
     free(b);
@@ -130,7 +137,7 @@ static void test_all_background(vkdev *dev, const scene_buffers *sb) {
                 size_t not_one = 0;
                 for (size_t i = 0; i < n; ++i) not_one += ao[i] != 1.0f;
                 CHECK(not_one == 0);
-                CHECK(c.background == c.tiles && c.generate_run == 0 && c.blur_run == 0);
+                CHECK(c.background == c.tiles && c.generate_run == 0 && c.blur_run == 0 && c.base_run == 0);
                 cacao_tile_counts unused;
                 same_as_all_tiles(dev, s, &f, "all background", &unused);
             }

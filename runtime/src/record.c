@@ -392,6 +392,14 @@ cacao_result cacao_tile_counts_decode(const cacao_context *ctx, const void *byte
         .changed = h[CACAO_TILE_COUNT_CHANGED],
         .recomputed = h[CACAO_TILE_COUNT_RECOMPUTE],
     };
+    for (uint32_t i = 0; i < p->step_count; ++i) { /* the Q3 base pass: over compact's blocks, or every tile */
+        const cacao_plan_step *st = &p->steps[i];
+        if (st->key[1] != CACAO_GENERATE_Q3_BASE || (st->key[0] != CACAO_PASS_GENERATE && st->key[0] != CACAO_PASS_GENERATE_GPU))
+            continue;
+        const bool blocks = st->list == CACAO_LIST_BASE_BLOCKS;
+        out->base_run = blocks ? LIST_X(CACAO_LIST_BASE_BLOCKS) : out->active;
+        out->base_total = blocks ? st->dispatch[0] * st->dispatch[1] : out->tiles;
+    }
 #undef LIST_X
     return CACAO_SUCCESS;
 }

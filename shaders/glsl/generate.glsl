@@ -207,15 +207,13 @@ float generate_texel(ivec2 xy, int layer)
      * occlude. Their detail AO, taps and adaptive taps are skipped (a subgroup whose pixels are
      * all quiet skips the loops; whole quiet tiles are not dispatched: docs/tiles.md). Edges are
      * still computed: the blur of a visible neighbour reads them. The Q3 base pass keeps every
-     * pixel: its raw values feed the importance map and the load counter, which steer the
-     * adaptive pass elsewhere. compute_all_tiles (CB.tiles_all) skips nothing: test_tiles's
-     * reference, which checks that the skip changes no pixel. */
-#if GEN_BASE == 0
-    bool faded = CB.tiles_all == 0 &&
-                 (zc >= CB.background_z || sat(pc.z * CB.effect_fade_out_mul + CB.effect_fade_out_add) == 0.0);
-#else
-    const bool faded = false;
-#endif
+     * pixel of an active tile: its raw values feed the importance map and the load counter, which
+     * steer the adaptive pass elsewhere; a quiet texel's importance is 0 (the AO 1 it ends as has
+     * no detail to sample), whether tiles are skipped or not, so its taps are skipped too, and a
+     * tile that is not active is all quiet (main). compute_all_tiles (CB.tiles_all) skips
+     * nothing: test_tiles's reference, which checks that the skip changes no pixel. */
+    bool quiet = zc >= CB.background_z || sat(pc.z * CB.effect_fade_out_mul + CB.effect_fade_out_add) == 0.0;
+    bool faded = CB.tiles_all == 0 && quiet;
 
     /* 5. depth edges; 6. detail AO */
     vec4 edges = vec4(1.0);
@@ -267,10 +265,11 @@ float generate_texel(ivec2 xy, int layer)
 #endif
 
 #if GEN_BASE == 1
-    /* 10a. raw obscurance and weight/20 for the adaptive pass */
-    float raw = obsc_sum / weight_sum;
+    /* 10a. raw obscurance and weight/20 for the adaptive pass (a skipped quiet texel: 0 and 0,
+     * which nothing reads: the adaptive pass skips it); what the importance map takes */
+    float raw = faded ? 0.0 : obsc_sum / weight_sum;
     imageStore(ssao_image, ivec3(xy, layer), vec4(raw, weight_sum / CACAO_BASE_WEIGHT_SCALE, 0.0, 0.0));
-    return raw;
+    return quiet ? 0.0 : raw;
 #else
 
 #if CACAO_VARIANT == CACAO_GENERATE_Q3
@@ -369,7 +368,13 @@ void main()
     ivec2 xy = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = slice_size();
     float vmin = 1.0e30, vmax = -1.0e30;
-    if (in_rect(xy, size)) { /* no return: every invocation reaches the barrier */
+    /* the group is a tile: one that is not active is all quiet, importance 0 (the base stores
+     * nothing there: the adaptive pass reads no quiet texel's) */
+    bool tile_active = tiles[class_index(ivec2(gl_WorkGroupID.xy))] == CACAO_TILE_CLASS_ACTIVE;
+    if (in_rect(xy, size) && !tile_active) {
+        vmin = 0.0;
+        vmax = 0.0;
+    } else if (in_rect(xy, size)) { /* no return: every invocation reaches the barrier */
         init_atlas(size);
         [[unroll]] for (int layer = 0; layer < 4; ++layer) {
             /* roundEven's result is already the integer 0..255 the store's conversion makes */
@@ -403,7 +408,11 @@ void main()
 void main()
 {
     hoist_constants();
-    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    /* A group is a block of 2x2 tiles holding an active tile (compact's list); the others keep the
+     * clear's importance 0, which their quiet texels give. */
+    ivec2 group;
+    if (!group_of(group)) return;
+    ivec2 t = texel_of(group);
     ivec2 size = slice_size();
     if (!in_rect(t, imageSize(importance_map_image))) return;
     init_atlas(size);

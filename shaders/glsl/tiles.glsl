@@ -33,8 +33,12 @@ bool group_of(out ivec2 g)
 #define CACAO_CLASSIFIES_DEPTH ((CACAO_PASS == CACAO_PASS_CLASSIFY && CACAO_VARIANT == CACAO_CLASSIFY_HORIZON) || \
                                 CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU)
 
+/* The Q3 base pass reads the tiles' classes (generate.glsl) */
+#define CACAO_READS_CLASSES ((CACAO_PASS == CACAO_PASS_GENERATE || CACAO_PASS == CACAO_PASS_GENERATE_GPU) && \
+                             CACAO_VARIANT == CACAO_GENERATE_Q3_BASE)
+
 #if CACAO_CLASSIFIES || CACAO_PASS == CACAO_PASS_COMPACT || CACAO_PASS == CACAO_PASS_FILL || \
-    CACAO_PASS == CACAO_PASS_REUSE || CACAO_SKIPS_BY_CLASS
+    CACAO_PASS == CACAO_PASS_REUSE || CACAO_SKIPS_BY_CLASS || CACAO_READS_CLASSES
 /* Tile t's index in the per-tile regions of the tile buffer (cacao_shared.h), and where its class is. */
 uint tile_index(ivec2 t) { return uint(t.y * CB.tiles_x + t.x); }
 uint class_index(ivec2 t) { return uint(CACAO_TILE_CLASSES) + tile_index(t); }
@@ -309,6 +313,20 @@ void main()
         ivec2 g = ivec2(i % CB.tiles_x, i / CB.tiles_x);
         /* reuse: a tile it does not recompute keeps the previous frame's values, in no list */
         if (tile_recomputed(g)) append(touches_needed(g, g) ? CACAO_LIST_GENERATE : CACAO_LIST_FILL_SLICES, g);
+#if CACAO_VARIANT == CACAO_COMPACT_SLICES
+        /* HIGHEST, the CPU form of the Q3 base pass: the blocks of 2x2 tiles holding an active tile
+         * (the first tile of each block appends it; every block whatever reuse recomputes: the
+         * load counter sums the whole frame's importance) */
+        if (CB.base_blocks != 0 && (g.x & 1) == 0 && (g.y & 1) == 0) {
+            bool any_active = false;
+            for (int k = 0; k < 4; ++k) {
+                ivec2 t = g + ivec2(k & 1, k >> 1);
+                any_active = any_active || (in_rect(t, ivec2(CB.tiles_x, CB.tiles_y)) &&
+                                            tiles[class_index(t)] == CACAO_TILE_CLASS_ACTIVE);
+            }
+            if (any_active) append(CACAO_LIST_BASE_BLOCKS, g / 2);
+        }
+#endif
 #if CACAO_VARIANT == CACAO_COMPACT_HORIZON
         /* the background tiles keep the clear's view z and normal (what the prepare would store) */
         if (tiles[CACAO_TILE_CLASSES + i] != CACAO_TILE_CLASS_BACKGROUND) append(CACAO_LIST_PREPARE, g);

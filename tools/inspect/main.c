@@ -248,6 +248,11 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
     for (uint32_t i = 0; i < plan->step_count; ++i) {
         const cacao_plan_step *st = &plan->steps[i];
         printf("  %2u %-34s ", i, st->key_name);
+        if (st->clear && st->bindings[0].resource == CACAO_RES_IMPORTANCE) {
+            printf("clears the importance map to 0; the %u blocks the base pass skips keep it (%.1f%%)\n",
+                   c->base_total - c->base_run, percent(c->base_total - c->base_run, c->base_total));
+            continue;
+        }
         if (st->clear) {
             const bool view = st->bindings[0].resource == CACAO_RES_VIEW_DEPTH;
             printf(view ? "clears view z and normals; the %u background tiles keep them (%.1f%% of the tiles)\n"
@@ -259,6 +264,13 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
         const unsigned list = !cacaoi_skips_by_class(st->key[0], st->key[1]) ? st->list
                               : st->key[0] == CACAO_PASS_BLUR_GPU        ? CACAO_LIST_BLUR
                                                                          : CACAO_LIST_GENERATE;
+        if (st->key[1] == CACAO_GENERATE_Q3_BASE &&
+            (st->key[0] == CACAO_PASS_GENERATE || st->key[0] == CACAO_PASS_GENERATE_GPU)) {
+            printf("runs %u of %u %s, skips %u (%.1f%%: importance 0, no active tile)\n", c->base_run, c->base_total,
+                   st->list ? "blocks of 2x2 tiles" : "tiles", c->base_total - c->base_run,
+                   percent(c->base_total - c->base_run, c->base_total));
+            continue;
+        }
         switch (list) {
         case CACAO_LIST_GENERATE:
             printf("runs %u of %u tiles, skips %u (%.1f%%)\n", c->generate_run, c->generate_total, generate_skipped,
