@@ -146,8 +146,9 @@
  *            the flags' readers check);
  *   gates    one VkDispatchIndirectCommand per step (CACAO_TILE_GATE): a step that runs over the
  *            whole image whether one tile or all changed, and not at all when none did.
- * A list is dispatched as a grid x wide (tiles_x, or blur_groups_x for the blur) and as many rows
- * as its entries fill (lavapipe runs a 1D grid of the same groups slower); group (x, y)
+ * A list is dispatched as a grid x wide (tiles_x, blur_groups_x for the blur, the blocks' row
+ * (tiles_x + 1) / 2 for the Q3 base pass) and as many rows as its entries fill (lavapipe runs a
+ * 1D grid of the same groups slower, and the base pass's blocks 8% slower in rows tiles_x wide); group (x, y)
  * takes entry y width + x, and a group past the last entry finds CACAO_TILE_NO_ENTRY (the host
  * fills the lists with it) and returns. List entries are group coordinates x | y << 16. */
 #define CACAO_TILE 8

@@ -172,7 +172,9 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
         if (constants->reuse == 3) header[CACAO_TILE_COUNT_CHANGED] = p->tiles_x * p->tiles_y;
         if (constants->reuse >= 2) header[CACAO_TILE_COUNT_RECOMPUTE] = p->tiles_x * p->tiles_y;
         for (unsigned list = 1; list <= CACAO_LIST_COUNT; ++list) { /* x: the grid's width; rows 0 */
-            const uint32_t width = list == CACAO_LIST_BLUR ? p->blur_groups_x : p->tiles_x;
+            const uint32_t width = list == CACAO_LIST_BLUR                      ? p->blur_groups_x
+                                   : list == CACAO_LIST_BASE_BLOCKS && constants->base_blocks ? (p->tiles_x + 1) / 2
+                                                                                              : p->tiles_x;
             header[CACAO_TILE_COMMAND(list)] = width ? width : 1;
             header[CACAO_TILE_COMMAND(list) + 2] = 1;
         }
