@@ -3,7 +3,7 @@
 
 #include "cacao_table.h"
 
-extern const cacao_module cacaoi_generated_modules[114];
+extern const cacao_module cacaoi_generated_modules[116];
 
 static const cacao_permutation permutations[] = {
     {{0, 0, 0, 0, 0}, "prepare_depths.half.native", 0, {8, 8, 1}, 1300, 0, {1, 0, 0, 3, 0, 0, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
@@ -55,8 +55,8 @@ static const cacao_permutation permutations[] = {
     {{9, 1, 0, 0, 0}, "horizon_main.bitmask", 46, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 0, 4, 0, 0, 0}},
     {{9, 2, 0, 0, 0}, "horizon_main.gtao_direct", 47, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 0, 0, 4, 0, 0}},
     {{9, 3, 0, 0, 0}, "horizon_main.bitmask_direct", 48, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 0, 0, 4, 0, 0}},
-    {{9, 4, 0, 0, 0}, "horizon_main.gtao_half", 49, {8, 8, 1}, 1300, 0, {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 0, 4, 0, 0, 0}},
-    {{9, 5, 0, 0, 0}, "horizon_main.bitmask_half", 50, {8, 8, 1}, 1300, 0, {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 0, 4, 0, 0, 0}},
+    {{9, 4, 0, 0, 0}, "horizon_main.gtao_half", 49, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 0, 4, 0, 0, 0}},
+    {{9, 5, 0, 0, 0}, "horizon_main.bitmask_half", 50, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 0, 4, 0, 0, 0}},
     {{10, 0, 0, 0, 0}, "horizon_denoise.intermediate", 51, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 4, 4, 0, 0, 0}},
     {{10, 1, 0, 0, 0}, "horizon_denoise.final", 52, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 4, 0, 4, 0, 0}},
     {{10, 2, 0, 0, 0}, "horizon_denoise.upsample", 53, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 4, 4, 0, 0, 0}},
@@ -118,13 +118,15 @@ static const cacao_permutation permutations[] = {
     {{21, 1, 0, 0, 0}, "horizon_main_gpu.bitmask", 107, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 0, 4, 0, 0, 0}},
     {{21, 2, 0, 0, 0}, "horizon_main_gpu.gtao_direct", 108, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 0, 0, 4, 0, 0}},
     {{21, 3, 0, 0, 0}, "horizon_main_gpu.bitmask_direct", 109, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 0, 0, 4, 0, 0}},
-    {{22, 0, 0, 0, 0}, "horizon_denoise_gpu.intermediate", 110, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 4, 4, 0, 0, 0}},
-    {{22, 1, 0, 0, 0}, "horizon_denoise_gpu.final", 111, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 4, 0, 4, 0, 0}},
-    {{22, 2, 0, 0, 0}, "horizon_denoise_gpu.upsample", 112, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 4, 4, 0, 0, 0}},
-    {{22, 3, 0, 0, 0}, "horizon_denoise_gpu.upsample_final", 113, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 4, 0, 4, 0, 0}},
+    {{21, 4, 0, 0, 0}, "horizon_main_gpu.gtao_half", 110, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 0, 4, 0, 0, 0}},
+    {{21, 5, 0, 0, 0}, "horizon_main_gpu.bitmask_half", 111, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 0, 4, 0, 0, 0}},
+    {{22, 0, 0, 0, 0}, "horizon_denoise_gpu.intermediate", 112, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 4, 4, 0, 0, 0}},
+    {{22, 1, 0, 0, 0}, "horizon_denoise_gpu.final", 113, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 4, 0, 4, 0, 0}},
+    {{22, 2, 0, 0, 0}, "horizon_denoise_gpu.upsample", 114, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 4, 4, 0, 0, 0}},
+    {{22, 3, 0, 0, 0}, "horizon_denoise_gpu.upsample_final", 115, {8, 8, 1}, 1300, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 4, 0, 4, 0, 0}},
 };
 
 const cacao_table cacaoi_embedded_table = {
-    permutations, 116, cacaoi_generated_modules, 114, "main",
+    permutations, 118, cacaoi_generated_modules, 116, "main",
     "glslang 12.0.0", "SPIRV-Tools v2023.1", "all",
 };

@@ -115,17 +115,19 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
      {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), R(SRC_NORMALS, NORMALS_INPUT, V(CACAO_HORIZON_NORMALS_INPUT)), \
       W(VIEW_DEPTH, VIEW_DEPTH, ALL), W(VIEW_NORMALS, VIEW_NORMALS, ALL), tiles(TILES, TILES, ALL)},           \
      .lists = {__VA_ARGS__}}
-#define HORIZON_MAIN_ROW(name, count, tiles, half_grid, ...)                                               \
-    {name, {"gtao", "bitmask", "gtao_direct", "bitmask_direct", "gtao_half", "bitmask_half"}, count, false, false, \
-     false, WG(HORIZON), CACAOI_GRID_OUTPUT, 7,                                                               \
+#define HORIZON_MAIN_ROW(name, tiles, ...)                                                                 \
+    {name, {"gtao", "bitmask", "gtao_direct", "bitmask_direct", "gtao_half", "bitmask_half"}, 6, false, false, \
+     false, WG(HORIZON), CACAOI_GRID_OUTPUT, 8,                                                               \
      {CONSTANTS, R(VIEW_DEPTH, VIEW_DEPTH, ALL), R(VIEW_NORMALS, VIEW_NORMALS, ALL),                           \
       W(HORIZON_AO_OUT, AO_RAW, V(CACAO_HORIZON_GTAO) | V(CACAO_HORIZON_BITMASK)),                            \
       W(HORIZON_AO_OUT, AO_HALF, V(CACAO_HORIZON_GTAO_HALF) | V(CACAO_HORIZON_BITMASK_HALF)),                 \
       W(OUTPUT, OUTPUT, V(CACAO_HORIZON_GTAO_DIRECT) | V(CACAO_HORIZON_BITMASK_DIRECT)),                      \
       tiles(TILES, TILES, V(CACAO_HORIZON_GTAO) | V(CACAO_HORIZON_BITMASK) | V(CACAO_HORIZON_GTAO_DIRECT) |   \
-                              V(CACAO_HORIZON_BITMASK_DIRECT))},                                              \
+                              V(CACAO_HORIZON_BITMASK_DIRECT)),                                               \
+      /* downsampled: the CPU form over compact's blocks, the GPU form reading the 2x2 tiles' classes */  \
+      R(TILES, TILES, V(CACAO_HORIZON_GTAO_HALF) | V(CACAO_HORIZON_BITMASK_HALF))},                       \
      .lists = {__VA_ARGS__},                                                                                        \
-     .grids = {[CACAO_HORIZON_GTAO_HALF] = half_grid, [CACAO_HORIZON_BITMASK_HALF] = half_grid}}
+     .grids = {[CACAO_HORIZON_GTAO_HALF] = CACAOI_GRID_HALF, [CACAO_HORIZON_BITMASK_HALF] = CACAOI_GRID_HALF}}
 #define HORIZON_DENOISE_ROW(name, tiles, ...)                                                   \
     {name, {"intermediate", "final", "upsample", "upsample_final"}, 4, false, false, false, WG(HORIZON),     \
      CACAOI_GRID_OUTPUT, 8,                                                                                   \
@@ -154,7 +156,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * load counter; the Q3 base pass writes the second AO buffer and the importance map
      * (importance.md "GenerateImportanceMap"): an invocation per importance texel computes the
      * 2x2 slice texels of every layer that texel reads. */
-    PASS(GENERATE) = GENERATE_ROW("generate", ALL, GEN, CACAO_LIST_BASE_BLOCKS, CACAOI_GRID_IMPORTANCE, R),
+    PASS(GENERATE) = GENERATE_ROW("generate", ALL, GEN, CACAO_LIST_BLOCKS, CACAOI_GRID_IMPORTANCE, R),
     /* spec: importance.md: two smoothing passes (ping-pong) of the map the Q3 base pass wrote. */
     PASS(IMPORTANCE_A) = {"importance_a", {NULL}, 1, false, false, false, WG(IMPORTANCE), CACAOI_GRID_IMPORTANCE, 3,
                           {CONSTANTS, R(IMPORTANCE_MAP, IMPORTANCE, ALL), W(IMPORTANCE_MAP_IMAGE, IMPORTANCE_PONG, ALL)}},
@@ -183,15 +185,16 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     PASS(HORIZON_PREPARE) = HORIZON_PREPARE_ROW("horizon_prepare", R, CACAO_LIST_PREPARE, CACAO_LIST_PREPARE),
     /* The estimator and the denoise passes run over the needed tiles (docs/tiles.md: a group is a
      * tile of 8x8 pixels); the fills give the rest their AO 1. Downsampled, the estimator runs on
-     * a direct grid of half the size (background pixels return at once) and the upsample over the
-     * needed tiles. */
-    PASS(HORIZON_MAIN) = HORIZON_MAIN_ROW("horizon_main", 6, R, CACAOI_GRID_HALF, GEN, GEN, GEN, GEN, CACAO_LIST_NONE, CACAO_LIST_NONE),
+     * a half-size grid over compact's blocks of 2x2 tiles holding an active tile (a clear gives the
+     * rest the 1 it would store there) and the upsample over the needed tiles. */
+    PASS(HORIZON_MAIN) = HORIZON_MAIN_ROW("horizon_main", R, GEN, GEN, GEN, GEN, CACAO_LIST_BLOCKS, CACAO_LIST_BLOCKS),
     PASS(HORIZON_DENOISE) = HORIZON_DENOISE_ROW("horizon_denoise", R, GEN, GEN, GEN, GEN),
     /* The GPU forms (CACAO_PASS_HORIZON_*_GPU): direct grids; the prepare writes every tile and its
      * classes, the estimator's and denoise passes' groups that are not needed store AO 1 (and
-     * count: group_work). The downsampled estimator keeps HORIZON_MAIN's direct half grid. */
+     * count: group_work). The downsampled estimator: every group of the half grid, one whose 2x2
+     * tiles hold no active one storing AO 1 (it reads their classes). */
     PASS(HORIZON_PREPARE_GPU) = HORIZON_PREPARE_ROW("horizon_prepare_gpu", W, CACAO_LIST_NONE),
-    PASS(HORIZON_MAIN_GPU) = HORIZON_MAIN_ROW("horizon_main_gpu", 4, W, CACAOI_GRID_ROW, CACAO_LIST_NONE),
+    PASS(HORIZON_MAIN_GPU) = HORIZON_MAIN_ROW("horizon_main_gpu", W, CACAO_LIST_NONE),
     PASS(HORIZON_DENOISE_GPU) = HORIZON_DENOISE_ROW("horizon_denoise_gpu", W, CACAO_LIST_NONE),
     /* docs/tiles.md: classes (one invocation per tile), then the lists. CACAO classifies its
      * deinterleaved depths (variant 0 keeps the pass's name), the horizon estimators the caller's
@@ -313,7 +316,14 @@ size_t cacaoi_variant_bindings(unsigned pass, unsigned variant, unsigned downsam
 
 bool cacaoi_skips_by_class(unsigned pass, unsigned variant) {
     return (pass == CACAO_PASS_GENERATE_GPU && variant != CACAO_GENERATE_Q3_BASE) || pass == CACAO_PASS_BLUR_GPU ||
-           pass == CACAO_PASS_HORIZON_MAIN_GPU || pass == CACAO_PASS_HORIZON_DENOISE_GPU;
+           (pass == CACAO_PASS_HORIZON_MAIN_GPU && variant != CACAO_HORIZON_GTAO_HALF && variant != CACAO_HORIZON_BITMASK_HALF) ||
+           pass == CACAO_PASS_HORIZON_DENOISE_GPU;
+}
+
+bool cacaoi_reads_classes(unsigned pass, unsigned variant) {
+    return (pass == CACAO_PASS_GENERATE_GPU && variant == CACAO_GENERATE_Q3_BASE) ||
+           (pass == CACAO_PASS_HORIZON_MAIN_GPU &&
+            (variant == CACAO_HORIZON_GTAO_HALF || variant == CACAO_HORIZON_BITMASK_HALF));
 }
 
 bool cacaoi_fill_is_clear(unsigned pass, unsigned variant) {
@@ -330,6 +340,7 @@ bool cacaoi_clear_value(unsigned resource, float out[4]) {
     const float *v = NULL;
     switch (resource) {
     case CACAO_RES_AO_RAW:
+    case CACAO_RES_AO_HALF:
     case CACAO_RES_AO_PONG: v = ao; break;
     case CACAO_RES_VIEW_DEPTH: v = view_z; break;
     case CACAO_RES_VIEW_NORMALS: v = normal; break;

@@ -161,6 +161,11 @@ size_t cacaoi_variant_bindings(unsigned pass, unsigned variant, unsigned downsam
  * and the blur: docs/tiles.md): a group that is not needed stores AO 1 and returns. */
 bool cacaoi_skips_by_class(unsigned pass, unsigned variant);
 
+/* The GPU forms that read the tile classes and skip a group whose tiles hold no active one, with no
+ * count (a workgroup-uniform branch around the body): the Q3 base pass and the horizon
+ * estimators' downsampled estimator (docs/tiles.md). */
+bool cacaoi_reads_classes(unsigned pass, unsigned variant);
+
 /* The fill variants that fill cacao's own images: recorded as a clear of the whole image
  * (cacao_plan_step.clear), never dispatched. */
 bool cacaoi_fill_is_clear(unsigned pass, unsigned variant);

@@ -108,7 +108,12 @@ static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI
                          CACAO_RES_AO_PONG);
     }
     if (half) {
-        push(out, &n, CACAO_PASS_HORIZON_MAIN, gtao ? CACAO_HORIZON_GTAO_HALF : CACAO_HORIZON_BITMASK_HALF, 0, 0, 0);
+        /* the CPU form over compact's blocks holding an active tile; the clear gives the others
+         * the AO 1 it would store there (docs/tiles.md) */
+        if (!gpu)
+            rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0), CACAO_BINDING_HORIZON_AO_OUT, CACAO_RES_AO_HALF);
+        push(out, &n, gpu ? CACAO_PASS_HORIZON_MAIN_GPU : CACAO_PASS_HORIZON_MAIN,
+             gtao ? CACAO_HORIZON_GTAO_HALF : CACAO_HORIZON_BITMASK_HALF, 0, 0, 0);
         if (!gpu) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT, 0, 0, 0);
         push(out, &n, denoise, blur == 1 ? CACAO_DENOISE_UPSAMPLE_FINAL : CACAO_DENOISE_UPSAMPLE, 0, 0, 0);
         push_denoise_passes(out, &n, denoise, 2, blur, CACAO_RES_AO_PONG);

@@ -137,8 +137,8 @@
  *            CACAO_TILE_COMMAND(l)), the tile counts per class (CACAO_TILE_COUNT_*), and the
  *            entries per list (list l at CACAO_TILE_LIST_ENTRIES(l));
  *   classes  one uint per tile, from CACAO_TILE_CLASSES;
- *   lists    the generate, fill and prepare lists hold up to one entry per tile, the
- *            blur list (the last) one per blur group; list l starts at CACAO_TILE_LIST_BASE(l, tiles);
+ *   lists    up to one entry per tile each (the blur list holds one per blur group, the blocks
+ *            list one per block of 2x2 tiles: fewer); list l starts at CACAO_TILE_LIST_BASE(l, tiles);
  *   needed   a flag per tile, then one per blur group (CACAO_TILE_NEEDED, CACAO_TILE_BLUR_NEEDED);
  *   reuse    per tile: its changed flag, its least view z (as uint bits), the changed tiles of its
  *            row up to it, its recompute flag; then a recompute flag per blur group
@@ -146,9 +146,9 @@
  *            the flags' readers check);
  *   gates    one VkDispatchIndirectCommand per step (CACAO_TILE_GATE): a step that runs over the
  *            whole image whether one tile or all changed, and not at all when none did.
- * A list is dispatched as a grid x wide (tiles_x, blur_groups_x for the blur, the blocks' row
- * (tiles_x + 1) / 2 for the Q3 base pass) and as many rows as its entries fill (lavapipe runs a
- * 1D grid of the same groups slower, and the base pass's blocks 8% slower in rows tiles_x wide); group (x, y)
+ * A list is dispatched as a grid x wide (tiles_x, blur_groups_x for the blur, a row of blocks
+ * (tiles_x + 1) / 2 for the blocks) and as many rows as its entries fill (lavapipe runs a 1D grid
+ * of the same groups slower, and the Q3 base pass's blocks 8% slower in rows tiles_x wide); group (x, y)
  * takes entry y width + x, and a group past the last entry finds CACAO_TILE_NO_ENTRY (the host
  * fills the lists with it) and returns. List entries are group coordinates x | y << 16. */
 #define CACAO_TILE 8
@@ -156,28 +156,30 @@
 #define CACAO_LIST_GENERATE 1            /* needed tiles (one generate group each, z = layers) */
 #define CACAO_LIST_FILL_SLICES 2         /* tiles that are not needed (z 1: a group fills every layer) */
 #define CACAO_LIST_PREPARE 3             /* horizon estimators: tiles not all background (their prepare) */
-#define CACAO_LIST_BASE_BLOCKS 3         /* CACAO at HIGHEST (the same region): blocks of 2x2 tiles holding
-                                            an active tile, one Q3 base pass group each (CPU forms) */
 #define CACAO_LIST_BLUR 4                /* blur groups touching a needed tile (z = layers) */
-#define CACAO_LIST_COUNT 4
+#define CACAO_LIST_BLOCKS 5              /* blocks of 2x2 tiles holding an active tile (CPU forms): a group
+                                            each of CACAO's Q3 base pass (HIGHEST) and of the horizon
+                                            estimators' downsampled estimator; the rest is quiet */
+#define CACAO_LIST_COUNT 5
 #define CACAO_TILE_HEADER 32
 #define CACAO_TILE_COMMAND(list) (3 * ((list) - 1)) /* header: list's indirect command (x, y, z) */
 #define CACAO_TILE_COUNT_ACTIVE 15       /* header: tiles per class */
 #define CACAO_TILE_COUNT_FADED 16
 #define CACAO_TILE_COUNT_BACKGROUND 17
 #define CACAO_TILE_LIST_ENTRIES(list) (CACAO_TILE_COUNT_BACKGROUND + (list)) /* header: entries in list */
-#define CACAO_TILE_COUNT_NEEDED 22       /* header: needed tiles and blur groups (classify's flags), */
-#define CACAO_TILE_COUNT_BLUR_NEEDED 23  /* counted by the GPU forms' generate and blur as they run them */
-#define CACAO_TILE_COUNT_CHANGED 24      /* header, reuse: tiles whose depth (or normals) changed */
-#define CACAO_TILE_COUNT_RECOMPUTE 25    /* header, reuse: tiles whose output a change can reach */
+#define CACAO_TILE_COUNT_NEEDED 23       /* header: needed tiles and blur groups (classify's flags), */
+#define CACAO_TILE_COUNT_BLUR_NEEDED 24  /* counted by the GPU forms' generate and blur as they run them */
+#define CACAO_TILE_COUNT_CHANGED 25      /* header, reuse: tiles whose depth (or normals) changed */
+#define CACAO_TILE_COUNT_RECOMPUTE 26    /* header, reuse: tiles whose output a change can reach */
 #define CACAO_TILE_CLASSES CACAO_TILE_HEADER /* first tile class */
-/* First entry of list 1..4 (tiles: tiles_x tiles_y); the uints of the whole buffer. */
+/* First entry of list 1..5 (tiles: tiles_x tiles_y): a tile's worth of entries each (a plan has
+ * no more blur groups than tiles: cacao_plan_build checks); the uints of the whole buffer. */
 #define CACAO_TILE_LIST_BASE(list, tiles) (CACAO_TILE_CLASSES + (tiles) * (list))
 /* After the lists: one flag per tile and one per blur group, 0 where the lists would hold it
  * (a tile within one tile of an active one; a blur group touching such a tile), else
  * CACAO_TILE_NO_ENTRY as the host's fill left it. classify marks them from each active tile; the
  * GPU forms of generate and the blur read their group's (cacaoi_skips_by_class). */
-#define CACAO_TILE_NEEDED(tiles, blur_groups) (CACAO_TILE_LIST_BASE(CACAO_LIST_BLUR, tiles) + (blur_groups))
+#define CACAO_TILE_NEEDED(tiles, blur_groups) CACAO_TILE_LIST_BASE(CACAO_LIST_COUNT + 1, tiles) /* after the last list */
 #define CACAO_TILE_BLUR_NEEDED(tiles, blur_groups) (CACAO_TILE_NEEDED(tiles, blur_groups) + (tiles))
 #define CACAO_TILE_CHANGED(tiles, blur_groups) (CACAO_TILE_BLUR_NEEDED(tiles, blur_groups) + (blur_groups))
 #define CACAO_TILE_ZMIN(tiles, blur_groups) (CACAO_TILE_CHANGED(tiles, blur_groups) + (tiles))
@@ -421,7 +423,7 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(FLOAT, background_z)              /* stored view z at or beyond which a texel is background */ \
     M(FLOAT, quiet_margin)              /* classification: fade argument below -margin is quiet */ \
     M(INT, tiles_all)                   /* 1: every tile active (no skipping: measurement, tests) */ \
-    M(INT, base_blocks)                 /* 1: compact lists the Q3 base pass's blocks (CACAO_LIST_BASE_BLOCKS) */ \
+    M(INT, active_blocks)               /* 1: compact lists the blocks holding an active tile (CACAO_LIST_BLOCKS) */ \
     M(INT, tiles_x)                                                                                \
     M(INT, tiles_y)                                                                                \
     M(INT, blur_groups_x)               /* the blur's full grid and output texels per group */     \

@@ -45,12 +45,14 @@ static void test_rows(void) {
             if (row->quad[v] > 1)
                 CHECK((grid == CACAOI_GRID_SLICE || grid == CACAOI_GRID_OUTPUT) && row->lists[v] == CACAO_LIST_NONE);
             CHECK(row->grids[v] <= CACAOI_GRID_TILE_ROWS && (v < row->variants || row->grids[v] == CACAOI_GRID_ROW));
-            /* a list's groups are tiles (or blur groups); the one exception, the CPU form of the Q3
-             * base pass, lists blocks of 2x2 tiles: its importance grid's groups (a workgroup of
-             * CACAO_TILE x CACAO_TILE importance texels, 2x2 slice texels each) */
+            /* a list's groups are tiles (or blur groups); the exception, the blocks list, holds
+             * blocks of 2x2 tiles: the groups of a grid of CACAO_TILE x CACAO_TILE invocations,
+             * each 2x2 texels of the tiles' (the Q3 base pass's importance grid, the horizon
+             * estimators' half-size grid) */
             if (row->grids[v] != CACAOI_GRID_ROW)
                 CHECK(row->lists[v] == CACAO_LIST_NONE ||
-                      (row->lists[v] == CACAO_LIST_BASE_BLOCKS && row->grids[v] == CACAOI_GRID_IMPORTANCE &&
+                      (row->lists[v] == CACAO_LIST_BLOCKS &&
+                       (row->grids[v] == CACAOI_GRID_IMPORTANCE || row->grids[v] == CACAOI_GRID_HALF) &&
                        row->workgroup[0] == CACAO_TILE && row->workgroup[1] == CACAO_TILE));
         }
         for (unsigned v = 0; v < row->variants; ++v) {
@@ -204,7 +206,7 @@ static void check_config(const cacao_settings *s) {
         /* a step reading the tile buffer is a list dispatch, classify or compact, a GPU form that
          * skips by the classes itself (it then writes its count there), a GPU form of a prepare
          * that classifies (then no classify pass runs): the fused prepare native, the horizon
-         * estimators'; or the GPU form of the Q3 base pass, which reads the classes only */
+         * estimators'; or a GPU form that reads the classes only */
         const bool prepare_classifies = (st->key[0] == CACAO_PASS_PREPARE_GPU && !st->key[2]) ||
                                         st->key[0] == CACAO_PASS_HORIZON_PREPARE_GPU;
         if (prepare_classifies)
@@ -215,8 +217,7 @@ static void check_config(const cacao_settings *s) {
             if (st->bindings[j].resource == CACAO_RES_TILES)
                 CHECK(st->list != CACAO_LIST_NONE || st->key[0] == CACAO_PASS_CLASSIFY || st->key[0] == CACAO_PASS_COMPACT ||
                       cacaoi_skips_by_class(st->key[0], st->key[1]) || prepare_classifies ||
-                      (st->key[0] == CACAO_PASS_GENERATE_GPU && st->key[1] == CACAO_GENERATE_Q3_BASE &&
-                       !st->bindings[j].write));
+                      (cacaoi_reads_classes(st->key[0], st->key[1]) && !st->bindings[j].write));
         if (st->clear) { /* a transfer: it only writes cacao's own images, each with a clear value; no module */
             CHECK(st->dispatch[0] == 0 && st->list == CACAO_LIST_NONE && st->binding_count >= 1);
             for (uint32_t j = 0; j < st->binding_count; ++j) {
@@ -288,7 +289,20 @@ static void test_every_configuration(void) {
     CHECK(configs_checked == 2000); /* 2 x (360 + 2 x (180 + 140)) */
 }
 
+/* The tile buffer gives the blur list a tile's worth of entries (cacao_shared.h): a blur group
+ * outputs at least a tile each way, in both forms, at every pass count, so a plan never has more
+ * blur groups than tiles. */
+static void test_blur_groups_fit(void) {
+    for (unsigned n = 1; n <= CACAO_KEY_MAX_BLUR_PASSES; ++n)
+        for (int gpu = 0; gpu < 2; ++gpu) {
+            uint32_t out[2];
+            cacaoi_blur_out(gpu ? CACAO_PASS_BLUR_GPU : CACAO_PASS_BLUR, n, out);
+            CHECK(out[0] >= CACAO_TILE && out[1] >= CACAO_TILE);
+        }
+}
+
 int main(void) {
+    test_blur_groups_fit();
     test_rows();
     test_slots();
     test_defines();

@@ -64,7 +64,7 @@ static void test_steps_per_quality(void) {
                 CHECK(p.steps[i].binding_count == 1 && p.steps[i].bindings[0].resource == CACAO_RES_IMPORTANCE &&
                       p.steps[i].bindings[0].write && p.steps[i].dispatch[0] == 0);
             if (strcmp(p.steps[i].key_name, "generate.q3base") == 0)
-                CHECK(p.steps[i].list == CACAO_LIST_BASE_BLOCKS &&
+                CHECK(p.steps[i].list == CACAO_LIST_BLOCKS &&
                       (p.steps[i].barrier_resources & (1u << CACAO_RES_IMPORTANCE)) &&
                       (p.steps[i].barrier_resources & (1u << CACAO_RES_TILES)));
         }
@@ -175,11 +175,11 @@ static void test_only_needed_resources(void) {
     /* 1920x1080: slices 960x540, tiles of 8x8 texels 120x68; a blur group of 2 passes outputs
      * 64x32 texels (8x8 threads of 8x4 each, from their footprints). */
     CHECK(lowest.tiles_x == 120 && lowest.tiles_y == 68 && lowest.blur_groups_x == 15 && lowest.blur_groups_y == 17);
-    /* header, classes, three lists of a tile each (generate, fill, and the horizon estimators'
-     * prepare list), the blur list, then a needed flag per tile and per blur group; reuse's four
-     * words per tile (changed, least z, row sum, recompute) and a recompute flag per blur group;
-     * 16 gate commands */
-    CHECK(lowest.tile_buffer_bytes == 4u * (32u + 9u * 120u * 68u + 3u * 15u * 17u + 3u * 16u));
+    /* header, classes, five lists of a tile each (generate, fill, the horizon estimators' prepare
+     * list, the blur list, the blocks), then a needed flag per tile and per blur group; reuse's
+     * four words per tile (changed, least z, row sum, recompute) and a recompute flag per blur
+     * group; 16 gate commands */
+    CHECK(lowest.tile_buffer_bytes == 4u * (32u + 11u * 120u * 68u + 2u * 15u * 17u + 3u * 16u));
     cacao_plan highest =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
     const cacao_plan_image *depths = find_image(&highest, CACAO_RES_DEPTHS);
@@ -231,7 +231,7 @@ static void test_dispatch_sizes(void) {
     CHECK(p.steps[8].dispatch[2] == 1 && p.steps[9].dispatch[2] == 1 && p.steps[10].dispatch[2] == 4);
     CHECK(p.steps[7].list == CACAO_LIST_GENERATE && p.steps[8].list == CACAO_LIST_FILL_SLICES &&
           p.steps[10].list == CACAO_LIST_BLUR && p.steps[11].list == CACAO_LIST_NONE &&
-          p.steps[4].list == CACAO_LIST_BASE_BLOCKS && p.steps[5].list == CACAO_LIST_NONE);
+          p.steps[4].list == CACAO_LIST_BLOCKS && p.steps[5].list == CACAO_LIST_NONE);
     cacao_plan d =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true, .generate_normals = true}, 1001, 37);
     CHECK(d.slice_width == 251 && d.slice_height == 10); /* ceil(ceil(1001/2)/2), ceil(ceil(37/2)/2) */

@@ -77,13 +77,17 @@ static bool same_as_all_tiles(vkdev *dev, cacao_settings s, const vkdev_frame *f
         CHECK(on->generate_run >= on->active && on->generate_run <= on->tiles); /* active tiles and a margin */
         CHECK(off.active == off.tiles && off.generate_run == off.tiles && off.blur_run == off.blur_total);
         CHECK(on->generate_total == on->tiles && on->blur_run <= on->blur_total);
-        /* HIGHEST's Q3 base pass: every group without skipping; skipping, the groups holding an
-         * active tile (the GPU forms: the active tiles; the CPU forms: blocks of 2x2 tiles, at
-         * least a quarter as many as the active tiles) */
-        CHECK((s.quality == CACAO_QUALITY_HIGHEST) == (on->base_total > 0) && off.base_run == off.base_total);
-        if (on->base_total && forms == CACAO_SHADER_FORMS_GPU) CHECK(on->base_run == on->active && on->base_total == on->tiles);
-        else if (on->base_total)
-            CHECK(on->base_run <= on->base_total && 4 * on->base_run >= on->active && on->base_run <= on->active);
+        /* The steps over blocks of 2x2 tiles (HIGHEST's Q3 base pass, the horizon estimators'
+         * downsampled estimator in the CPU forms): every block without skipping; skipping, the
+         * blocks holding an active tile, at least a quarter as many as the active tiles. The GPU
+         * form of the Q3 base pass counts its active tiles. */
+        const bool horizon = s.estimator == CACAO_ESTIMATOR_GTAO || s.estimator == CACAO_ESTIMATOR_BITMASK;
+        const bool blocks = horizon ? s.downsample && forms == CACAO_SHADER_FORMS_CPU : s.quality == CACAO_QUALITY_HIGHEST;
+        CHECK(blocks == (on->blocks_total > 0) && off.blocks_run == off.blocks_total);
+        if (blocks && !horizon && forms == CACAO_SHADER_FORMS_GPU)
+            CHECK(on->blocks_run == on->active && on->blocks_total == on->tiles);
+        else if (blocks)
+            CHECK(on->blocks_run <= on->blocks_total && 4 * on->blocks_run >= on->active && on->blocks_run <= on->active);
     }
     free(a);
     free(b);
@@ -137,7 +141,7 @@ static void test_all_background(vkdev *dev, const scene_buffers *sb) {
                 size_t not_one = 0;
                 for (size_t i = 0; i < n; ++i) not_one += ao[i] != 1.0f;
                 CHECK(not_one == 0);
-                CHECK(c.background == c.tiles && c.generate_run == 0 && c.blur_run == 0 && c.base_run == 0);
+                CHECK(c.background == c.tiles && c.generate_run == 0 && c.blur_run == 0 && c.blocks_run == 0);
                 cacao_tile_counts unused;
                 same_as_all_tiles(dev, s, &f, "all background", &unused);
             }
@@ -272,8 +276,8 @@ static void test_nan_depth(vkdev *dev, const scene_buffers *sb) {
  * reference (compute_all_tiles) runs them over every tile, as before classification existed.
  * Every case above, for GTAO and the bitmask, their smallest and a middle budget, no denoise, one,
  * two (both intermediates filled) and eight passes, normals from depth and given; and downsampled
- * (the estimator on every block, the upsample over the needed tiles) with up to the 6 filter
- * passes whose reach a skipped tile's margin covers. */
+ * (the estimator over the blocks of 2x2 tiles holding an active tile, the upsample over the
+ * needed tiles) with up to the 6 filter passes whose reach a skipped tile's margin covers. */
 static void test_horizon(vkdev *dev, const scene_buffers *sb, const scene_buffers *faded_sb, float faded_to) {
     static const cacao_estimator estimators[] = {CACAO_ESTIMATOR_GTAO, CACAO_ESTIMATOR_BITMASK};
     static const int denoise[2][4] = {{CACAO_BLUR_NONE, 1, 2, 8}, {CACAO_BLUR_NONE, 1, 3, CACAO_HORIZON_HALF_MAX_PASSES}};
@@ -305,7 +309,7 @@ static void test_horizon(vkdev *dev, const scene_buffers *sb, const scene_buffer
                     if (run_counts(dev, &s, &f, ao, &c)) {
                         size_t not_one = 0;
                         for (size_t i = 0; i < n; ++i) not_one += ao[i] != 1.0f;
-                        CHECK(not_one == 0 && c.background == c.tiles && c.generate_run == 0);
+                        CHECK(not_one == 0 && c.background == c.tiles && c.generate_run == 0 && c.blocks_run == 0);
                     }
                     same_as_all_tiles(dev, s, &f, "horizon, all background", &c);
                     /* NaN holes and a NaN sky */

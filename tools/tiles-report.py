@@ -109,7 +109,7 @@ def main():
              '(no skipping). The ratio is the figure: absolute times vary between runs of this machine.'
              % (a.reps, ' '.join(up_before), ' '.join(up_after), a.reps), '',
              'The horizon estimators count their estimator\'s tiles as "generate" (downsampled: the upsample\'s; '
-             'the estimator itself runs on every 2x2 block, a background block at once), and have no blur groups.',
+             'the estimator itself runs over the blocks of 2x2 tiles holding an active tile), and have no blur groups.',
              '',
              '| estimator | frame | quality | skipping (ms) | all tiles (ms) | ratio | generate tiles skipped | blur groups skipped |',
              '|---|---|---|---:|---:|---:|---:|---:|']

@@ -293,8 +293,7 @@ typedef struct cacao_plan_step {
     uint32_t dispatch[3];       /* workgroups (an indirect step: the most it can dispatch) */
     uint8_t list;               /* 0: dispatched directly; else the tile list it dispatches
                                    indirectly (CACAO_LIST_*: 1 generate, 2 fill, 3 the horizon
-                                   prepare, or CACAO's Q3 base pass at HIGHEST, 4 blur:
-                                   docs/tiles.md) */
+                                   prepare, 4 blur, 5 blocks of 2x2 tiles: docs/tiles.md) */
     bool clear;                 /* not a dispatch: vkCmdClearColorImage of every image the step
                                    writes (whole image) to the AO 1 / background value the tiles no
                                    pass computes keep (docs/tiles.md); no pipeline, dispatch 0 0 0 */
@@ -523,11 +522,12 @@ typedef struct cacao_tile_counts {
                                                     can reach (generate and the blur run over these
                                                     and one tile around them); 0 when nothing
                                                     changed. Without reuse both are 0. */
-    uint32_t base_run, base_total;               /* HIGHEST's Q3 base pass (0 of 0 at the other
-                                                    levels): the CPU forms' groups (blocks of 2x2
-                                                    tiles) holding an active tile, of all blocks;
-                                                    the GPU forms' active tiles, of all tiles; the
-                                                    rest has importance 0 (docs/tiles.md) */
+    uint32_t blocks_run, blocks_total;           /* the steps over blocks of 2x2 tiles holding an
+                                                    active tile, of all blocks (the CPU forms:
+                                                    HIGHEST's Q3 base pass, the horizon estimators'
+                                                    downsampled estimator); the GPU form of the Q3
+                                                    base pass: its active tiles, of all tiles; 0 of
+                                                    0 where neither runs (docs/tiles.md) */
 } cacao_tile_counts;
 
 #define CACAO_TILE_COUNTS_BYTES 128

@@ -305,7 +305,8 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
                                                  "needed tiles",
                                                  "unneeded tiles",
                                                  "tiles not all background",
-                                                 "blur groups at needed tiles"};
+                                                 "blur groups at needed tiles",
+                                                 "blocks of 2x2 tiles with an active tile"};
         _Static_assert(sizeof list_names / sizeof list_names[0] == CACAO_LIST_COUNT + 1, "a name per list");
         if (s->clear) {
             fprintf(out, "  %2u %-34s clear (no dispatch)            writes", i, s->key_name);
@@ -313,10 +314,8 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
             fprintf(out, "\n");
             continue;
         }
-        const bool base_blocks = s->list == CACAO_LIST_BASE_BLOCKS && s->key[0] == CACAO_PASS_GENERATE; /* CACAO's use of it */
         fprintf(out, "  %2u %-34s dispatch %4u x %4u x %u%s%s  reads", i, s->key_name, s->dispatch[0], s->dispatch[1],
-                s->dispatch[2], s->list ? " at most, indirect over " : "",
-                base_blocks ? "blocks of 2x2 tiles with an active tile" : list_names[s->list]);
+                s->dispatch[2], s->list ? " at most, indirect over " : "", list_names[s->list]);
         print_resources(out, s, false);
         fprintf(out, "  writes");
         print_resources(out, s, true);

@@ -172,9 +172,9 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
         if (constants->reuse == 3) header[CACAO_TILE_COUNT_CHANGED] = p->tiles_x * p->tiles_y;
         if (constants->reuse >= 2) header[CACAO_TILE_COUNT_RECOMPUTE] = p->tiles_x * p->tiles_y;
         for (unsigned list = 1; list <= CACAO_LIST_COUNT; ++list) { /* x: the grid's width; rows 0 */
-            const uint32_t width = list == CACAO_LIST_BLUR                      ? p->blur_groups_x
-                                   : list == CACAO_LIST_BASE_BLOCKS && constants->base_blocks ? (p->tiles_x + 1) / 2
-                                                                                              : p->tiles_x;
+            const uint32_t width = list == CACAO_LIST_BLUR     ? p->blur_groups_x
+                                   : list == CACAO_LIST_BLOCKS ? (p->tiles_x + 1) / 2
+                                                               : p->tiles_x;
             header[CACAO_TILE_COMMAND(list)] = width ? width : 1;
             header[CACAO_TILE_COMMAND(list) + 2] = 1;
         }
@@ -394,13 +394,15 @@ cacao_result cacao_tile_counts_decode(const cacao_context *ctx, const void *byte
         .changed = h[CACAO_TILE_COUNT_CHANGED],
         .recomputed = h[CACAO_TILE_COUNT_RECOMPUTE],
     };
-    for (uint32_t i = 0; i < p->step_count; ++i) { /* the Q3 base pass: over compact's blocks, or every tile */
+    for (uint32_t i = 0; i < p->step_count; ++i) { /* a step over compact's blocks, or the GPU form's base pass */
         const cacao_plan_step *st = &p->steps[i];
-        if (st->key[1] != CACAO_GENERATE_Q3_BASE || (st->key[0] != CACAO_PASS_GENERATE && st->key[0] != CACAO_PASS_GENERATE_GPU))
-            continue;
-        const bool blocks = st->list == CACAO_LIST_BASE_BLOCKS;
-        out->base_run = blocks ? LIST_X(CACAO_LIST_BASE_BLOCKS) : out->active;
-        out->base_total = blocks ? st->dispatch[0] * st->dispatch[1] : out->tiles;
+        if (st->list == CACAO_LIST_BLOCKS) {
+            out->blocks_run = LIST_X(CACAO_LIST_BLOCKS);
+            out->blocks_total = st->dispatch[0] * st->dispatch[1];
+        } else if (st->key[0] == CACAO_PASS_GENERATE_GPU && st->key[1] == CACAO_GENERATE_Q3_BASE) {
+            out->blocks_run = out->active;
+            out->blocks_total = out->tiles;
+        }
     }
 #undef LIST_X
     return CACAO_SUCCESS;

@@ -209,16 +209,15 @@ float generate_texel(ivec2 xy, int layer)
      * still computed: the blur of a visible neighbour reads them. The Q3 base pass keeps every
      * pixel of an active tile: its raw values feed the importance map and the load counter, which
      * steer the adaptive pass elsewhere; a quiet texel's importance is 0 (the AO 1 it ends as has
-     * no detail to sample), whether tiles are skipped or not, so its taps are skipped too, and a
-     * tile that is not active is all quiet (main). compute_all_tiles (CB.tiles_all) skips
-     * nothing: test_tiles's reference, which checks that the skip changes no pixel. */
+     * no detail to sample), whether tiles are skipped or not, and a tile that is not active is all
+     * quiet: main skips it. Within an active tile the base pass computes every texel (with a
+     * branch around a quiet texel's taps lavapipe, which runs both sides, took 1.05x the time on
+     * interior_fzkhaus, which has none). compute_all_tiles (CB.tiles_all) skips nothing:
+     * test_tiles's reference, which checks that the skip changes no pixel. */
     bool quiet = zc >= CB.background_z || sat(pc.z * CB.effect_fade_out_mul + CB.effect_fade_out_add) == 0.0;
-#if GEN_BASE == 0 || GEN_GPU
+#if GEN_BASE == 0
     bool faded = CB.tiles_all == 0 && quiet;
 #else
-    /* The CPU form's base pass computes every texel of its blocks: lavapipe runs both sides of a
-     * branch, and with one here the pass took 1.05x the time of the build before on
-     * interior_fzkhaus (no quiet texel), without it 1.00x. */
     const bool faded = false;
 #endif
 
@@ -272,9 +271,8 @@ float generate_texel(ivec2 xy, int layer)
 #endif
 
 #if GEN_BASE == 1
-    /* 10a. raw obscurance and weight/20 for the adaptive pass (a skipped quiet texel: 0 and 0,
-     * which nothing reads: the adaptive pass skips it); what the importance map takes */
-    float raw = faded ? 0.0 : obsc_sum / weight_sum;
+    /* 10a. raw obscurance and weight/20 for the adaptive pass; what the importance map takes */
+    float raw = obsc_sum / weight_sum;
     imageStore(ssao_image, ivec3(xy, layer), vec4(raw, weight_sum / CACAO_BASE_WEIGHT_SCALE, 0.0, 0.0));
     return quiet ? 0.0 : raw;
 #else
@@ -374,14 +372,18 @@ void main()
     hoist_constants();
     ivec2 xy = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = slice_size();
+    ivec2 l = ivec2(gl_LocalInvocationID.xy);
+    ivec2 t = ivec2(gl_WorkGroupID.xy) * ivec2(CACAO_WG_GENERATE_X / 2, CACAO_WG_GENERATE_Y / 2) + l;
+    bool stores = l.x < CACAO_WG_GENERATE_X / 2 && l.y < CACAO_WG_GENERATE_Y / 2 && in_rect(t, imageSize(importance_map_image));
+    /* The group is a tile: one that is not active is all quiet, importance 0, and the base stores
+     * nothing there (the adaptive pass reads no quiet texel's). The whole group returns: a
+     * workgroup-uniform branch, before the barrier. */
+    if (tiles[class_index(ivec2(gl_WorkGroupID.xy))] != CACAO_TILE_CLASS_ACTIVE) {
+        if (stores) store_importance(t, 0.0, 0.0);
+        return;
+    }
     float vmin = 1.0e30, vmax = -1.0e30;
-    /* the group is a tile: one that is not active is all quiet, importance 0 (the base stores
-     * nothing there: the adaptive pass reads no quiet texel's) */
-    bool tile_active = tiles[class_index(ivec2(gl_WorkGroupID.xy))] == CACAO_TILE_CLASS_ACTIVE;
-    if (in_rect(xy, size) && !tile_active) {
-        vmin = 0.0;
-        vmax = 0.0;
-    } else if (in_rect(xy, size)) { /* no return: every invocation reaches the barrier */
+    if (in_rect(xy, size)) { /* no return: every invocation reaches the barrier */
         init_atlas(size);
         [[unroll]] for (int layer = 0; layer < 4; ++layer) {
             /* roundEven's result is already the integer 0..255 the store's conversion makes */
@@ -390,21 +392,17 @@ void main()
             vmax = max(vmax, v);
         }
     }
-    ivec2 l = ivec2(gl_LocalInvocationID.xy);
     g_quad_range[l.y * CACAO_WG_GENERATE_X + l.x] = vec2(vmin, vmax);
     barrier();
-    if (l.x < CACAO_WG_GENERATE_X / 2 && l.y < CACAO_WG_GENERATE_Y / 2) {
-        ivec2 t = ivec2(gl_WorkGroupID.xy) * ivec2(CACAO_WG_GENERATE_X / 2, CACAO_WG_GENERATE_Y / 2) + l;
-        if (in_rect(t, imageSize(importance_map_image))) {
-            vmin = 1.0e30;
-            vmax = -1.0e30;
-            [[unroll]] for (int q = 0; q < 4; ++q) {
-                vec2 r = g_quad_range[(2 * l.y + (q >> 1)) * CACAO_WG_GENERATE_X + 2 * l.x + (q & 1)];
-                vmin = min(vmin, r.x);
-                vmax = max(vmax, r.y);
-            }
-            store_importance(t, vmin, vmax);
+    if (stores) {
+        vmin = 1.0e30;
+        vmax = -1.0e30;
+        [[unroll]] for (int q = 0; q < 4; ++q) {
+            vec2 r = g_quad_range[(2 * l.y + (q >> 1)) * CACAO_WG_GENERATE_X + 2 * l.x + (q & 1)];
+            vmin = min(vmin, r.x);
+            vmax = max(vmax, r.y);
         }
+        store_importance(t, vmin, vmax);
     }
 }
 #else

@@ -336,10 +336,12 @@ float horizon_visibility(ivec2 p, ivec2 noise_p, float z, float fade, ivec2 size
 float horizon_fade(float z) { return sat(z * CB.effect_fade_out_mul + CB.effect_fade_out_add); }
 
 /* Native: over the needed tiles (docs/tiles.md), a workgroup is one tile of pixels, invocation t
- * computes pixel t (the GPU form: every tile; one that is not needed stores 1). Downsampled: a
- * direct grid over every 2x2 block, invocation t computes pixel 2t, the top-left of its block,
- * into texel t of the half-size intermediate (background blocks store 1 at once). The noise
- * follows t. */
+ * computes pixel t (the GPU form: every tile; one that is not needed stores 1). Downsampled:
+ * invocation t computes pixel 2t, the top-left of its 2x2 block, into texel t of the half-size
+ * intermediate (background and faded blocks store 1 at once), and a workgroup's blocks cover 2x2
+ * tiles: the CPU form runs over compact's list of those holding an active tile (the clear before
+ * stores the 1 of the others), the GPU form over all of them, a group whose tiles hold no active
+ * one storing 1 (their blocks are all quiet). The noise follows t. */
 void main()
 {
     ivec2 group;
@@ -352,6 +354,18 @@ void main()
 #if HORIZON_HALF
     if (!in_rect(t, (size + 1) >> 1)) return;
     ivec2 p = 2 * t;
+#if CACAO_PASS == CACAO_PASS_HORIZON_MAIN_GPU
+    bool any_active = false; /* the same for the group */
+    for (int k = 0; k < 4; ++k) {
+        ivec2 tile = 2 * group + ivec2(k & 1, k >> 1);
+        any_active = any_active ||
+                     (in_rect(tile, ivec2(CB.tiles_x, CB.tiles_y)) && tiles[class_index(tile)] == CACAO_TILE_CLASS_ACTIVE);
+    }
+    if (!any_active) {
+        store_visibility(t, 1.0);
+        return;
+    }
+#endif
 #else
     if (!in_rect(t, size)) return;
     ivec2 p = t;

@@ -5,12 +5,11 @@
 /* First uint of a list's entries (cacao_shared.h). */
 uint list_base(int list) { return uint(CACAO_TILE_LIST_BASE(list, CB.tiles_x * CB.tiles_y)); }
 
-/* A list's grid width: the host writes it as the command's x (record.c); the Q3 base pass's
- * blocks in rows as wide as its direct grid's (in rows tiles_x wide lavapipe ran it 8% slower). */
+/* A list's grid width: the host writes it as the command's x (record.c); the blocks in rows as
+ * wide as their passes' direct grids (in rows tiles_x wide lavapipe ran the Q3 base pass 8% slower). */
 uint list_width(int list)
 {
-    return uint(list == CACAO_LIST_BLUR ? CB.blur_groups_x
-                : list == CACAO_LIST_BASE_BLOCKS && CB.base_blocks != 0 ? (CB.tiles_x + 1) / 2 : CB.tiles_x);
+    return uint(list == CACAO_LIST_BLUR ? CB.blur_groups_x : list == CACAO_LIST_BLOCKS ? (CB.tiles_x + 1) / 2 : CB.tiles_x);
 }
 #endif
 
@@ -38,9 +37,11 @@ bool group_of(out ivec2 g)
 #define CACAO_CLASSIFIES_DEPTH ((CACAO_PASS == CACAO_PASS_CLASSIFY && CACAO_VARIANT == CACAO_CLASSIFY_HORIZON) || \
                                 CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU)
 
-/* The Q3 base pass reads the tiles' classes (generate.glsl) */
-#define CACAO_READS_CLASSES ((CACAO_PASS == CACAO_PASS_GENERATE || CACAO_PASS == CACAO_PASS_GENERATE_GPU) && \
-                             CACAO_VARIANT == CACAO_GENERATE_Q3_BASE)
+/* The GPU forms of the Q3 base pass and of the horizon estimators' downsampled estimator read the
+ * tiles' classes (generate.glsl, horizon.glsl) */
+#define CACAO_READS_CLASSES ((CACAO_PASS == CACAO_PASS_GENERATE_GPU && CACAO_VARIANT == CACAO_GENERATE_Q3_BASE) || \
+                             (CACAO_PASS == CACAO_PASS_HORIZON_MAIN_GPU &&                                           \
+                              (CACAO_VARIANT == CACAO_HORIZON_GTAO_HALF || CACAO_VARIANT == CACAO_HORIZON_BITMASK_HALF)))
 
 #if CACAO_CLASSIFIES || CACAO_PASS == CACAO_PASS_COMPACT || CACAO_PASS == CACAO_PASS_FILL || \
     CACAO_PASS == CACAO_PASS_REUSE || CACAO_SKIPS_BY_CLASS || CACAO_READS_CLASSES
@@ -318,20 +319,19 @@ void main()
         ivec2 g = ivec2(i % CB.tiles_x, i / CB.tiles_x);
         /* reuse: a tile it does not recompute keeps the previous frame's values, in no list */
         if (tile_recomputed(g)) append(touches_needed(g, g) ? CACAO_LIST_GENERATE : CACAO_LIST_FILL_SLICES, g);
-#if CACAO_VARIANT == CACAO_COMPACT_SLICES
-        /* HIGHEST, the CPU form of the Q3 base pass: the blocks of 2x2 tiles holding an active tile
-         * (the first tile of each block appends it; every block whatever reuse recomputes: the
-         * load counter sums the whole frame's importance) */
-        if (CB.base_blocks != 0 && (g.x & 1) == 0 && (g.y & 1) == 0) {
+        /* The blocks of 2x2 tiles holding an active tile, for CACAO's Q3 base pass at HIGHEST or the
+         * horizon estimators' downsampled estimator (the CPU forms): the first tile of each block
+         * appends it; every such block whatever reuse recomputes (the load counter sums the whole
+         * frame's importance). */
+        if (CB.active_blocks != 0 && (g.x & 1) == 0 && (g.y & 1) == 0) {
             bool any_active = false;
             for (int k = 0; k < 4; ++k) {
                 ivec2 t = g + ivec2(k & 1, k >> 1);
                 any_active = any_active || (in_rect(t, ivec2(CB.tiles_x, CB.tiles_y)) &&
                                             tiles[class_index(t)] == CACAO_TILE_CLASS_ACTIVE);
             }
-            if (any_active) append(CACAO_LIST_BASE_BLOCKS, g / 2);
+            if (any_active) append(CACAO_LIST_BLOCKS, g / 2);
         }
-#endif
 #if CACAO_VARIANT == CACAO_COMPACT_HORIZON
         /* the background tiles keep the clear's view z and normal (what the prepare would store) */
         if (tiles[CACAO_TILE_CLASSES + i] != CACAO_TILE_CLASS_BACKGROUND) append(CACAO_LIST_PREPARE, g);

@@ -70,9 +70,10 @@ void cacao_tile_counts_print(FILE *out, const cacao_tile_counts *c) {
                 share(c->blur_total - c->blur_run, c->blur_total));
     else
         fprintf(out, "no blur");
-    if (c->base_total)
-        fprintf(out, ", the Q3 base pass %u of %u %s (%.1f%%)", c->base_total - c->base_run, c->base_total,
-                c->base_total == c->tiles ? "tiles" : "blocks of 2x2 tiles", share(c->base_total - c->base_run, c->base_total));
+    if (c->blocks_total)
+        fprintf(out, ", %u of %u %s (%.1f%%)", c->blocks_total - c->blocks_run, c->blocks_total,
+                c->blocks_total == c->tiles ? "tiles of the Q3 base pass" : "blocks of 2x2 tiles",
+                share(c->blocks_total - c->blocks_run, c->blocks_total));
     fprintf(out, "\n");
 }
 
@@ -89,8 +90,8 @@ void cacao_tile_counts_add_json(cJSON *object, const cacao_tile_counts *c) {
     cJSON_AddNumberToObject(o, "changed", c->changed);       /* reuse_unchanged; 0 without */
     cJSON_AddNumberToObject(o, "recomputed", c->recomputed);
     cJSON_AddNumberToObject(o, "blur_total", c->blur_total);
-    cJSON_AddNumberToObject(o, "base_run", c->base_run); /* HIGHEST; 0 of 0 at the other levels */
-    cJSON_AddNumberToObject(o, "base_total", c->base_total);
+    cJSON_AddNumberToObject(o, "blocks_run", c->blocks_run); /* 0 of 0 where no step runs over blocks */
+    cJSON_AddNumberToObject(o, "blocks_total", c->blocks_total);
 }
 
 void cacao_timings_add_json(cJSON *object, const cacao_plan *plan, const cacao_timings *t) {

@@ -416,7 +416,8 @@ static bool estimate_cacao(const gpu_session *s, gpu_config_cost *cc) {
                                   .threads = wg[0] * wg[1] * wg[2],
                                   /* a list's entry check, or the GPU forms' class check: both a
                                      workgroup-uniform branch around the body */
-                                  .indirect = step->list != 0 || cacaoi_skips_by_class(step->key[0], step->key[1]),
+                                  .indirect = step->list != 0 || cacaoi_skips_by_class(step->key[0], step->key[1]) ||
+                                              cacaoi_reads_classes(step->key[0], step->key[1]),
                                   .inverse_throughput = stats->value[GPU_STAT_INVERSE_THROUGHPUT]};
         /* A step dispatched from a tile list starts with the group's entry check (tiles.glsl,
          * group_of: the groups past the last entry return). ACO weighs the body under that

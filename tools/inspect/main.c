@@ -250,7 +250,7 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
         printf("  %2u %-34s ", i, st->key_name);
         if (st->clear && st->bindings[0].resource == CACAO_RES_IMPORTANCE) {
             printf("clears the importance map to 0; the %u blocks the base pass skips keep it (%.1f%%)\n",
-                   c->base_total - c->base_run, percent(c->base_total - c->base_run, c->base_total));
+                   c->blocks_total - c->blocks_run, percent(c->blocks_total - c->blocks_run, c->blocks_total));
             continue;
         }
         if (st->clear) {
@@ -264,11 +264,12 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
         const unsigned list = !cacaoi_skips_by_class(st->key[0], st->key[1]) ? st->list
                               : st->key[0] == CACAO_PASS_BLUR_GPU        ? CACAO_LIST_BLUR
                                                                          : CACAO_LIST_GENERATE;
-        if (st->key[1] == CACAO_GENERATE_Q3_BASE &&
-            (st->key[0] == CACAO_PASS_GENERATE || st->key[0] == CACAO_PASS_GENERATE_GPU)) {
-            printf("runs %u of %u %s, skips %u (%.1f%%: importance 0, no active tile)\n", c->base_run, c->base_total,
-                   st->list ? "blocks of 2x2 tiles" : "tiles", c->base_total - c->base_run,
-                   percent(c->base_total - c->base_run, c->base_total));
+        if (st->list == CACAO_LIST_BLOCKS ||
+            (st->key[0] == CACAO_PASS_GENERATE_GPU && st->key[1] == CACAO_GENERATE_Q3_BASE)) {
+            printf("runs %u of %u %s, skips %u (%.1f%%: no active tile, %s)\n", c->blocks_run, c->blocks_total,
+                   st->list ? "blocks of 2x2 tiles" : "tiles", c->blocks_total - c->blocks_run,
+                   percent(c->blocks_total - c->blocks_run, c->blocks_total),
+                   st->key[0] == CACAO_PASS_HORIZON_MAIN ? "AO 1" : "importance 0");
             continue;
         }
         switch (list) {
