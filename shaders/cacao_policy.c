@@ -1,6 +1,7 @@
 /* cacao_policy.c - quality levels, the sequence, keys per configuration, subsets (see cacao_policy.h). */
 #include "cacao_policy.h"
 
+#include <assert.h>
 #include <string.h>
 
 /* spec: README "Quality levels", constants.md (radius and near limit), estimators.md section 6
@@ -43,6 +44,7 @@ size_t cacaoi_step_bindings(const cacaoi_step *step, cacaoi_pass_binding out[CAC
 
 static cacaoi_step *push(cacaoi_step *out, size_t *n, unsigned pass, unsigned variant, unsigned ds, unsigned blur,
                          unsigned fp16) {
+    assert(*n < CACAOI_SEQUENCE_MAX); /* the assertions below bound every configuration the settings allow */
     cacaoi_step *s = &out[(*n)++];
     memset(s, 0, sizeof *s);
     s->key = (cacao_key){(uint8_t)pass, (uint8_t)variant, (uint8_t)ds, (uint8_t)blur, (uint8_t)fp16};
@@ -55,9 +57,14 @@ static void rebind(cacaoi_step *s, unsigned slot, cacao_resource resource) {
 }
 
 /* The longest sequences: CACAO with the caller's normals at HIGHEST with a blur (prepare twice,
- * classify, compact, Q3 base, importance twice, generate, fill twice, blur, apply), and the
- * horizon estimators with the most denoise passes. */
-_Static_assert(15 <= CACAOI_SEQUENCE_MAX && 8 + CACAO_KEY_MAX_BLUR_PASSES <= CACAOI_SEQUENCE_MAX,
+ * classify, compact, the importance map's clear, Q3 base, importance twice, generate, fill twice,
+ * blur, apply: 13, and 3 reuse steps before), and the horizon estimators with the most denoise
+ * passes: native, classify, compact, the view's clear, prepare, two AO clears, the estimator,
+ * the output's fill and a pass per blur iteration; downsampled, the half-size AO's clear and the
+ * upsample besides, and at most CACAO_HORIZON_HALF_MAX_PASSES (the settings refuse more;
+ * key_dispatched leaves such configurations out). */
+_Static_assert(16 <= CACAOI_SEQUENCE_MAX && 8 + CACAO_KEY_MAX_BLUR_PASSES <= CACAOI_SEQUENCE_MAX &&
+                   9 + CACAO_HORIZON_HALF_MAX_PASSES <= CACAOI_SEQUENCE_MAX,
                "a plan holds every step of the longest sequence");
 _Static_assert(CACAO_WG_HORIZON_X == CACAO_TILE && CACAO_WG_HORIZON_Y == CACAO_TILE,
                "a horizon estimator's group is one tile of the list it runs over");
@@ -208,6 +215,8 @@ static bool key_dispatched(const cacao_key *key, const cacao_key_subset *subset,
                             for (unsigned gpu = 0; gpu < 2; ++gpu)
                                 for (unsigned reuse = 0; reuse < (est == CACAO_KEY_ESTIMATOR_CACAO ? 2u : 1u); ++reuse) {
                                     if (!(forms_mask & (1u << gpu))) continue;
+                                    if (est != CACAO_KEY_ESTIMATOR_CACAO && ds && blur > CACAO_HORIZON_HALF_MAX_PASSES)
+                                        continue; /* refused by the settings (cacao_settings_resolve) */
                                     cacao_key_config c = {q, ds != 0, fp != 0, ni != 0, blur, est, gpu != 0, reuse != 0};
                                     cacao_key keys[CACAO_KEY_CONFIG_MAX];
                                     size_t n = cacaoi_keys_for_config(&c, keys);

@@ -268,7 +268,7 @@ typedef struct cacao_plan_image {
     uint64_t bytes;             /* tightly packed size, all layers */
 } cacao_plan_image;
 
-#define CACAO_PLAN_MAX_STEPS 16     /* steps of any configuration (the longest has 15) */
+#define CACAO_PLAN_MAX_STEPS 16     /* steps of any configuration (the longest has 16) */
 #define CACAO_PLAN_MAX_BINDINGS 10  /* bindings of any step (the most one makes: 9) */
 #define CACAO_PLAN_KEY_NAME_MAX 48  /* a step's key name, with its terminating zero */
 
