@@ -26,7 +26,7 @@ static void test_steps_per_quality(void) {
     /* By hand from the spec's pass graph, with blur 2, native, normals from depth, and the tile
      * passes of docs/tiles.md: classify and compact after the depths, a fill of the AO and of
      * the blur's output after generate (the CPU forms: lists); at HIGHEST a clear of the
-     * importance map before the Q3 base pass, which runs over compact's blocks. */
+     * importance map first, and the Q3 base pass over compact's blocks. */
 #define TILES "classify", "compact"
 #define FILLS "fill", "fill"
     const char *expected[5][16] = {
@@ -34,7 +34,7 @@ static void test_steps_per_quality(void) {
         {"prepare.full.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.nonsmart.fp32"},
         {"prepare.full.native", TILES, "generate.q1", FILLS, "blur.2.fp32", "apply.smart.fp32"},
         {"prepare.mips.native", TILES, "generate.q2", FILLS, "blur.2.fp32", "apply.smart.fp32"},
-        {"prepare.mips.native", TILES, "clear.importance", "generate.q3base", "importance_a", "importance_b",
+        {"clear.importance", "prepare.mips.native", TILES, "generate.q3base", "importance_a", "importance_b",
          "generate.q3", FILLS, "blur.2.fp32", "apply.smart.fp32"},
     };
 #undef TILES
@@ -50,23 +50,22 @@ static void test_steps_per_quality(void) {
             CHECK(strcmp(p.steps[i].key_name, expected[q][i]) == 0);
         }
         /* No barrier before the first step, between the two fills (the AO and the blur's output),
-         * nor before the clear of the importance map (nothing in the frame touched it yet); every
-         * other step depends on the one before. The clear is a transfer: it writes the map and
-         * dispatches nothing, and the base pass after it waits for it and for compact's list. */
+         * nor after the clear of the importance map (the prepare does not touch it); every other
+         * step depends on the one before. The clear is a transfer: it writes the map and
+         * dispatches nothing; the barriers before the base pass order it (they are global). */
         CHECK(!p.steps[0].barrier_before);
+        CHECK(p.steps[0].clear == (q == 4));
         for (uint32_t i = 1; i < p.step_count; ++i) {
             const bool clear = strcmp(p.steps[i].key_name, "clear.importance") == 0;
-            CHECK(p.steps[i].clear == clear);
+            CHECK(p.steps[i].clear == clear && (!clear || i == 0));
             const bool independent = (strcmp(p.steps[i].key_name, "fill") == 0 && !strcmp(p.steps[i - 1].key_name, "fill")) ||
-                                     clear;
+                                     p.steps[i - 1].clear;
             CHECK(p.steps[i].barrier_before == !independent);
             if (clear)
                 CHECK(p.steps[i].binding_count == 1 && p.steps[i].bindings[0].resource == CACAO_RES_IMPORTANCE &&
                       p.steps[i].bindings[0].write && p.steps[i].dispatch[0] == 0);
             if (strcmp(p.steps[i].key_name, "generate.q3base") == 0)
-                CHECK(p.steps[i].list == CACAO_LIST_BLOCKS &&
-                      (p.steps[i].barrier_resources & (1u << CACAO_RES_IMPORTANCE)) &&
-                      (p.steps[i].barrier_resources & (1u << CACAO_RES_TILES)));
+                CHECK(p.steps[i].list == CACAO_LIST_BLOCKS && (p.steps[i].barrier_resources & (1u << CACAO_RES_TILES)));
         }
     }
 }
@@ -201,20 +200,20 @@ static void test_dispatch_sizes(void) {
     cacao_plan p = build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
     /* prepare.mips (depths and normals from depth): 2x2 texels per invocation, ceil(960/16),
      * ceil(540/16) */
-    CHECK(strcmp(p.steps[0].key_name, "prepare.mips.native") == 0);
-    CHECK(p.steps[0].dispatch[0] == 60 && p.steps[0].dispatch[1] == 34);
+    CHECK(strcmp(p.steps[0].key_name, "clear.importance") == 0 && p.steps[0].clear); /* first: no dispatch */
+    CHECK(strcmp(p.steps[1].key_name, "prepare.mips.native") == 0);
+    CHECK(p.steps[1].dispatch[0] == 60 && p.steps[1].dispatch[1] == 34);
     cacao_plan given = build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST}, 1920, 1080);
-    CHECK(strcmp(given.steps[0].key_name, "prepare_depths.mips.native") == 0);
-    CHECK(given.steps[0].dispatch[0] == 60 && given.steps[0].dispatch[1] == 34); /* mips: 2x2 texels each */
-    CHECK(strcmp(given.steps[1].key_name, "prepare_normals.native") == 0);
-    CHECK(given.steps[1].dispatch[0] == 120 && given.steps[1].dispatch[1] == 68); /* the caller's: one each */
+    CHECK(strcmp(given.steps[1].key_name, "prepare_depths.mips.native") == 0);
+    CHECK(given.steps[1].dispatch[0] == 60 && given.steps[1].dispatch[1] == 34); /* mips: 2x2 texels each */
+    CHECK(strcmp(given.steps[2].key_name, "prepare_normals.native") == 0);
+    CHECK(given.steps[2].dispatch[0] == 120 && given.steps[2].dispatch[1] == 68); /* the caller's: one each */
     CHECK(given.step_count == p.step_count + 1);
-    CHECK(p.steps[1].dispatch[0] == 15 && p.steps[1].dispatch[1] == 9);     /* classify: 120x68 tiles / 8x8 */
-    CHECK(p.steps[2].dispatch[0] == (120 * 68 + 15 * 17 + 63) / 64);         /* compact: tiles + blur groups */
-    /* the Q3 base pass (after the clear of the map): an invocation per importance texel (its 2x2
+    CHECK(p.steps[2].dispatch[0] == 15 && p.steps[2].dispatch[1] == 9);     /* classify: 120x68 tiles / 8x8 */
+    CHECK(p.steps[3].dispatch[0] == (120 * 68 + 15 * 17 + 63) / 64);         /* compact: tiles + blur groups */
+    /* the Q3 base pass (the map cleared first): an invocation per importance texel (its 2x2
      * slice texels in all 4 layers), at most ceil(480/8), ceil(270/8) groups (a group is a block of
      * 2x2 tiles), one z; the importance passes the same grid */
-    CHECK(strcmp(p.steps[3].key_name, "clear.importance") == 0);
     CHECK(strcmp(p.steps[4].key_name, "generate.q3base") == 0);
     CHECK(p.steps[4].dispatch[0] == 60 && p.steps[4].dispatch[1] == 34 && p.steps[4].dispatch[2] == 1);
     CHECK(p.steps[5].dispatch[0] == 60 && p.steps[5].dispatch[1] == 34);    /* importance_a */
