@@ -19,7 +19,8 @@
  *   glsl/horizon.glsl      horizon_prepare, horizon_main, horizon_denoise (GTAO, bitmask)
  *
  * The generator (shadergen) defines CACAO_GLSL, CACAO_PASS, CACAO_VARIANT, CACAO_DOWNSAMPLED,
- * CACAO_BLUR_PASSES, CACAO_FP16, CACAO_LIST and CACAO_SKIPS_BY_CLASS (all integers) and the
+ * CACAO_BLUR_PASSES, CACAO_FP16, CACAO_LIST, CACAO_SKIPS_BY_CLASS and CACAO_READS_CLASSES (all
+ * integers) and the
  * binding guards of the key's pass row (cacaoi_key_defines), and resolves the #include lines below
  * (the GL_GOOGLE_include_directive form, relative to the including file). Each pass has its own main() under its CACAO_PASS guard.
  *
@@ -29,8 +30,9 @@
  */
 
 #if !defined(CACAO_PASS) || !defined(CACAO_VARIANT) || !defined(CACAO_DOWNSAMPLED) || \
-    !defined(CACAO_BLUR_PASSES) || !defined(CACAO_FP16) || !defined(CACAO_LIST) || !defined(CACAO_SKIPS_BY_CLASS)
-#error "cacao.comp needs CACAO_PASS, CACAO_VARIANT, CACAO_DOWNSAMPLED, CACAO_BLUR_PASSES, CACAO_FP16, CACAO_LIST, CACAO_SKIPS_BY_CLASS"
+    !defined(CACAO_BLUR_PASSES) || !defined(CACAO_FP16) || !defined(CACAO_LIST) || !defined(CACAO_SKIPS_BY_CLASS) || \
+    !defined(CACAO_READS_CLASSES)
+#error "cacao.comp needs CACAO_PASS, CACAO_VARIANT, CACAO_DOWNSAMPLED, CACAO_BLUR_PASSES, CACAO_FP16, CACAO_LIST, CACAO_SKIPS_BY_CLASS, CACAO_READS_CLASSES"
 #endif
 
 #include "cacao_shared.h"

@@ -137,7 +137,9 @@ size_t cacaoi_key_defines(const cacao_key *key, char *buf, size_t buf_size) {
               append_number(buf, buf_size, &len, "#define CACAO_FP16 %u\n", key->fp16) &&
               append_number(buf, buf_size, &len, "#define CACAO_LIST %u\n", cacaoi_passes[key->pass].lists[key->variant]) &&
               append_number(buf, buf_size, &len, "#define CACAO_SKIPS_BY_CLASS %u\n",
-                            cacaoi_skips_by_class(key->pass, key->variant) ? 1u : 0u);
+                            cacaoi_skips_by_class(key->pass, key->variant) ? 1u : 0u) &&
+              append_number(buf, buf_size, &len, "#define CACAO_READS_CLASSES %u\n",
+                            cacaoi_reads_classes(key->pass, key->variant) ? 1u : 0u);
     /* The slots the row binds: the GLSL declares exactly these (shaders/glsl/bindings.glsl). */
     for (unsigned slot = 0; ok && slot < CACAO_BINDING_COUNT; ++slot) {
         const uint8_t descriptor = expect.descriptor[slot];

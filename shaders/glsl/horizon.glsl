@@ -354,14 +354,8 @@ void main()
 #if HORIZON_HALF
     if (!in_rect(t, (size + 1) >> 1)) return;
     ivec2 p = 2 * t;
-#if CACAO_PASS == CACAO_PASS_HORIZON_MAIN_GPU
-    bool any_active = false; /* the same for the group */
-    for (int k = 0; k < 4; ++k) {
-        ivec2 tile = 2 * group + ivec2(k & 1, k >> 1);
-        any_active = any_active ||
-                     (in_rect(tile, ivec2(CB.tiles_x, CB.tiles_y)) && tiles[class_index(tile)] == CACAO_TILE_CLASS_ACTIVE);
-    }
-    if (!any_active) {
+#if CACAO_READS_CLASSES
+    if (!block_has_active(group)) { /* the same for the group */
         store_visibility(t, 1.0);
         return;
     }

@@ -37,17 +37,23 @@ bool group_of(out ivec2 g)
 #define CACAO_CLASSIFIES_DEPTH ((CACAO_PASS == CACAO_PASS_CLASSIFY && CACAO_VARIANT == CACAO_CLASSIFY_HORIZON) || \
                                 CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU)
 
-/* The GPU forms of the Q3 base pass and of the horizon estimators' downsampled estimator read the
- * tiles' classes (generate.glsl, horizon.glsl) */
-#define CACAO_READS_CLASSES ((CACAO_PASS == CACAO_PASS_GENERATE_GPU && CACAO_VARIANT == CACAO_GENERATE_Q3_BASE) || \
-                             (CACAO_PASS == CACAO_PASS_HORIZON_MAIN_GPU &&                                           \
-                              (CACAO_VARIANT == CACAO_HORIZON_GTAO_HALF || CACAO_VARIANT == CACAO_HORIZON_BITMASK_HALF)))
-
 #if CACAO_CLASSIFIES || CACAO_PASS == CACAO_PASS_COMPACT || CACAO_PASS == CACAO_PASS_FILL || \
     CACAO_PASS == CACAO_PASS_REUSE || CACAO_SKIPS_BY_CLASS || CACAO_READS_CLASSES
 /* Tile t's index in the per-tile regions of the tile buffer (cacao_shared.h), and where its class is. */
 uint tile_index(ivec2 t) { return uint(t.y * CB.tiles_x + t.x); }
 uint class_index(ivec2 t) { return uint(CACAO_TILE_CLASSES) + tile_index(t); }
+
+/* Block b of 2x2 tiles (tiles 2b .. 2b + 1 inside the grid) holds an active tile: compact's test
+ * for the blocks list, and the GPU form of the downsampled horizon estimator's, per group. */
+bool block_has_active(ivec2 b)
+{
+    bool any_active = false;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 t = 2 * b + ivec2(k & 1, k >> 1);
+        any_active = any_active || (in_rect(t, ivec2(CB.tiles_x, CB.tiles_y)) && tiles[class_index(t)] == CACAO_TILE_CLASS_ACTIVE);
+    }
+    return any_active;
+}
 #endif
 
 /* The invocation's texel in group g: a macro, since gl_WorkGroupSize is only known after each
@@ -323,15 +329,8 @@ void main()
          * horizon estimators' downsampled estimator (the CPU forms): the first tile of each block
          * appends it; every such block whatever reuse recomputes (the load counter sums the whole
          * frame's importance). */
-        if (CB.active_blocks != 0 && (g.x & 1) == 0 && (g.y & 1) == 0) {
-            bool any_active = false;
-            for (int k = 0; k < 4; ++k) {
-                ivec2 t = g + ivec2(k & 1, k >> 1);
-                any_active = any_active || (in_rect(t, ivec2(CB.tiles_x, CB.tiles_y)) &&
-                                            tiles[class_index(t)] == CACAO_TILE_CLASS_ACTIVE);
-            }
-            if (any_active) append(CACAO_LIST_BLOCKS, g / 2);
-        }
+        if (CB.active_blocks != 0 && (g.x & 1) == 0 && (g.y & 1) == 0 && block_has_active(g / 2))
+            append(CACAO_LIST_BLOCKS, g / 2);
 #if CACAO_VARIANT == CACAO_COMPACT_HORIZON
         /* the background tiles keep the clear's view z and normal (what the prepare would store) */
         if (tiles[CACAO_TILE_CLASSES + i] != CACAO_TILE_CLASS_BACKGROUND) append(CACAO_LIST_PREPARE, g);
