@@ -62,12 +62,18 @@ static void rebind(cacaoi_step *s, unsigned slot, cacao_resource resource) {
  * passes: native, classify, compact, the view's clear, prepare, two AO clears, the estimator,
  * the output's fill and a pass per blur iteration; downsampled, the half-size AO's clear and the
  * upsample besides, and at most CACAO_HORIZON_HALF_MAX_PASSES (the settings refuse more;
- * key_dispatched leaves such configurations out). */
-_Static_assert(16 <= CACAOI_SEQUENCE_MAX && 8 + CACAO_KEY_MAX_BLUR_PASSES <= CACAOI_SEQUENCE_MAX &&
-                   9 + CACAO_HORIZON_HALF_MAX_PASSES <= CACAOI_SEQUENCE_MAX,
+ * key_dispatched leaves such configurations out); with reuse, 2 steps before (diff, reach). */
+_Static_assert(16 <= CACAOI_SEQUENCE_MAX && 2 + 8 + CACAO_KEY_MAX_BLUR_PASSES <= CACAOI_SEQUENCE_MAX &&
+                   2 + 9 + CACAO_HORIZON_HALF_MAX_PASSES <= CACAOI_SEQUENCE_MAX,
                "a plan holds every step of the longest sequence");
 _Static_assert(CACAO_WG_HORIZON_X == CACAO_TILE && CACAO_WG_HORIZON_Y == CACAO_TILE,
                "a horizon estimator's group is one tile of the list it runs over");
+
+/* The reuse diff of the configuration: of the depth, or of the depth and the input normals. */
+static unsigned reuse_diff_variant(const cacao_key_config *c) {
+    return c->normals_from_input ? (c->gpu_forms ? CACAO_REUSE_DIFF_NORMALS_GPU : CACAO_REUSE_DIFF_NORMALS)
+                                 : (c->gpu_forms ? CACAO_REUSE_DIFF_GPU : CACAO_REUSE_DIFF);
+}
 
 /* Denoise passes first..last over the needed tiles (pass: the form's), the first reading `ao`,
  * ping-ponging between AO_RAW and AO_PONG, the last into the output. */
@@ -97,6 +103,12 @@ static void push_denoise_passes(cacaoi_step *out, size_t *n, unsigned pass_id, u
 static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENCE_MAX]) {
     size_t n = 0;
     const bool half = c->downsampled, gpu = c->gpu_forms;
+    /* reuse: the diff, and the reach pass that zeroes the gates when nothing changed; any change
+     * recomputes the whole frame (reuse_all_or_nothing), so no prefix sums (docs/tiles.md) */
+    if (c->reuse) {
+        push(out, &n, CACAO_PASS_REUSE, reuse_diff_variant(c), 0, 0, 0);
+        push(out, &n, CACAO_PASS_REUSE, CACAO_REUSE_REACH, 0, 0, 0);
+    }
     const unsigned blur = half && c->blur_passes < 1 ? 1 : c->blur_passes; /* downsampled: the upsample always runs */
     const bool gtao = c->estimator == CACAO_KEY_ESTIMATOR_GTAO;
     const unsigned normals = c->normals_from_input ? CACAO_HORIZON_NORMALS_INPUT : CACAO_HORIZON_NORMALS_DEPTH;
@@ -148,9 +160,7 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
      * the time of the build before, and 1.00x with the clear first). */
     if (c->quality == CACAO_KEY_QUALITY_HIGHEST && !c->gpu_forms) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_IMPORTANCE, 0, 0, 0);
     if (c->reuse) { /* docs/tiles.md "Reusing the previous frame" */
-        const unsigned diff = c->normals_from_input ? (c->gpu_forms ? CACAO_REUSE_DIFF_NORMALS_GPU : CACAO_REUSE_DIFF_NORMALS)
-                                                    : (c->gpu_forms ? CACAO_REUSE_DIFF_GPU : CACAO_REUSE_DIFF);
-        push(out, &n, CACAO_PASS_REUSE, diff, 0, 0, 0);
+        push(out, &n, CACAO_PASS_REUSE, reuse_diff_variant(c), 0, 0, 0);
         push(out, &n, CACAO_PASS_REUSE, CACAO_REUSE_PREFIX, 0, 0, 0);
         push(out, &n, CACAO_PASS_REUSE, CACAO_REUSE_REACH, 0, 0, 0);
     }
@@ -217,7 +227,7 @@ static bool key_dispatched(const cacao_key *key, const cacao_key_subset *subset,
                     for (unsigned blur = 0; blur <= CACAO_KEY_MAX_BLUR_PASSES; ++blur)
                         for (unsigned est = 0; est < CACAO_KEY_ESTIMATOR_COUNT; ++est)
                             for (unsigned gpu = 0; gpu < 2; ++gpu)
-                                for (unsigned reuse = 0; reuse < (est == CACAO_KEY_ESTIMATOR_CACAO ? 2u : 1u); ++reuse) {
+                                for (unsigned reuse = 0; reuse < 2u; ++reuse) {
                                     if (!(forms_mask & (1u << gpu))) continue;
                                     if (est != CACAO_KEY_ESTIMATOR_CACAO && ds && blur > CACAO_HORIZON_HALF_MAX_PASSES)
                                         continue; /* refused by the settings (cacao_settings_resolve) */

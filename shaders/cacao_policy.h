@@ -71,7 +71,7 @@ typedef struct cacao_key_config {
     unsigned blur_passes;  /* 0..8 (horizon estimators: denoise passes) */
     unsigned estimator;    /* CACAO_KEY_ESTIMATOR_* */
     bool gpu_forms;        /* the GPU forms of the blur, apply, prepare and generate (cacao_shader_forms) */
-    bool reuse;            /* CACAO estimator: reuse_unchanged (the REUSE passes first) */
+    bool reuse;            /* reuse_unchanged (the REUSE passes first) */
 } cacao_key_config;
 
 /* The pass of the configuration's forms: BLUR, APPLY, PREPARE, GENERATE or their GPU rows (any

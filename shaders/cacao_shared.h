@@ -187,7 +187,7 @@
 #define CACAO_TILE_RECOMPUTE(tiles, blur_groups) (CACAO_TILE_ROW_SUM(tiles, blur_groups) + (tiles))
 #define CACAO_TILE_BLUR_RECOMPUTE(tiles, blur_groups) (CACAO_TILE_RECOMPUTE(tiles, blur_groups) + (tiles))
 #define CACAO_TILE_GATES(tiles, blur_groups) (CACAO_TILE_BLUR_RECOMPUTE(tiles, blur_groups) + (blur_groups))
-#define CACAO_TILE_GATE_MAX 16           /* gate commands (cacao.h's CACAO_PLAN_MAX_STEPS) */
+#define CACAO_TILE_GATE_MAX 18           /* gate commands (cacao.h's CACAO_PLAN_MAX_STEPS) */
 #define CACAO_TILE_BUFFER_UINTS(tiles, blur_groups) (CACAO_TILE_GATES(tiles, blur_groups) + 3 * CACAO_TILE_GATE_MAX)
 #define CACAO_TILE_NO_ENTRY 0xffffffffu  /* list slots past the last entry (the host fills them) */
 #define CACAO_TILE_CLASS_ACTIVE 0

@@ -177,8 +177,8 @@ static void test_only_needed_resources(void) {
     /* header, classes, five lists of a tile each (generate, fill, the horizon estimators' prepare
      * list, the blur list, the blocks), then a needed flag per tile and per blur group; reuse's
      * four words per tile (changed, least z, row sum, recompute) and a recompute flag per blur
-     * group; 16 gate commands */
-    CHECK(lowest.tile_buffer_bytes == 4u * (32u + 11u * 120u * 68u + 2u * 15u * 17u + 3u * 16u));
+     * group; 18 gate commands */
+    CHECK(lowest.tile_buffer_bytes == 4u * (32u + 11u * 120u * 68u + 2u * 15u * 17u + 3u * 18u));
     cacao_plan highest =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
     const cacao_plan_image *depths = find_image(&highest, CACAO_RES_DEPTHS);
@@ -305,7 +305,7 @@ static void test_invalid(void) {
  * the last gate; the list-dispatched steps have none; the copies of the inputs are intermediates
  * (depth: a texel per 2x2 pixels; normals: three texels per 2x2 pixels) and nothing else is added;
  * the first gated step has a barrier before it (it reads the commands the reach pass wrote); the
- * horizon estimators refuse the setting. */
+ * horizon estimators' plans (below). */
 static void test_reuse(void) {
     for (int gpu = 0; gpu < 2; ++gpu)
         for (int normals = 0; normals < 2; ++normals) {
@@ -344,11 +344,25 @@ static void test_reuse(void) {
             CHECK(p.image_count == plain.image_count + 1 + (uint32_t)normals);
             CHECK(p.steps[3].barrier_before); /* the first gated step reads the commands the reach pass wrote */
         }
-    cacao_plan p;
-    char err[256] = "";
-    CHECK(cacao_plan_build(&(cacao_settings){.estimator = CACAO_ESTIMATOR_BITMASK, .reuse_unchanged = true}, 64, 64, &p,
-                           err, sizeof err) == CACAO_ERROR_INVALID_ARGUMENT);
-    CHECK(strstr(err, "reuse_unchanged") != NULL);
+    /* the horizon estimators: the diff and the reach pass first (no prefix: any change recomputes
+     * the whole frame), every direct step after them gated, list steps not */
+    for (int gpu = 0; gpu < 2; ++gpu)
+        for (int normals = 0; normals < 2; ++normals) {
+            const cacao_settings s = {.estimator = CACAO_ESTIMATOR_BITMASK, .reuse_unchanged = true, .blur_pass_count = 8,
+                                      .generate_normals = !normals,
+                                      .shader_forms = gpu ? CACAO_SHADER_FORMS_GPU : CACAO_SHADER_FORMS_CPU};
+            const cacao_plan p = build(s, 960, 540);
+            CHECK(p.step_count == (gpu ? 12u : 18u)); /* the longest sequence the settings allow (CPU forms) */
+            CHECK(p.steps[0].key[0] == CACAO_PASS_REUSE && p.steps[1].key[0] == CACAO_PASS_REUSE &&
+                  p.steps[1].key[1] == CACAO_REUSE_REACH);
+            CHECK(p.steps[0].key[1] == (gpu ? (normals ? CACAO_REUSE_DIFF_NORMALS_GPU : CACAO_REUSE_DIFF_GPU)
+                                            : (normals ? CACAO_REUSE_DIFF_NORMALS : CACAO_REUSE_DIFF)));
+            for (uint32_t i = 2; i < p.step_count; ++i)
+                CHECK((p.steps[i].gate != 0) == (!p.steps[i].clear && p.steps[i].list == 0));
+            CHECK((p.steps[p.step_count - 1].gate != 0) == (gpu != 0)); /* the output's last pass: gated in the GPU forms */
+            CHECK(find_image(&p, CACAO_RES_DEPTH_HISTORY) != NULL);
+            CHECK((find_image(&p, CACAO_RES_NORMALS_HISTORY) != NULL) == (normals != 0));
+        }
 }
 
 int main(void) {

@@ -11,7 +11,8 @@
  *     written and the output is still the reference's;
  *   - the camera moved (another projection): a full frame, without the diff; the next frame with
  *     that camera a full one that refreshes the copies, the one after it nothing;
- *   - force_full_frame; a settings change; a resize; NaN in the depth that stays NaN (unchanged).
+ *   - force_full_frame; a settings change; a resize; NaN in the depth that stays NaN (unchanged);
+ *   - the horizon estimators (horizon_sequence), which recompute everything when anything changed.
  * Every quality, native and downsampled, both shader forms, normals from depth and given, with
  * blur none, 2 and 8 (a subset of the product). The output image is NaN before each run
  * (vkdev): a pixel the frame fails to write shows. Validation (synchronization included) is on. */
@@ -192,6 +193,83 @@ done:
     free(ao);
 }
 
+/* The horizon estimators (GTAO, BITMASK): any change recomputes the whole frame, nothing changed
+ * runs nothing but, where the output is not held, the last pass (the GPU forms; in the CPU forms
+ * such a frame is a full one). Every frame bit for bit the reference's. */
+static void horizon_sequence(vkdev *dev, const frames *fr, cacao_settings s, bool normals) {
+    const bool gpu = s.shader_forms == CACAO_SHADER_FORMS_GPU;
+    snprintf(config, sizeof config, "%s, quality %d, %s, blur %d, normals %s, %s forms",
+             cacao_estimator_name(s.estimator), (int)s.quality, s.downsample ? "downsampled" : "native",
+             s.blur_pass_count, normals ? "given" : "from depth", gpu ? "GPU" : "CPU");
+    s.generate_normals = !normals;
+    s.reuse_unchanged = true;
+    const size_t n = (size_t)W * H;
+    float *ref = malloc(n * sizeof(float)), *ref_moved = malloc(n * sizeof(float)), *ref_index = malloc(n * sizeof(float)),
+          *ao = malloc(n * sizeof(float));
+    const vkdev_frame base = scene_frame(&fr->base, false, normals);
+    vkdev_frame kept = base, alternating = base, index = base, moved = base;
+    moved.depth = fr->moved.depth; /* the alternating frames' (the normals stay the base frame's) */
+    kept.output_holds_previous = true;
+    alternating.output_holds_previous = true;
+    alternating.alternate_depth = fr->moved.depth;
+    index.frame_index = 5; /* another sample pattern: other constants */
+    cacao_context *ctx = NULL;
+    cacao_tile_counts c;
+    if (!reference(dev, s, &base, ref) || !reference(dev, s, &moved, ref_moved) || !reference(dev, s, &index, ref_index))
+        goto done;
+    CHECK(memcmp(ref, ref_index, n * sizeof(float)) != 0); /* the frame index matters */
+    if (vkdev_context_create(dev, &ctx) != CACAO_SUCCESS || cacao_context_set_settings(ctx, &s) != CACAO_SUCCESS ||
+        cacao_context_resize(ctx, W, H, NULL) != CACAO_SUCCESS) {
+        fprintf(stderr, "%s: cannot create the reusing context\n", config);
+        ++test_failures;
+        goto done;
+    }
+    if (!step(dev, ctx, &base, 1, ao, &c)) goto done;
+    check_same(ao, ref, "first frame");
+    check_full(&c, "first frame");
+    /* unchanged, the output held from the run's second frame (the CPU forms: a full frame with no
+     * diff before it, then one refreshing the copies): nothing runs */
+    if (!step(dev, ctx, &kept, 3, ao, &c)) goto done;
+    check_same(ao, ref, "unchanged, output kept");
+    check_nothing_ran(&c, "unchanged, output kept");
+    /* unchanged, the output not held: the GPU forms run the last pass alone, the CPU forms a full frame */
+    if (!step(dev, ctx, &base, 1, ao, &c)) goto done;
+    check_same(ao, ref, "unchanged, output not kept");
+    if (gpu) CHECK(c.changed == 0 && c.recomputed == 0);
+    else check_full(&c, "unchanged, output not kept (CPU forms)");
+    /* frames alternating with one sphere moved, the output held: the last two reuse (after the
+     * frame refreshing the copies the full one left stale in the CPU forms), each recomputing all */
+    if (!step(dev, ctx, &alternating, 4, ao, &c)) goto done;
+    check_same(ao, ref_moved, "a sphere moved");
+    if (!(c.changed > 0 && c.changed < c.tiles / 8 && c.recomputed == c.tiles))
+        fprintf(stderr, "%s, a sphere moved: changed %u, recomputed %u of %u tiles\n", config, c.changed, c.recomputed,
+                c.tiles);
+    CHECK(c.changed > 0 && c.changed < c.tiles / 8 && c.recomputed == c.tiles);
+    /* back, then unchanged with the output held */
+    if (!step(dev, ctx, &kept, 3, ao, &c)) goto done;
+    check_same(ao, ref, "back, then unchanged");
+    check_nothing_ran(&c, "back, then unchanged");
+    /* another frame index: other constants, a full frame; then unchanged */
+    if (!step(dev, ctx, &index, 1, ao, &c)) goto done;
+    check_same(ao, ref_index, "another frame index");
+    check_full(&c, "another frame index");
+    index.output_holds_previous = true;
+    if (!step(dev, ctx, &index, 3, ao, &c)) goto done;
+    check_same(ao, ref_index, "another frame index, unchanged");
+    check_nothing_ran(&c, "another frame index, unchanged");
+    vkdev_frame forced = kept;
+    forced.force_full_frame = true;
+    if (!step(dev, ctx, &forced, 1, ao, &c)) goto done;
+    check_same(ao, ref, "forced full frame");
+    check_full(&c, "forced full frame");
+done:
+    cacao_context_destroy(ctx);
+    free(ref);
+    free(ref_moved);
+    free(ref_index);
+    free(ao);
+}
+
 /* Settings changes, a resize, NaN in the depth and the alternating frames of one run. */
 static void other_changes(vkdev *dev, const frames *fr) {
     const size_t n = (size_t)W * H;
@@ -286,11 +364,23 @@ int main(void) {
             sequence(&dev, &fr, s, true);
         }
     other_changes(&dev, &fr);
-    /* refused where it does not apply */
-    cacao_settings horizon = {.estimator = CACAO_ESTIMATOR_GTAO, .reuse_unchanged = true}, resolved;
-    char err[256] = "";
-    CHECK(cacao_settings_resolve(&horizon, &resolved, err, sizeof err) == CACAO_ERROR_INVALID_ARGUMENT);
-    CHECK(strstr(err, "reuse_unchanged") != NULL);
+    /* the horizon estimators: both, both forms, native with no denoise pass and with 2, downsampled
+     * with 1, normals from depth and given */
+    for (int forms = 0; forms < 2; ++forms)
+        for (int e = 0; e < 2; ++e) {
+            const cacao_estimator est = e ? CACAO_ESTIMATOR_BITMASK : CACAO_ESTIMATOR_GTAO;
+            const cacao_shader_forms f = forms ? CACAO_SHADER_FORMS_GPU : CACAO_SHADER_FORMS_CPU;
+            horizon_sequence(&dev, &fr,
+                             (cacao_settings){.estimator = est, .quality = CACAO_QUALITY_LOW, .blur_pass_count = CACAO_BLUR_NONE,
+                                              .shader_forms = f},
+                             e == 0);
+            horizon_sequence(&dev, &fr,
+                             (cacao_settings){.estimator = est, .quality = CACAO_QUALITY_LOWEST, .blur_pass_count = 2, .shader_forms = f},
+                             e != 0);
+            horizon_sequence(&dev, &fr,
+                             (cacao_settings){.estimator = est, .quality = CACAO_QUALITY_LOW, .downsample = true, .shader_forms = f},
+                             false);
+        }
     free_frames(&fr);
     vkdev_destroy(&dev);
     CHECK(dev.validation_messages == 0);

@@ -207,7 +207,7 @@ typedef struct cacao_settings {
                                        only slower. For measurement and tests. */
     cacao_shader_forms shader_forms; /* 0 = the context's choice (see cacao_shader_forms); resolving
                                         keeps 0 */
-    /* CACAO: reuse what did not change (docs/tiles.md "Reusing the previous frame"). The context
+    /* Reuse what did not change (docs/tiles.md "Reusing the previous frame"). The context
      * keeps a copy of the depth (and of the input normals) and its intermediates from frame to
      * frame; a frame recomputes only the tiles whose output a changed depth or normal can reach
      * (the AO radius projected to pixels, the depth mips, the blur and apply footprints; a tile
@@ -217,7 +217,11 @@ typedef struct cacao_settings {
      * cacao_inputs.force_full_frame). HIGHEST recomputes every tile when anything changed (its
      * adaptive pass depends on the whole frame's importance). Frames must reach the GPU in the
      * order they were recorded: after a recorded frame that was not submitted, force a full frame.
-     * Costs 4 bytes per pixel (plus 16 with input normals). GTAO/BITMASK: refused. */
+     * Costs 4 bytes per pixel (plus 16 with input normals). GTAO/BITMASK: all or nothing (any
+     * change recomputes the whole frame; so does another frame_index); in the CPU shader forms a
+     * frame keeps nothing unless cacao_inputs.output_holds_previous (their last pass runs over a
+     * list that only the classification makes), in the GPU forms such a frame runs the last
+     * denoise pass alone. */
     bool reuse_unchanged;
 } cacao_settings;
 
@@ -268,7 +272,7 @@ typedef struct cacao_plan_image {
     uint64_t bytes;             /* tightly packed size, all layers */
 } cacao_plan_image;
 
-#define CACAO_PLAN_MAX_STEPS 16     /* steps of any configuration (the longest has 16) */
+#define CACAO_PLAN_MAX_STEPS 18     /* steps of any configuration (the longest has 18) */
 #define CACAO_PLAN_MAX_BINDINGS 10  /* bindings of any step (the most one makes: 9) */
 #define CACAO_PLAN_KEY_NAME_MAX 48  /* a step's key name, with its terminating zero */
 
@@ -486,7 +490,8 @@ typedef struct cacao_inputs {
     /* settings.reuse_unchanged only. force_full_frame: compute every tile this frame (as the first
      * frame after a resize does). output_holds_previous: the output image holds what this context
      * wrote into it last frame, untouched since (an engine's persistent AO target); a frame with
-     * nothing changed then writes nothing (without it, apply runs over the whole output). */
+     * nothing changed then writes nothing (without it, apply runs over the whole output, or a
+     * horizon estimator's last pass; in their CPU forms the frame is a full one). */
     bool force_full_frame;
     bool output_holds_previous;
 } cacao_inputs;

@@ -266,7 +266,14 @@ static void fill_tile_constants(const cacao_plan *plan, const projection_view *v
  * texel to spare. cacao_record sets reuse (1 or 2) and gate_count per frame. Orthographic (no
  * perspective scale of xy with z): near_k only enters the near limit, which is 1 there. */
 static void fill_reuse_constants(const cacao_plan *plan, cacao_constants *c) {
-    if (!plan->settings.reuse_unchanged) return; /* CACAO only (cacao_settings_resolve) */
+    if (!plan->settings.reuse_unchanged) return;
+    if (plan->settings.estimator != CACAO_ESTIMATOR_CACAO) {
+        /* the horizon estimators: any change recomputes the whole frame (no reach bound); their
+         * tiles are 8x8 pixels, native and downsampled */
+        c->reuse_all_or_nothing = 1;
+        c->reuse_tile_pixels = CACAO_TILE;
+        return;
+    }
     float longest = 0.0f, scale = 0.0f;
     for (int i = 0; i < 32; ++i) {
         const cacao_vec4 e = c->sample_pattern[i];

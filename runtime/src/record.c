@@ -149,15 +149,27 @@ static VkDeviceSize gates_offset(const cacao_plan *p) {
  * constants. */
 static int reuse_frame(cacao_context *ctx, const cacao_inputs *in, cacao_constants *c) {
     const cacao_plan *p = &ctx->plan;
-    if (!p->settings.reuse_unchanged) return 0; /* CACAO only (cacao_settings_resolve) */
+    if (!p->settings.reuse_unchanged) return 0;
     const bool same = ctx->reuse_primed && memcmp(&ctx->reuse_constants, c, sizeof *c) == 0;
-    const int mode = !ctx->reuse_primed || in->force_full_frame ? 2 : !same ? 3 : ctx->reuse_copies_stale ? 2 : 1;
+    /* The last step writes the output. Where it is gated (apply, the upsample, the GPU forms' last
+     * horizon pass), a frame with nothing changed runs it alone unless the output holds the last
+     * frame's. Where it is not (the CPU forms of the horizon estimators: a pass over compact's list,
+     * after clears of its inputs), such a frame could not rewrite the output: without the output
+     * held, every frame is a full one, with no diff (as when the camera moves: the copies go
+     * stale, and the first frame with the output held refreshes them). */
+    const bool output_gated = p->step_count && p->steps[p->step_count - 1].gate;
+    const bool can_keep = output_gated || in->output_holds_previous;
+    const int mode = !ctx->reuse_primed || in->force_full_frame ? 2
+                     : !same || !can_keep                       ? 3
+                     : ctx->reuse_copies_stale                  ? 2
+                                                                : 1;
     ctx->reuse_constants = *c;
     ctx->reuse_primed = true;
     ctx->reuse_copies_stale = mode == 3;
     c->reuse = mode;
-    /* the last gate is apply's (or the upsample's): kept only where the output holds the last frame's */
-    c->gate_count = (int)gate_count(p) - (in->output_holds_previous ? 0 : 1);
+    /* the last gate is apply's (or the upsample's, or the last horizon pass's): kept only where the
+     * output holds the last frame's */
+    c->gate_count = (int)gate_count(p) - (output_gated && !in->output_holds_previous ? 1 : 0);
     return mode;
 }
 
@@ -186,7 +198,24 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
         const VkDeviceSize lists =
             sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_LIST_BASE(CACAO_LIST_GENERATE, (VkDeviceSize)p->tiles_x * p->tiles_y);
         const VkDeviceSize gates = gates_offset(p);
-        ctx->vk.CmdFillBuffer(cmd, ctx->buffers[CACAO_RES_TILES], lists, gates - lists, CACAO_TILE_NO_ENTRY);
+        if (constants->reuse == 1 && p->settings.estimator != CACAO_ESTIMATOR_CACAO) {
+            /* The horizon estimators reusing: the needed flags stay as the last frame left them.
+             * Where nothing changed, the GPU forms' last pass (run when the output is not held)
+             * reads them, and no classification runs to remake them; where anything changed, the
+             * classification marks this frame's needed tiles on top, and a tile needed only by the
+             * last frame's is computed as well: quiet within a tile, it computes the 1 it would
+             * have stored (the equality test_tiles checks against compute_all_tiles). */
+            const VkDeviceSize needed = sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_NEEDED(
+                                                               (VkDeviceSize)p->tiles_x * p->tiles_y,
+                                                               (VkDeviceSize)p->blur_groups_x * p->blur_groups_y),
+                               reuse = sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_CHANGED(
+                                                              (VkDeviceSize)p->tiles_x * p->tiles_y,
+                                                              (VkDeviceSize)p->blur_groups_x * p->blur_groups_y);
+            ctx->vk.CmdFillBuffer(cmd, ctx->buffers[CACAO_RES_TILES], lists, needed - lists, CACAO_TILE_NO_ENTRY);
+            ctx->vk.CmdFillBuffer(cmd, ctx->buffers[CACAO_RES_TILES], reuse, gates - reuse, CACAO_TILE_NO_ENTRY);
+        } else {
+            ctx->vk.CmdFillBuffer(cmd, ctx->buffers[CACAO_RES_TILES], lists, gates - lists, CACAO_TILE_NO_ENTRY);
+        }
         /* reuse: each gated step's full grid (the reach pass zeroes x when nothing changed) */
         uint32_t commands[3 * CACAO_TILE_GATE_MAX];
         for (uint32_t i = 0; i < p->step_count; ++i)

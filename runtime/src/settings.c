@@ -164,12 +164,6 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
                         s.horizon_steps, CACAO_HORIZON_MAX_STEPS);
         return CACAO_ERROR_INVALID_ARGUMENT;
     }
-    if (slice && s.reuse_unchanged) {
-        cacaoi_set_error(error, error_size,
-                         "settings.reuse_unchanged: only the cacao estimator reuses the previous frame, not %s",
-                         cacao_estimator_name(s.estimator));
-        return CACAO_ERROR_INVALID_ARGUMENT;
-    }
     if (s.blur_pass_count == 0) s.blur_pass_count = slice ? 1 : 2;
     else if (s.blur_pass_count == CACAO_BLUR_NONE) {
         /* stays CACAO_BLUR_NONE (see cacaoi_settings_literal) */

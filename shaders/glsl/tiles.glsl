@@ -125,7 +125,7 @@ void mark_around(ivec2 a, uint tile_base, uint blur_base)
 #endif
 
 #if CACAO_SKIPS_BY_CLASS
-/* What group g of generate (a tile) or of the blur does: GROUP_COMPUTE where the lists would hold
+/* What group g of generate (a tile), of the blur or of a horizon estimator's pass does: GROUP_COMPUTE where the lists would hold
  * it (classify's flags: compact's test, made from each active tile) and reuse recomputes it;
  * GROUP_FILL (store AO 1, the CPU forms' fill) where reuse recomputes it but no active tile is
  * near; GROUP_KEEP where reuse keeps the previous frame's. One or two loads per invocation, the
@@ -140,7 +140,11 @@ int group_work(ivec2 g)
     bool needed = tiles[blur_needed_base() + g.y * CB.blur_groups_x + g.x] == 0u;
     const uint count = CACAO_TILE_COUNT_BLUR_NEEDED;
 #else
+#if CACAO_PASS != CACAO_PASS_HORIZON_MAIN_GPU && CACAO_PASS != CACAO_PASS_HORIZON_DENOISE_GPU
+    /* (the horizon estimators reuse all or nothing: a pass of theirs that runs computes its groups,
+     * the last one also on a frame with nothing changed, when the output is not held) */
     if (!tile_recomputed(g)) return GROUP_KEEP;
+#endif
     bool needed = tiles[needed_base() + tile_index(g)] == 0u;
     const uint count = CACAO_TILE_COUNT_NEEDED;
 #endif
@@ -448,8 +452,8 @@ void main()
     if (changed) atomicAdd(tiles[CACAO_TILE_COUNT_CHANGED], 1u);
 }
 #else
-/* The GPU forms: one invocation per block, a group of 16x16 pixels (a tile native, a quarter of one
- * downsampled). The group reduces in shared memory (depths as order-preserving keys), then marks
+/* The GPU forms: one invocation per block, a group of 16x16 pixels (a CACAO tile native, a quarter
+ * of one downsampled; 2x2 tiles of the horizon estimators). The group reduces in shared memory (depths as order-preserving keys), then marks
  * its tile (flags the host reset: 0 marks changed, the first mark counts) and lowers its least z
  * (uint order is float order for z >= 0 and +inf). */
 shared uint group_changed, group_dmin, group_dmax;
@@ -478,11 +482,18 @@ void main()
     }
     barrier();
     if (gl_LocalInvocationIndex != 0u) return;
-    uint t = tile_index(ivec2(gl_WorkGroupID.xy) * 16 / CB.reuse_tile_pixels);
-    if (group_changed != 0u && atomicAnd(tiles[TILE_REGION(CACAO_TILE_CHANGED) + t], 0u) != 0u)
-        atomicAdd(tiles[CACAO_TILE_COUNT_CHANGED], 1u);
+    /* the tiles of the group's pixels: one (CACAO: 16 or 32 pixels a side), or 2x2 (the horizon
+     * estimators' tiles of 8) */
+    ivec2 first = ivec2(gl_WorkGroupID.xy) * 16;
+    ivec2 t0 = first / CB.reuse_tile_pixels, t1 = min((first + 15) / CB.reuse_tile_pixels, ivec2(CB.tiles_x, CB.tiles_y) - 1);
     float zmin = least_view_z(key_value(group_dmin), key_value(group_dmax));
-    atomicMin(tiles[TILE_REGION(CACAO_TILE_ZMIN) + t], floatBitsToUint(zmin));
+    for (int y = t0.y; y <= t1.y; ++y)
+        for (int x = t0.x; x <= t1.x; ++x) {
+            uint t = tile_index(ivec2(x, y));
+            if (group_changed != 0u && atomicAnd(tiles[TILE_REGION(CACAO_TILE_CHANGED) + t], 0u) != 0u)
+                atomicAdd(tiles[CACAO_TILE_COUNT_CHANGED], 1u);
+            atomicMin(tiles[TILE_REGION(CACAO_TILE_ZMIN) + t], floatBitsToUint(zmin));
+        }
 }
 #endif
 #elif CACAO_VARIANT == CACAO_REUSE_PREFIX
