@@ -487,9 +487,11 @@ void main()
     ivec2 first = ivec2(gl_WorkGroupID.xy) * 16;
     ivec2 t0 = first / CB.reuse_tile_pixels, t1 = min((first + 15) / CB.reuse_tile_pixels, ivec2(CB.tiles_x, CB.tiles_y) - 1);
     float zmin = least_view_z(key_value(group_dmin), key_value(group_dmax));
-    for (int y = t0.y; y <= t1.y; ++y)
-        for (int x = t0.x; x <= t1.x; ++x) {
-            uint t = tile_index(ivec2(x, y));
+    /* unrolled (at most 2x2 tiles: reuse_tile_pixels is 8 or more): a GPU compiler knows the count */
+    [[unroll]] for (int dy = 0; dy < 2; ++dy)
+        [[unroll]] for (int dx = 0; dx < 2; ++dx) {
+            if (t0.x + dx > t1.x || t0.y + dy > t1.y) continue;
+            uint t = tile_index(t0 + ivec2(dx, dy));
             if (group_changed != 0u && atomicAnd(tiles[TILE_REGION(CACAO_TILE_CHANGED) + t], 0u) != 0u)
                 atomicAdd(tiles[CACAO_TILE_COUNT_CHANGED], 1u);
             atomicMin(tiles[TILE_REGION(CACAO_TILE_ZMIN) + t], floatBitsToUint(zmin));
