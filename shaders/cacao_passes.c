@@ -76,6 +76,9 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
 #define GEN CACAO_LIST_GENERATE
 #define DIFFS_NORMALS (V(CACAO_REUSE_DIFF_NORMALS) | V(CACAO_REUSE_DIFF_NORMALS_GPU))
 #define DIFFS (V(CACAO_REUSE_DIFF) | V(CACAO_REUSE_DIFF_GPU) | DIFFS_NORMALS)
+#define LISTED_UPSAMPLES                                                                                   \
+    (V(CACAO_UPSAMPLE_LISTED + CACAO_OUTPUT_SMART) | V(CACAO_UPSAMPLE_LISTED + CACAO_OUTPUT_NON_SMART) | \
+     V(CACAO_UPSAMPLE_LISTED + CACAO_OUTPUT_HALF))
 
 /* The generate row and its GPU form's (the same grids), `taps` the variants whose taps' depths
  * come through the storage image with imageLoad: every variant of the CPU form (lavapipe runs it
@@ -168,17 +171,23 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                   {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(SSAO_IMAGE, SSAO_PONG, ALL), R(TILES, TILES, ALL)},
                   .lists = {CACAO_LIST_BLUR}},
     /* spec: apply.md, upsample.md. They read the blur's output where a blur ran (step override).
-     * Dispatched over every group: where no tile near is active they read the fill's 1 and write
-     * 1. (Indirect over the groups near an active tile, with a fill for the rest, was slower on
-     * lavapipe: docs/tiles.md.) */
+     * Apply is dispatched over every group: where no tile near is active it reads the fill's 1 and
+     * writes 1. (Indirect over the groups near an active tile, with a fill for the rest, was slower
+     * on lavapipe: docs/tiles.md.) */
     PASS(APPLY) = {"apply", {"smart", "nonsmart", "half"}, 3, false, false, true, WG(APPLY), CACAOI_GRID_OUTPUT, 3,
                    {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL)},
                    /* smart: 4x4 output pixels per invocation; non-smart and half: 2x2 */
                    .quad = {[CACAO_OUTPUT_SMART] = 4, [CACAO_OUTPUT_NON_SMART] = 2, [CACAO_OUTPUT_HALF] = 2}},
-    PASS(UPSAMPLE) = {"upsample", {"smart", "nonsmart", "half"}, 3, false, false, true, WG(UPSAMPLE),
-                      CACAOI_GRID_UPSAMPLE, 5,
+    /* The upsample's listed variants: over compact's list of the needed tiles (a group is a tile,
+     * 32x32 pixels), the others' output filled with 1 (fill.output): the CPU forms without reuse
+     * (the upsample's bilateral filter over every pixel was most of a downsampled frame with sky). */
+    PASS(UPSAMPLE) = {"upsample", {"smart", "nonsmart", "half", "smart_list", "nonsmart_list", "half_list"}, 6, false,
+                      false, true, WG(UPSAMPLE), CACAOI_GRID_UPSAMPLE, 6,
                       {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), R(DEPTHS, DEPTHS, ALL), R(SSAO, SSAO_PING, ALL),
-                       W(OUTPUT, OUTPUT, ALL)}},
+                       W(OUTPUT, OUTPUT, ALL), R(TILES, TILES, LISTED_UPSAMPLES)},
+                      .lists = {[CACAO_UPSAMPLE_LISTED + CACAO_OUTPUT_SMART] = CACAO_LIST_PREPARE,
+                                [CACAO_UPSAMPLE_LISTED + CACAO_OUTPUT_NON_SMART] = CACAO_LIST_PREPARE,
+                                [CACAO_UPSAMPLE_LISTED + CACAO_OUTPUT_HALF] = CACAO_LIST_PREPARE}},
     /* spec: estimators.md. Full-resolution intermediates, read and written as storage images. */
     /* Over the tiles classification found not all background (the fill of the background list
      * stores there what it would). */

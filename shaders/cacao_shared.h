@@ -72,6 +72,9 @@
 #define CACAO_OUTPUT_SMART 0
 #define CACAO_OUTPUT_NON_SMART 1
 #define CACAO_OUTPUT_HALF 2
+/* The upsample's variants over compact's list of the needed tiles (CACAO_LIST_PREPARE): the CPU
+ * forms without reuse, the output's other tiles filled with 1 (docs/tiles.md) */
+#define CACAO_UPSAMPLE_LISTED 3 /* + CACAO_OUTPUT_*: smart_list, nonsmart_list, half_list */
 
 /* Slice-prepare variants: normals reconstructed from depth, or transformed from the input. */
 #define CACAO_HORIZON_NORMALS_DEPTH 0
@@ -155,7 +158,9 @@
 #define CACAO_LIST_NONE 0                /* a direct dispatch */
 #define CACAO_LIST_GENERATE 1            /* needed tiles (one generate group each, z = layers) */
 #define CACAO_LIST_FILL_SLICES 2         /* tiles that are not needed (z 1: a group fills every layer) */
-#define CACAO_LIST_PREPARE 3             /* horizon estimators: tiles not all background (their prepare) */
+#define CACAO_LIST_PREPARE 3             /* horizon estimators: tiles not all background (their prepare);
+                                            CACAO downsampled, the CPU forms: the needed tiles, a group
+                                            of the upsample each (z 1) */
 #define CACAO_LIST_BLUR 4                /* blur groups touching a needed tile (z = layers) */
 #define CACAO_LIST_BLOCKS 5              /* blocks of 2x2 tiles holding an active tile (CPU forms): a group
                                             each of CACAO's Q3 base pass (HIGHEST) and of the horizon
@@ -423,6 +428,8 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(FLOAT, background_z)              /* stored view z at or beyond which a texel is background */ \
     M(FLOAT, quiet_margin)              /* classification: fade argument below -margin is quiet */ \
     M(INT, tiles_all)                   /* 1: every tile active (no skipping: measurement, tests) */ \
+    M(INT, output_tile_pixels)          /* output pixels of a tile, each way (fill.output) */ \
+    M(INT, needed_list)                 /* 1: CACAO's compact lists the needed tiles in CACAO_LIST_PREPARE */ \
     M(INT, active_blocks)               /* 1: compact lists the blocks holding an active tile (CACAO_LIST_BLOCKS) */ \
     M(INT, tiles_x)                                                                                \
     M(INT, tiles_y)                                                                                \

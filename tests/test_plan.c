@@ -234,9 +234,26 @@ static void test_dispatch_sizes(void) {
     cacao_plan d =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true, .generate_normals = true}, 1001, 37);
     CHECK(d.slice_width == 251 && d.slice_height == 10); /* ceil(ceil(1001/2)/2), ceil(ceil(37/2)/2) */
-    CHECK(strcmp(d.steps[d.step_count - 1].key_name, "upsample.smart.fp32") == 0);
-    /* upsample: 2x2 full-res pixels per half-res position, 2x2 positions per thread, 8x8 threads */
+    /* the CPU forms without reuse: the upsample over compact's list of the needed tiles, after the
+     * fill of the output's other tiles */
+    CHECK(strcmp(d.steps[d.step_count - 1].key_name, "upsample.smart_list.fp32") == 0);
+    CHECK(d.steps[d.step_count - 1].list == CACAO_LIST_PREPARE && d.steps[d.step_count - 1].dispatch[2] == 1);
+    CHECK(d.steps[d.step_count - 2].key[0] == CACAO_PASS_FILL && d.steps[d.step_count - 2].key[1] == CACAO_FILL_OUTPUT &&
+          d.steps[d.step_count - 2].list == CACAO_LIST_FILL_SLICES);
+    /* upsample: 2x2 full-res pixels per half-res position, 2x2 positions per thread, 8x8 threads:
+     * a group is a tile (8x8 slice texels) */
     CHECK(d.steps[d.step_count - 1].dispatch[0] == 32 && d.steps[d.step_count - 1].dispatch[1] == 2); /* /32 */
+    CHECK(d.tiles_x == 32 && d.tiles_y == 2);
+    /* with reuse (the gates need a direct grid) and in the GPU forms (no lists): every tile */
+    cacao_plan dr = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true, .generate_normals = true,
+                                           .reuse_unchanged = true},
+                          1001, 37);
+    CHECK(strcmp(dr.steps[dr.step_count - 1].key_name, "upsample.smart.fp32") == 0 && dr.steps[dr.step_count - 1].gate);
+    cacao_plan dg = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true, .generate_normals = true,
+                                           .shader_forms = CACAO_SHADER_FORMS_GPU},
+                          1001, 37);
+    CHECK(strcmp(dg.steps[dg.step_count - 1].key_name, "upsample.smart.fp32") == 0 &&
+          dg.steps[dg.step_count - 1].list == CACAO_LIST_NONE);
 }
 
 /* The host writes each list's indirect command z from the steps that dispatch over it (record.c):

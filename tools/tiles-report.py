@@ -22,7 +22,7 @@ _spec.loader.exec_module(acc)
 QUALITIES = ['lowest', 'low', 'medium', 'high', 'highest']
 # (label, flags, qualities): CACAO at every level, the horizon estimators at their cheapest level
 # and at HIGH
-ESTIMATORS = [('cacao', [], QUALITIES)] + [
+ESTIMATORS = [('cacao', [], QUALITIES), ('cacao downsampled', ['--downsample'], QUALITIES)] + [
     ('%s%s' % (e, ' downsampled' if ds else ''), ['--estimator', e] + (['--downsample'] if ds else []), ['lowest', 'high'])
     for ds in (False, True) for e in ('gtao', 'bitmask')]
 

@@ -243,8 +243,12 @@ static void fill_tile_constants(const cacao_plan *plan, const projection_view *v
     if (z_stored >= CACAO_MAX_VIEW_Z) c->background_z = (float)CACAO_MAX_VIEW_Z;
     c->quiet_margin = 1.0e-5f * fmaxf(1.0f, fabsf(c->effect_fade_out_add));
     c->tiles_all = plan->settings.compute_all_tiles ? 1 : 0;
-    for (uint32_t i = 0; i < plan->step_count; ++i) /* a step over compact's blocks (docs/tiles.md) */
+    for (uint32_t i = 0; i < plan->step_count; ++i) /* a step over compact's blocks, or the needed tiles (docs/tiles.md) */
         if (plan->steps[i].list == CACAO_LIST_BLOCKS) c->active_blocks = 1;
+        else if (plan->steps[i].list == CACAO_LIST_PREPARE && plan->settings.estimator == CACAO_ESTIMATOR_CACAO)
+            c->needed_list = 1;
+    c->output_tile_pixels = plan->settings.estimator != CACAO_ESTIMATOR_CACAO ? CACAO_TILE
+                            : (int)(CACAO_TILE * (plan->settings.downsample ? 4 : 2));
     c->tiles_x = (int)plan->tiles_x;
     c->tiles_y = (int)plan->tiles_y;
     c->blur_groups_x = (int)plan->blur_groups_x;

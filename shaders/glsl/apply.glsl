@@ -214,6 +214,7 @@ void main()
 /* spec: upsample.md (bilateral 5x5, Smart / NonSmart / Half). One form for CPUs and GPUs: one
  * half-res position per thread cost a GPU compiler's estimate more than 2x2 (cacao_shared.h). */
 layout(local_size_x = CACAO_WG_UPSAMPLE_X, local_size_y = CACAO_WG_UPSAMPLE_Y) in;
+#define UP_KIND (CACAO_VARIANT % CACAO_UPSAMPLE_LISTED) /* CACAO_OUTPUT_*, listed or not */
 #define UP_B CACAO_UPSAMPLE_BLOCK
 #define UP_THREADS (CACAO_WG_UPSAMPLE_X * CACAO_WG_UPSAMPLE_Y)
 #define UP_TABLE_X (CACAO_UPSAMPLE_SPAN_X + 4) /* the group's half-res positions + 2 apron each side */
@@ -249,7 +250,8 @@ void main()
     const float depth_exp2_mul = CB.bilateral_depth_exp2_mul;
     ivec2 s = textureSize(ssao, 0).xy;
     ivec2 qsize = 2 * s;
-    ivec2 g = ivec2(gl_WorkGroupID.xy);
+    ivec2 g; /* listed: a tile (the group's span is a tile's 16x16 half-res positions) */
+    if (!group_of(g)) return;
     vec2 inv_s = CB.ssao_buffer_inverse_dimensions;
 
     /* Step 1: (value, depth) of Q-positions g*SPAN - 2 .. g*SPAN + SPAN + 1, filled by all
@@ -262,11 +264,11 @@ void main()
         if (in_rect(q, qsize)) {
             int cx = q.x & 1, cy = q.y & 1;
             ivec2 c = q >> 1;
-#if CACAO_VARIANT == CACAO_OUTPUT_SMART
+#if UP_KIND == CACAO_OUTPUT_SMART
             value = float(smart_apply(q));
             /* depth from ((qx+1)/2, qy/2) ([quirk] BILATERAL-DEPTH-SHIFT kept; OOB -> 0) */
             depth = load_depth_or_zero(ivec2((q.x + 1) >> 1, c.y), cx + 2 * cy);
-#elif CACAO_VARIANT == CACAO_OUTPUT_NON_SMART
+#elif UP_KIND == CACAO_OUTPUT_NON_SMART
             /* 3x3 tent: bilinear reads at +-1/2 texel around the slice texel centre */
             vec2 cc = vec2(c) + 0.5;
             float sum = 0.0;

@@ -338,6 +338,9 @@ void main()
 #if CACAO_VARIANT == CACAO_COMPACT_HORIZON
         /* the background tiles keep the clear's view z and normal (what the prepare would store) */
         if (tiles[CACAO_TILE_CLASSES + i] != CACAO_TILE_CLASS_BACKGROUND) append(CACAO_LIST_PREPARE, g);
+#else
+        /* downsampled, the CPU forms without reuse: the upsample over the needed tiles */
+        if (CB.needed_list != 0 && touches_needed(g, g)) append(CACAO_LIST_PREPARE, g);
 #endif
     } else if (i < t + b) {
         i -= t;
@@ -363,7 +366,12 @@ void main()
     if (!group_of(group)) return;
     ivec2 p = texel_of(group);
 #if CACAO_VARIANT == CACAO_FILL_OUTPUT
-    if (in_rect(p, imageSize(output_image))) imageStore(output_image, p, vec4(1.0, 0.0, 0.0, 0.0));
+    int n = CB.output_tile_pixels / CACAO_TILE; /* output pixels per invocation, each way */
+    ivec2 p0 = group * CB.output_tile_pixels + ivec2(gl_LocalInvocationID.xy) * n;
+    ivec2 osize = imageSize(output_image);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x)
+            if (in_rect(p0 + ivec2(x, y), osize)) imageStore(output_image, p0 + ivec2(x, y), vec4(1.0, 0.0, 0.0, 0.0));
 #else
     if (in_rect(p, imageSize(ssao_image).xy))
         for (int layer = 0; layer < CB.slice_count; ++layer) imageStore(ssao_image, ivec3(p, layer), vec4(1.0, 1.0, 0.0, 0.0));
