@@ -242,19 +242,20 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * normals for background: clears of the whole image before the passes that write the needed
      * tiles (on lavapipe a clear of a 16-bit image costs a full frame of CACAO about 4%, a fill
      * over an empty list nothing: docs/tiles.md). */
-    PASS(FILL) = {"fill", {NULL, "horizon", "output", "view", "importance"}, 5, false, false, false,
+    PASS(FILL) = {"fill", {NULL, "horizon", "output", "view", "importance", "output_wide"}, 6, false, false, false,
                   {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE, 8,
                   {CONSTANTS,
-                   R(TILES, TILES, V(CACAO_FILL_SLICES) | V(CACAO_FILL_OUTPUT)),
+                   R(TILES, TILES, V(CACAO_FILL_SLICES) | V(CACAO_FILL_OUTPUT) | V(CACAO_FILL_OUTPUT_WIDE)),
                    W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),
                    W(HORIZON_AO_OUT, AO_RAW, V(CACAO_FILL_HORIZON)),
-                   W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT)),
+                   W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT) | V(CACAO_FILL_OUTPUT_WIDE)),
                    W(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_FILL_VIEW)),
                    W(VIEW_NORMALS, VIEW_NORMALS, V(CACAO_FILL_VIEW)),
                    W(IMPORTANCE_MAP_IMAGE, IMPORTANCE, V(CACAO_FILL_IMPORTANCE))},
                   /* the horizon estimators' own images, and CACAO's importance map before the CPU
                    * form of the Q3 base pass, are cleared (cacao_plan_step.clear) */
-                  .lists = {[CACAO_FILL_SLICES] = CACAO_LIST_FILL_SLICES, [CACAO_FILL_OUTPUT] = CACAO_LIST_FILL_SLICES}},
+                  .lists = {[CACAO_FILL_SLICES] = CACAO_LIST_FILL_SLICES, [CACAO_FILL_OUTPUT] = CACAO_LIST_FILL_SLICES,
+                            [CACAO_FILL_OUTPUT_WIDE] = CACAO_LIST_FILL_SLICES}},
     /* docs/tiles.md "Reusing the previous frame": the diff, one invocation per tile, compares the
      * caller's depth (and normals) with the copies the previous frame kept and updates them; the
      * prefix sums each row of tiles' changed flags (one invocation per row); the reach marks the

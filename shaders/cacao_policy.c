@@ -198,7 +198,7 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     /* Downsampled, the CPU forms without reuse: the upsample over the needed tiles, the output's
      * other tiles filled with 1 (with reuse it runs from a gate, over every tile) */
     const bool listed_upsample = c->downsampled && lists && !c->reuse;
-    if (listed_upsample) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT, 0, 0, 0);
+    if (listed_upsample) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT_WIDE, 0, 0, 0);
     cacaoi_step *s = push(out, &n, cacaoi_form_pass(c->downsampled ? CACAO_PASS_UPSAMPLE : CACAO_PASS_APPLY, c->gpu_forms),
                           c->downsampled ? cacaoi_qualities[c->quality].output_downsampled +
                                                (listed_upsample ? CACAO_UPSAMPLE_LISTED : 0)

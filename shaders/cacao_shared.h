@@ -113,6 +113,7 @@
 #define CACAO_FILL_OUTPUT 2
 #define CACAO_FILL_VIEW 3
 #define CACAO_FILL_IMPORTANCE 4 /* a clear of the importance map to 0 (the Q3 base pass over its list) */
+#define CACAO_FILL_OUTPUT_WIDE 5 /* the output's tiles of 32x32 pixels (CACAO downsampled): 4x4 per invocation */
 
 /* Reuse variants: compare the caller's depth (and normals) with the copy the previous frame kept,
  * per tile; sum the changed tiles along each row of tiles; mark the tiles to recompute. */
@@ -428,7 +429,6 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(FLOAT, background_z)              /* stored view z at or beyond which a texel is background */ \
     M(FLOAT, quiet_margin)              /* classification: fade argument below -margin is quiet */ \
     M(INT, tiles_all)                   /* 1: every tile active (no skipping: measurement, tests) */ \
-    M(INT, output_tile_pixels)          /* output pixels of a tile, each way (fill.output) */ \
     M(INT, needed_list)                 /* 1: CACAO's compact lists the needed tiles in CACAO_LIST_PREPARE */ \
     M(INT, active_blocks)               /* 1: compact lists the blocks holding an active tile (CACAO_LIST_BLOCKS) */ \
     M(INT, tiles_x)                                                                                \

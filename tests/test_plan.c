@@ -238,7 +238,7 @@ static void test_dispatch_sizes(void) {
      * fill of the output's other tiles */
     CHECK(strcmp(d.steps[d.step_count - 1].key_name, "upsample.smart_list.fp32") == 0);
     CHECK(d.steps[d.step_count - 1].list == CACAO_LIST_PREPARE && d.steps[d.step_count - 1].dispatch[2] == 1);
-    CHECK(d.steps[d.step_count - 2].key[0] == CACAO_PASS_FILL && d.steps[d.step_count - 2].key[1] == CACAO_FILL_OUTPUT &&
+    CHECK(d.steps[d.step_count - 2].key[0] == CACAO_PASS_FILL && d.steps[d.step_count - 2].key[1] == CACAO_FILL_OUTPUT_WIDE &&
           d.steps[d.step_count - 2].list == CACAO_LIST_FILL_SLICES);
     /* upsample: 2x2 full-res pixels per half-res position, 2x2 positions per thread, 8x8 threads:
      * a group is a tile (8x8 slice texels) */

@@ -510,8 +510,9 @@ CACAO_API cacao_result cacao_record(cacao_context *context, VkCommandBuffer comm
 /* ---- Tiles skipped (docs/tiles.md) ---------------------------------------------------------
  * Every estimator classifies tiles as active, faded (beyond fade_out_to) or background (far
  * plane, invalid depth). CACAO: tiles of 8x8 slice texels (16x16 pixels native, 32x32
- * downsampled); generate and blur run only where an active tile is near, and HIGHEST's Q3 base
- * pass only in the blocks of 2x2 tiles holding an active tile (blocks_*). GTAO and BITMASK:
+ * downsampled); generate and blur run only where an active tile is near (downsampled, the
+ * upsample too, in the CPU forms without reuse), and HIGHEST's Q3 base pass only in the blocks of
+ * 2x2 tiles holding an active tile (blocks_*). GTAO and BITMASK:
  * tiles of 8x8 pixels; the estimator and the denoise passes run only where an active tile is
  * near (generate_* counts them; blur_* is 0 of 0); downsampled, the estimator runs in the blocks
  * of 2x2 tiles holding an active tile (blocks_*) and the upsample and denoise passes where an

@@ -247,8 +247,6 @@ static void fill_tile_constants(const cacao_plan *plan, const projection_view *v
         if (plan->steps[i].list == CACAO_LIST_BLOCKS) c->active_blocks = 1;
         else if (plan->steps[i].list == CACAO_LIST_PREPARE && plan->settings.estimator == CACAO_ESTIMATOR_CACAO)
             c->needed_list = 1;
-    c->output_tile_pixels = plan->settings.estimator != CACAO_ESTIMATOR_CACAO ? CACAO_TILE
-                            : (int)(CACAO_TILE * (plan->settings.downsample ? 4 : 2));
     c->tiles_x = (int)plan->tiles_x;
     c->tiles_y = (int)plan->tiles_y;
     c->blur_groups_x = (int)plan->blur_groups_x;
