@@ -101,6 +101,44 @@ static void check_full(const cacao_tile_counts *c, const char *what) {
     CHECK(c->changed == c->tiles && c->recomputed == c->tiles);
 }
 
+/* A context with the settings at W x H (NULL on a failure, reported). */
+static cacao_context *reusing_context(vkdev *dev, const cacao_settings *s) {
+    cacao_context *ctx = NULL;
+    if (vkdev_context_create(dev, &ctx) != CACAO_SUCCESS || cacao_context_set_settings(ctx, s) != CACAO_SUCCESS ||
+        cacao_context_resize(ctx, W, H, NULL) != CACAO_SUCCESS) {
+        fprintf(stderr, "%s: cannot create the reusing context\n", config);
+        ++test_failures;
+        cacao_context_destroy(ctx);
+        return NULL;
+    }
+    return ctx;
+}
+
+/* One frame of f on the context, a full one: the reference's output. */
+static bool full_frame(vkdev *dev, cacao_context *ctx, const vkdev_frame *f, const float *ref, float *ao,
+                       cacao_tile_counts *c, const char *what) {
+    if (!step(dev, ctx, f, 1, ao, c)) return false;
+    check_same(ao, ref, what);
+    check_full(c, what);
+    return true;
+}
+
+/* f with force_full_frame: a full frame, the reference's output. */
+static bool forced_full_frame(vkdev *dev, cacao_context *ctx, vkdev_frame f, const float *ref, float *ao,
+                              cacao_tile_counts *c) {
+    f.force_full_frame = true;
+    return full_frame(dev, ctx, &f, ref, ao, c, "forced full frame");
+}
+
+/* `repeat` frames of f on the context, the last with nothing to run: the reference's output. */
+static bool nothing_to_do(vkdev *dev, cacao_context *ctx, const vkdev_frame *f, uint32_t repeat, const float *ref,
+                          float *ao, cacao_tile_counts *c, const char *what) {
+    if (!step(dev, ctx, f, repeat, ao, c)) return false;
+    check_same(ao, ref, what);
+    check_nothing_ran(c, what);
+    return true;
+}
+
 /* The sequence of the file's comment for one configuration. */
 static void sequence(vkdev *dev, const frames *fr, cacao_settings s, bool normals) {
     snprintf(config, sizeof config, "quality %d, %s, blur %d, normals %s, %s forms", (int)s.quality,
@@ -114,20 +152,9 @@ static void sequence(vkdev *dev, const frames *fr, cacao_settings s, bool normal
     cacao_context *ctx = NULL;
     cacao_tile_counts c;
     if (!reference(dev, s, &base, ref) || !reference(dev, s, &moved, ref_moved)) goto done;
-    if (vkdev_context_create(dev, &ctx) != CACAO_SUCCESS || cacao_context_set_settings(ctx, &s) != CACAO_SUCCESS ||
-        cacao_context_resize(ctx, W, H, NULL) != CACAO_SUCCESS) {
-        fprintf(stderr, "%s: cannot create the reusing context\n", config);
-        ++test_failures;
-        goto done;
-    }
-    /* first frame: full */
-    if (!step(dev, ctx, &base, 1, ao, &c)) goto done;
-    check_same(ao, ref, "first frame");
-    check_full(&c, "first frame");
+    if (!(ctx = reusing_context(dev, &s)) || !full_frame(dev, ctx, &base, ref, ao, &c, "first frame")) goto done;
     /* the same frame: nothing changed */
-    if (!step(dev, ctx, &base, 1, ao, &c)) goto done;
-    check_same(ao, ref, "unchanged frame");
-    check_nothing_ran(&c, "unchanged frame");
+    if (!nothing_to_do(dev, ctx, &base, 1, ref, ao, &c, "unchanged frame")) goto done;
     /* one sphere moved */
     if (!step(dev, ctx, &moved, 1, ao, &c)) goto done;
     check_same(ao, ref_moved, "a sphere moved");
@@ -157,9 +184,7 @@ static void sequence(vkdev *dev, const frames *fr, cacao_settings s, bool normal
     /* back to the first frame, then kept by the caller: the second run of two writes nothing */
     vkdev_frame keep = base;
     keep.output_holds_previous = true;
-    if (!step(dev, ctx, &keep, 2, ao, &c)) goto done;
-    check_same(ao, ref, "output kept by the caller");
-    check_nothing_ran(&c, "output kept by the caller");
+    if (!nothing_to_do(dev, ctx, &keep, 2, ref, ao, &c, "output kept by the caller")) goto done;
     /* the camera moved: another projection (a slightly wider field of view) */
     vkdev_frame camera = base;
     camera.projection[0] *= 0.99f;
@@ -180,12 +205,7 @@ static void sequence(vkdev *dev, const frames *fr, cacao_settings s, bool normal
         }
     }
     free(ref_camera);
-    /* forced */
-    vkdev_frame forced = base;
-    forced.force_full_frame = true;
-    if (!step(dev, ctx, &forced, 1, ao, &c)) goto done;
-    check_same(ao, ref, "forced full frame");
-    check_full(&c, "forced full frame");
+    forced_full_frame(dev, ctx, base, ref, ao, &c);
 done:
     cacao_context_destroy(ctx);
     free(ref);
@@ -218,20 +238,10 @@ static void horizon_sequence(vkdev *dev, const frames *fr, cacao_settings s, boo
     if (!reference(dev, s, &base, ref) || !reference(dev, s, &moved, ref_moved) || !reference(dev, s, &index, ref_index))
         goto done;
     CHECK(memcmp(ref, ref_index, n * sizeof(float)) != 0); /* the frame index matters */
-    if (vkdev_context_create(dev, &ctx) != CACAO_SUCCESS || cacao_context_set_settings(ctx, &s) != CACAO_SUCCESS ||
-        cacao_context_resize(ctx, W, H, NULL) != CACAO_SUCCESS) {
-        fprintf(stderr, "%s: cannot create the reusing context\n", config);
-        ++test_failures;
-        goto done;
-    }
-    if (!step(dev, ctx, &base, 1, ao, &c)) goto done;
-    check_same(ao, ref, "first frame");
-    check_full(&c, "first frame");
+    if (!(ctx = reusing_context(dev, &s)) || !full_frame(dev, ctx, &base, ref, ao, &c, "first frame")) goto done;
     /* unchanged, the output held from the run's second frame (the CPU forms: a full frame with no
      * diff before it, then one refreshing the copies): nothing runs */
-    if (!step(dev, ctx, &kept, 3, ao, &c)) goto done;
-    check_same(ao, ref, "unchanged, output kept");
-    check_nothing_ran(&c, "unchanged, output kept");
+    if (!nothing_to_do(dev, ctx, &kept, 3, ref, ao, &c, "unchanged, output kept")) goto done;
     /* unchanged, the output not held: the GPU forms run the last pass alone, the CPU forms a full frame */
     if (!step(dev, ctx, &base, 1, ao, &c)) goto done;
     check_same(ao, ref, "unchanged, output not kept");
@@ -246,22 +256,12 @@ static void horizon_sequence(vkdev *dev, const frames *fr, cacao_settings s, boo
                 c.tiles);
     CHECK(c.changed > 0 && c.changed < c.tiles / 8 && c.recomputed == c.tiles);
     /* back, then unchanged with the output held */
-    if (!step(dev, ctx, &kept, 3, ao, &c)) goto done;
-    check_same(ao, ref, "back, then unchanged");
-    check_nothing_ran(&c, "back, then unchanged");
+    if (!nothing_to_do(dev, ctx, &kept, 3, ref, ao, &c, "back, then unchanged")) goto done;
     /* another frame index: other constants, a full frame; then unchanged */
-    if (!step(dev, ctx, &index, 1, ao, &c)) goto done;
-    check_same(ao, ref_index, "another frame index");
-    check_full(&c, "another frame index");
+    if (!full_frame(dev, ctx, &index, ref_index, ao, &c, "another frame index")) goto done;
     index.output_holds_previous = true;
-    if (!step(dev, ctx, &index, 3, ao, &c)) goto done;
-    check_same(ao, ref_index, "another frame index, unchanged");
-    check_nothing_ran(&c, "another frame index, unchanged");
-    vkdev_frame forced = kept;
-    forced.force_full_frame = true;
-    if (!step(dev, ctx, &forced, 1, ao, &c)) goto done;
-    check_same(ao, ref, "forced full frame");
-    check_full(&c, "forced full frame");
+    if (!nothing_to_do(dev, ctx, &index, 3, ref_index, ao, &c, "another frame index, unchanged")) goto done;
+    forced_full_frame(dev, ctx, kept, ref, ao, &c);
 done:
     cacao_context_destroy(ctx);
     free(ref);
@@ -289,9 +289,7 @@ static void other_changes(vkdev *dev, const frames *fr) {
     nan_frame.depth = fr->nan_depth;
     if (!reference(dev, s, &nan_frame, ref) || !step(dev, ctx, &nan_frame, 1, ao, &c)) goto done;
     check_same(ao, ref, "NaN depth, first frame");
-    if (!step(dev, ctx, &nan_frame, 1, ao, &c)) goto done;
-    check_same(ao, ref, "NaN depth, unchanged");
-    check_nothing_ran(&c, "NaN depth, unchanged");
+    if (!nothing_to_do(dev, ctx, &nan_frame, 1, ref, ao, &c, "NaN depth, unchanged")) goto done;
     /* another radius: the constants differ, a full frame */
     s.radius = 0.8f;
     if (cacao_context_set_settings(ctx, &s) != CACAO_SUCCESS || cacao_context_resize(ctx, W, H, NULL) != CACAO_SUCCESS) {
