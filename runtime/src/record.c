@@ -134,10 +134,13 @@ static uint32_t gate_count(const cacao_plan *p) {
     return gates;
 }
 
-static VkDeviceSize gates_offset(const cacao_plan *p) {
-    return sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_GATES((VkDeviceSize)p->tiles_x * p->tiles_y,
-                                                             (VkDeviceSize)p->blur_groups_x * p->blur_groups_y);
-}
+/* The byte offset of a region of the plan's tile buffer: REGION one of cacao_shared.h's
+ * CACAO_TILE_*(tiles, blur_groups) macros. */
+#define TILE_REGION_OFFSET(p, REGION)                                                                  \
+    (sizeof(uint32_t) * (VkDeviceSize)REGION((VkDeviceSize)(p)->tiles_x * (p)->tiles_y,                \
+                                             (VkDeviceSize)(p)->blur_groups_x * (p)->blur_groups_y))
+
+static VkDeviceSize gates_offset(const cacao_plan *p) { return TILE_REGION_OFFSET(p, CACAO_TILE_GATES); }
 
 /* Reuse (docs/tiles.md "Reusing the previous frame"): how this frame uses the previous one, as
  * the per-frame constant reuse: 1 keep what did not change (the constants, so camera, settings
@@ -205,12 +208,8 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
              * classification marks this frame's needed tiles on top, and a tile needed only by the
              * last frame's is computed as well: quiet within a tile, it computes the 1 it would
              * have stored (the equality test_tiles checks against compute_all_tiles). */
-            const VkDeviceSize needed = sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_NEEDED(
-                                                               (VkDeviceSize)p->tiles_x * p->tiles_y,
-                                                               (VkDeviceSize)p->blur_groups_x * p->blur_groups_y),
-                               reuse = sizeof(uint32_t) * (VkDeviceSize)CACAO_TILE_CHANGED(
-                                                              (VkDeviceSize)p->tiles_x * p->tiles_y,
-                                                              (VkDeviceSize)p->blur_groups_x * p->blur_groups_y);
+            const VkDeviceSize needed = TILE_REGION_OFFSET(p, CACAO_TILE_NEEDED),
+                               reuse = TILE_REGION_OFFSET(p, CACAO_TILE_CHANGED);
             ctx->vk.CmdFillBuffer(cmd, ctx->buffers[CACAO_RES_TILES], lists, needed - lists, CACAO_TILE_NO_ENTRY);
             ctx->vk.CmdFillBuffer(cmd, ctx->buffers[CACAO_RES_TILES], reuse, gates - reuse, CACAO_TILE_NO_ENTRY);
         } else {

@@ -142,7 +142,8 @@ int group_work(ivec2 g)
 #else
 #if CACAO_PASS != CACAO_PASS_HORIZON_MAIN_GPU && CACAO_PASS != CACAO_PASS_HORIZON_DENOISE_GPU
     /* (the horizon estimators reuse all or nothing: a pass of theirs that runs computes its groups,
-     * the last one also on a frame with nothing changed, when the output is not held) */
+     * the last one also on a frame with nothing changed, when the output is not held and no reach
+     * pass marked anything) */
     if (!tile_recomputed(g)) return GROUP_KEEP;
 #endif
     bool needed = tiles[needed_base() + tile_index(g)] == 0u;
@@ -368,8 +369,8 @@ void main()
 #if CACAO_VARIANT == CACAO_FILL_OUTPUT
     if (in_rect(p, imageSize(output_image))) imageStore(output_image, p, vec4(1.0, 0.0, 0.0, 0.0));
 #elif CACAO_VARIANT == CACAO_FILL_OUTPUT_WIDE
-    /* a tile of 32x32 output pixels, 4x4 per invocation (a loop bounded by a constant of the
-     * frame made the horizon estimators' fill 1.6x slower on lavapipe: a variant of its own) */
+    /* a tile of 32x32 output pixels, 4x4 per invocation: compile-time counts, and the horizon
+     * estimators' fill keeps its one pixel per invocation */
     ivec2 p0 = group * (4 * CACAO_TILE) + 4 * ivec2(gl_LocalInvocationID.xy), osize = imageSize(output_image);
     [[unroll]] for (int y = 0; y < 4; ++y)
         [[unroll]] for (int x = 0; x < 4; ++x)
@@ -533,8 +534,9 @@ void main()
  * their lookup radius, which is largest at their least view z (the near limit only shrinks it),
  * plus reuse_margin texels (mips, edges, normals, blur, apply). t is recomputed when a changed
  * tile lies within that reach (a count over the rows' prefix sums, at most the image's tiles),
- * and at HIGHEST (whose adaptive pass depends on the whole frame's importance) when anything
- * changed; full frames record no reach pass (tile_recomputed). A recomputed tile marks the tiles
+ * and where reuse is all or nothing (HIGHEST, whose adaptive pass depends on the whole frame's
+ * importance, and the horizon estimators) every tile and blur group when anything changed;
+ * full frames record no reach pass (tile_recomputed). A recomputed tile marks the tiles
  * within one tile of it, and the blur groups touching those, for generate, the fills and the
  * blur (group_work, compact). With nothing changed, the gated steps' commands are zeroed: they
  * dispatch nothing. */
@@ -548,36 +550,40 @@ void main()
             for (int g = 0; g < CB.gate_count; ++g) tiles[TILE_REGION(CACAO_TILE_GATES) + uint(3 * g)] = 0u;
         return;
     }
+    if (CB.reuse_all_or_nothing != 0) {
+        /* every tile and blur group (there are no more groups than tiles): plain stores, where
+         * marking around each tile took nine atomics and more per tile */
+        uint i = tile_index(t);
+        tiles[recompute_base() + i] = 0u;
+        if (i < uint(CB.blur_groups_x * CB.blur_groups_y)) tiles[blur_recompute_base() + i] = 0u;
+        if (t == ivec2(0)) tiles[CACAO_TILE_COUNT_RECOMPUTE] = uint(CB.tiles_x * CB.tiles_y);
+        return;
+    }
     ivec2 last = ivec2(CB.tiles_x, CB.tiles_y) - 1;
-    bool recompute = CB.reuse_all_or_nothing != 0; /* HIGHEST (full frames record no reach pass) */
-    if (!recompute) {
-        float zmin = uintBitsToFloat(0x7f800000u);
-        for (int y = max(t.y - 2, 0); y <= min(t.y + 2, last.y); ++y)
-            for (int x = max(t.x - 2, 0); x <= min(t.x + 2, last.x); ++x)
-                zmin = min(zmin, uintBitsToFloat(tiles[TILE_REGION(CACAO_TILE_ZMIN) + tile_index(ivec2(x, y))]));
-        /* generate's radius in texels, lookup factor r near_mod / texel size, is largest at the
-         * least z: near_mod = sat(|p| near_limit_rec) 0.8 + 0.2 with |p| <= z near_k */
-        float texel = view_xy_scale(zmin) * abs(CB.ndc_to_view_mul.x) * CB.ssao_buffer_inverse_dimensions.x;
-        float near_mod = sat(zmin * CB.reuse_near_k * CB.effect_sampling_radius_near_limit_rec) * CACAO_NEAR_LIMIT_SCALE +
-                         CACAO_NEAR_LIMIT_BIAS;
-        float reach = CB.reuse_tap_reach * (CACAO_LOOKUP_RADIUS_FACTOR * CB.effect_radius * near_mod / texel) +
-                      float(CB.reuse_margin);
-        /* tiles t and c, d tiles apart (Chebyshev), are (d - 1) TILE + 1 texels apart at least */
-        float r = floor((reach - 1.0) / float(CACAO_TILE)) + 1.0;
-        /* a reach past the image's tiles counts them all (also inf and NaN: z 0) */
-        int k = r <= float(max(CB.tiles_x, CB.tiles_y)) ? int(r) : max(CB.tiles_x, CB.tiles_y);
-        uint sums = TILE_REGION(CACAO_TILE_ROW_SUM), count = 0u;
-        int x1 = min(t.x + k, last.x), x0 = t.x - k - 1;
-        for (int y = max(t.y - k, 0); y <= min(t.y + k, last.y); ++y) {
-            uint row = uint(y * CB.tiles_x);
-            count += tiles[sums + row + uint(x1)] - (x0 >= 0 ? tiles[sums + row + uint(x0)] : 0u);
-        }
-        recompute = count > 0u;
+    float zmin = uintBitsToFloat(0x7f800000u);
+    for (int y = max(t.y - 2, 0); y <= min(t.y + 2, last.y); ++y)
+        for (int x = max(t.x - 2, 0); x <= min(t.x + 2, last.x); ++x)
+            zmin = min(zmin, uintBitsToFloat(tiles[TILE_REGION(CACAO_TILE_ZMIN) + tile_index(ivec2(x, y))]));
+    /* generate's radius in texels, lookup factor r near_mod / texel size, is largest at the
+     * least z: near_mod = sat(|p| near_limit_rec) 0.8 + 0.2 with |p| <= z near_k */
+    float texel = view_xy_scale(zmin) * abs(CB.ndc_to_view_mul.x) * CB.ssao_buffer_inverse_dimensions.x;
+    float near_mod = sat(zmin * CB.reuse_near_k * CB.effect_sampling_radius_near_limit_rec) * CACAO_NEAR_LIMIT_SCALE +
+                     CACAO_NEAR_LIMIT_BIAS;
+    float reach = CB.reuse_tap_reach * (CACAO_LOOKUP_RADIUS_FACTOR * CB.effect_radius * near_mod / texel) +
+                  float(CB.reuse_margin);
+    /* tiles t and c, d tiles apart (Chebyshev), are (d - 1) TILE + 1 texels apart at least */
+    float r = floor((reach - 1.0) / float(CACAO_TILE)) + 1.0;
+    /* a reach past the image's tiles counts them all (also inf and NaN: z 0) */
+    int k = r <= float(max(CB.tiles_x, CB.tiles_y)) ? int(r) : max(CB.tiles_x, CB.tiles_y);
+    uint sums = TILE_REGION(CACAO_TILE_ROW_SUM), count = 0u;
+    int x1 = min(t.x + k, last.x), x0 = t.x - k - 1;
+    for (int y = max(t.y - k, 0); y <= min(t.y + k, last.y); ++y) {
+        uint row = uint(y * CB.tiles_x);
+        count += tiles[sums + row + uint(x1)] - (x0 >= 0 ? tiles[sums + row + uint(x0)] : 0u);
     }
-    if (recompute) {
-        atomicAdd(tiles[CACAO_TILE_COUNT_RECOMPUTE], 1u);
-        mark_around(t, recompute_base(), blur_recompute_base());
-    }
+    if (count == 0u) return;
+    atomicAdd(tiles[CACAO_TILE_COUNT_RECOMPUTE], 1u);
+    mark_around(t, recompute_base(), blur_recompute_base());
 }
 #endif
 #endif /* REUSE */
