@@ -208,10 +208,11 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     /* docs/tiles.md: classes (one invocation per tile), then the lists. CACAO classifies its
      * deinterleaved depths (variant 0 keeps the pass's name), the horizon estimators the caller's
      * depth before their prepare. */
-    PASS(CLASSIFY) = {"classify", {NULL, "horizon"}, 2, false, false, false, {CACAO_WG_CLASSIFY, CACAO_WG_CLASSIFY},
+    /* quiet: CACAO's CPU forms without reuse, first: whether the frame is quiet (docs/tiles.md) */
+    PASS(CLASSIFY) = {"classify", {NULL, "horizon", "quiet"}, 3, false, false, false, {CACAO_WG_CLASSIFY, CACAO_WG_CLASSIFY},
                       CACAOI_GRID_TILES, 4,
                       {CONSTANTS, R(DEPTHS, DEPTHS, V(CACAO_CLASSIFY_SLICES)),
-                       R(SRC_DEPTH, DEPTH_INPUT, V(CACAO_CLASSIFY_HORIZON)), W(TILES, TILES, ALL)}},
+                       R(SRC_DEPTH, DEPTH_INPUT, V(CACAO_CLASSIFY_HORIZON) | V(CACAO_CLASSIFY_QUIET)), W(TILES, TILES, ALL)}},
     PASS(COMPACT) = {"compact", {NULL, "horizon"}, 2, false, false, false, {CACAO_WG_COMPACT, 1}, CACAOI_GRID_COMPACT, 2,
                      {CONSTANTS, W(TILES, TILES, ALL)}},
     /* spec: prepare.md, normals from depth: PREPARE_DEPTHS's variants and the normals in one pass,
@@ -242,13 +243,13 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * normals for background: clears of the whole image before the passes that write the needed
      * tiles (on lavapipe a clear of a 16-bit image costs a full frame of CACAO about 4%, a fill
      * over an empty list nothing: docs/tiles.md). */
-    PASS(FILL) = {"fill", {NULL, "horizon", "output", "view", "importance", "output_wide"}, 6, false, false, false,
+    PASS(FILL) = {"fill", {NULL, "horizon", "output", "view", "importance", "output_wide", "output_quiet"}, 7, false, false, false,
                   {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE, 8,
                   {CONSTANTS,
                    R(TILES, TILES, V(CACAO_FILL_SLICES) | V(CACAO_FILL_OUTPUT) | V(CACAO_FILL_OUTPUT_WIDE)),
                    W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),
                    W(HORIZON_AO_OUT, AO_RAW, V(CACAO_FILL_HORIZON)),
-                   W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT) | V(CACAO_FILL_OUTPUT_WIDE)),
+                   W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT) | V(CACAO_FILL_OUTPUT_WIDE) | V(CACAO_FILL_OUTPUT_QUIET)),
                    W(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_FILL_VIEW)),
                    W(VIEW_NORMALS, VIEW_NORMALS, V(CACAO_FILL_VIEW)),
                    W(IMPORTANCE_MAP_IMAGE, IMPORTANCE, V(CACAO_FILL_IMPORTANCE))},

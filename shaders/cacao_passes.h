@@ -110,7 +110,7 @@ typedef struct cacaoi_pass_binding {
 /* Bindings a row lists (a binding per variant may share a slot) and variants a pass has. The
  * bindings one variant makes are at most CACAO_PLAN_MAX_BINDINGS (cacao.h): test_pass_table. */
 #define CACAOI_PASS_MAX_BINDINGS 12
-#define CACAOI_MAX_VARIANTS 6
+#define CACAOI_MAX_VARIANTS 7
 
 typedef struct cacaoi_pass_row {
     const char *name;                                /* key names: "generate" */

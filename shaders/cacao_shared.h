@@ -102,6 +102,10 @@
  * estimators' full-resolution view z (their "slice" is the image: a tile is 8x8 pixels). */
 #define CACAO_CLASSIFY_SLICES 0
 #define CACAO_CLASSIFY_HORIZON 1
+/* CACAO's CPU forms without reuse, first in the frame: whether any pixel of the caller's depth can
+ * make a texel that is not quiet (conservatively, from the raw depth); where none can, the frame
+ * is quiet: only the output's fill runs (docs/tiles.md "A quiet frame") */
+#define CACAO_CLASSIFY_QUIET 2
 
 /* Fill variants: AO 1 into the slices' AO (CACAO), into the horizon estimators' AO intermediate,
  * or into the caller's output (a horizon estimator's last pass writes it over the needed tiles);
@@ -114,6 +118,7 @@
 #define CACAO_FILL_VIEW 3
 #define CACAO_FILL_IMPORTANCE 4 /* a clear of the importance map to 0 (the Q3 base pass over its list) */
 #define CACAO_FILL_OUTPUT_WIDE 5 /* the output's tiles of 32x32 pixels (CACAO downsampled): 4x4 per invocation */
+#define CACAO_FILL_OUTPUT_QUIET 6 /* every tile's output pixels, a direct grid: a quiet frame's one pass */
 
 /* Reuse variants: compare the caller's depth (and normals) with the copy the previous frame kept,
  * per tile; sum the changed tiles along each row of tiles; mark the tiles to recompute. */
@@ -177,6 +182,7 @@
 #define CACAO_TILE_COUNT_BLUR_NEEDED 24  /* counted by the GPU forms' generate and blur as they run them */
 #define CACAO_TILE_COUNT_CHANGED 25      /* header, reuse: tiles whose depth (or normals) changed */
 #define CACAO_TILE_COUNT_RECOMPUTE 26    /* header, reuse: tiles whose output a change can reach */
+#define CACAO_TILE_NOT_QUIET 27          /* header: 1 once classify.quiet found a pixel that is not quiet */
 #define CACAO_TILE_CLASSES CACAO_TILE_HEADER /* first tile class */
 /* First entry of list 1..5 (tiles: tiles_x tiles_y): a tile's worth of entries each (a plan has
  * no more blur groups than tiles: cacao_plan_build checks); the uints of the whole buffer. */
@@ -194,7 +200,10 @@
 #define CACAO_TILE_BLUR_RECOMPUTE(tiles, blur_groups) (CACAO_TILE_RECOMPUTE(tiles, blur_groups) + (tiles))
 #define CACAO_TILE_GATES(tiles, blur_groups) (CACAO_TILE_BLUR_RECOMPUTE(tiles, blur_groups) + (blur_groups))
 #define CACAO_TILE_GATE_MAX 18           /* gate commands (cacao.h's CACAO_PLAN_MAX_STEPS) */
-#define CACAO_TILE_BUFFER_UINTS(tiles, blur_groups) (CACAO_TILE_GATES(tiles, blur_groups) + 3 * CACAO_TILE_GATE_MAX)
+/* After the gates: each gate's full grid x, which classify.quiet copies into a gate the host
+ * wrote with x 0 (a frame that is not quiet opens the gates) */
+#define CACAO_TILE_GATE_GRIDS(tiles, blur_groups) (CACAO_TILE_GATES(tiles, blur_groups) + 3 * CACAO_TILE_GATE_MAX)
+#define CACAO_TILE_BUFFER_UINTS(tiles, blur_groups) (CACAO_TILE_GATE_GRIDS(tiles, blur_groups) + CACAO_TILE_GATE_MAX)
 #define CACAO_TILE_NO_ENTRY 0xffffffffu  /* list slots past the last entry (the host fills them) */
 #define CACAO_TILE_CLASS_ACTIVE 0
 #define CACAO_TILE_CLASS_FADED 1
@@ -431,6 +440,10 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(INT, tiles_all)                   /* 1: every tile active (no skipping: measurement, tests) */ \
     M(INT, needed_list)                 /* 1: CACAO's compact lists the needed tiles in CACAO_LIST_PREPARE */ \
     M(INT, active_blocks)               /* 1: compact lists the blocks holding an active tile (CACAO_LIST_BLOCKS) */ \
+    M(INT, tile_pixels)                 /* output pixels per tile side (CACAO: 16 native, 32 downsampled;
+                                           the horizon estimators 8) */ \
+    M(INT, quiet_gate)                  /* classify.quiet: the gate of the quiet frame's fill (from 1), 0 none */ \
+    M(INT, quiet_zero_depth)            /* 1: the prepare reads depth 0 past the image's edge (classify.quiet) */ \
     M(INT, tiles_x)                                                                                \
     M(INT, tiles_y)                                                                                \
     M(INT, blur_groups_x)               /* the blur's full grid and output texels per group */     \
@@ -441,11 +454,10 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(INT, slice_height)                                                                           \
     M(INT, reuse)                       /* 0 off; 1 reuse the previous frame's; 2, 3 full frames (record.c) */ \
     M(INT, reuse_all_or_nothing)        /* 1: any change recomputes every tile (HIGHEST's counter) */ \
-    M(INT, reuse_tile_pixels)           /* output pixels per tile side (16 native, 32 downsampled) */ \
     M(INT, reuse_margin)                /* slice texels a change reaches besides the taps */      \
     M(FLOAT, reuse_tap_reach)           /* farthest tap offset, in units of the lookup radius */   \
     M(FLOAT, reuse_near_k)              /* largest |view position| / z over the image's pixels */  \
-    M(INT, gate_count)                  /* gate commands a frame with no change zeroes */
+    M(INT, gate_count)                  /* gate commands a frame with no change zeroes, or classify.quiet opens */
 
 #ifdef CACAO_GLSL
 #ifdef CACAO_BIND_CONSTANTS /* every pass row binds it (glsl/bindings.glsl declares the other slots) */

@@ -109,6 +109,8 @@ static void test_subset(void) {
                               /* the horizon estimators' tiles (docs/tiles.md; their own images are
                                * cleared, not filled: no key) */
                               "classify.horizon", "compact.horizon", "fill.output",
+                              /* CACAO's CPU forms without reuse: the quiet frame's test and fill */
+                              "classify.quiet", "fill.output_quiet",
                               /* the GPU forms: a build embeds both, the device chooses (in key order) */
                               "blur_gpu.1.fp32", "blur_gpu.2.fp32", "blur_gpu.3.fp32", "blur_gpu.4.fp32",
                               "blur_gpu.5.fp32", "blur_gpu.6.fp32", "blur_gpu.7.fp32", "blur_gpu.8.fp32",

@@ -15,6 +15,10 @@ static const cacao_plan_image *find_image(const cacao_plan *p, cacao_resource r)
     return NULL;
 }
 
+/* The steps CACAO's CPU forms without reuse begin with: classify.quiet and the quiet fill
+ * (docs/tiles.md "A quiet frame"). */
+#define Q 2u
+
 static cacao_plan build(cacao_settings s, uint32_t w, uint32_t h) {
     cacao_plan p;
     char err[256];
@@ -29,16 +33,19 @@ static void test_steps_per_quality(void) {
      * importance map first, and the Q3 base pass over compact's blocks. */
 #define TILES "classify", "compact"
 #define FILLS "fill", "fill"
+    /* first the quiet frame's test and its fill (docs/tiles.md "A quiet frame") */
+#define QUIET "classify.quiet", "fill.output_quiet"
     const char *expected[5][16] = {
-        {"prepare.half.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.half.fp32"},
-        {"prepare.full.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.nonsmart.fp32"},
-        {"prepare.full.native", TILES, "generate.q1", FILLS, "blur.2.fp32", "apply.smart.fp32"},
-        {"prepare.mips.native", TILES, "generate.q2", FILLS, "blur.2.fp32", "apply.smart.fp32"},
-        {"clear.importance", "prepare.mips.native", TILES, "generate.q3base", "importance_a", "importance_b",
+        {QUIET, "prepare.half.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.half.fp32"},
+        {QUIET, "prepare.full.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.nonsmart.fp32"},
+        {QUIET, "prepare.full.native", TILES, "generate.q1", FILLS, "blur.2.fp32", "apply.smart.fp32"},
+        {QUIET, "prepare.mips.native", TILES, "generate.q2", FILLS, "blur.2.fp32", "apply.smart.fp32"},
+        {"clear.importance", QUIET, "prepare.mips.native", TILES, "generate.q3base", "importance_a", "importance_b",
          "generate.q3", FILLS, "blur.2.fp32", "apply.smart.fp32"},
     };
 #undef TILES
 #undef FILLS
+#undef QUIET
     for (int q = 0; q < 5; ++q) {
         cacao_plan p = build((cacao_settings){.quality = (cacao_quality)(q + 1), .generate_normals = true}, 1920, 1080);
         uint32_t n = 0;
@@ -50,8 +57,9 @@ static void test_steps_per_quality(void) {
             CHECK(strcmp(p.steps[i].key_name, expected[q][i]) == 0);
         }
         /* No barrier before the first step, between the two fills (the AO and the blur's output),
-         * nor after the clear of the importance map (the prepare does not touch it); every other
-         * step depends on the one before. The clear is a transfer: it writes the map and
+         * after the clear of the importance map (classify.quiet does not touch it), nor between
+         * the quiet fill and the prepare (the output and the depths); every other step depends on
+         * the one before. The clear is a transfer: it writes the map and
          * dispatches nothing; the barriers before the base pass order it (they are global). */
         CHECK(!p.steps[0].barrier_before);
         CHECK(p.steps[0].clear == (q == 4));
@@ -59,7 +67,7 @@ static void test_steps_per_quality(void) {
             const bool clear = strcmp(p.steps[i].key_name, "clear.importance") == 0;
             CHECK(p.steps[i].clear == clear && (!clear || i == 0));
             const bool independent = (strcmp(p.steps[i].key_name, "fill") == 0 && !strcmp(p.steps[i - 1].key_name, "fill")) ||
-                                     p.steps[i - 1].clear;
+                                     p.steps[i - 1].clear || !strcmp(p.steps[i - 1].key_name, "fill.output_quiet");
             CHECK(p.steps[i].barrier_before == !independent);
             if (clear)
                 CHECK(p.steps[i].binding_count == 1 && p.steps[i].bindings[0].resource == CACAO_RES_IMPORTANCE &&
@@ -151,16 +159,16 @@ static void test_only_needed_resources(void) {
     CHECK(find_image(&low, CACAO_RES_IMPORTANCE) == NULL); /* importance only at HIGHEST */
     CHECK(!low.uses_load_counter);
     CHECK(find_image(&low, CACAO_RES_DEPTHS)->mips == 1); /* LOW reads no mips */
-    CHECK(low.steps[0].dispatch[0] == 60 && low.steps[0].dispatch[1] == 34); /* prepare.full: 2x2 texels each */
-    CHECK(low.step_count == 6); /* prepare, classify, compact, generate, fill, apply: no blur, one fill */
+    CHECK(low.steps[Q].dispatch[0] == 60 && low.steps[Q].dispatch[1] == 34); /* prepare.full: 2x2 texels each */
+    CHECK(low.step_count == Q + 6); /* (the quiet steps) prepare, classify, compact, generate, fill, apply: no blur, one fill */
     /* apply.nonsmart: a 2x2 quad of output pixels per invocation, one per slice texel: ceil(960/8), ceil(540/8) */
-    CHECK(strcmp(low.steps[5].key_name, "apply.nonsmart.fp32") == 0);
-    CHECK(low.steps[5].dispatch[0] == 120 && low.steps[5].dispatch[1] == 68);
+    CHECK(strcmp(low.steps[Q + 5].key_name, "apply.nonsmart.fp32") == 0);
+    CHECK(low.steps[Q + 5].dispatch[0] == 120 && low.steps[Q + 5].dispatch[1] == 68);
     cacao_plan given_low = build((cacao_settings){.quality = CACAO_QUALITY_LOW, .blur_pass_count = CACAO_BLUR_NONE}, 1920, 1080);
-    CHECK(given_low.step_count == 7); /* normals given: prepare_depths and prepare_normals */
-    CHECK(strcmp(given_low.steps[0].key_name, "prepare_depths.full.native") == 0);
-    CHECK(given_low.steps[0].dispatch[0] == 120 && given_low.steps[0].dispatch[1] == 68); /* a texel each */
-    CHECK(strcmp(given_low.steps[1].key_name, "prepare_normals.native") == 0);
+    CHECK(given_low.step_count == Q + 7); /* normals given: prepare_depths and prepare_normals */
+    CHECK(strcmp(given_low.steps[Q].key_name, "prepare_depths.full.native") == 0);
+    CHECK(given_low.steps[Q].dispatch[0] == 120 && given_low.steps[Q].dispatch[1] == 68); /* a texel each */
+    CHECK(strcmp(given_low.steps[Q + 1].key_name, "prepare_normals.native") == 0);
     cacao_plan odd = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true}, 1001, 37);
     CHECK(strcmp(odd.steps[odd.step_count - 1].key_name, "apply.half.fp32") == 0);
     /* odd sizes: still one quad per slice texel (501x19): ceil(501/8), ceil(19/8) */
@@ -169,16 +177,16 @@ static void test_only_needed_resources(void) {
     CHECK(find_image(&medium, CACAO_RES_DEPTHS)->mips == 1); /* MEDIUM never reads mips: none built */
     cacao_plan lowest = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true}, 1920, 1080);
     CHECK(lowest.slice_count == 2 && find_image(&lowest, CACAO_RES_DEPTHS)->layers == 2);
-    CHECK(strcmp(lowest.steps[3].key_name, "generate.q0") == 0 && lowest.steps[3].dispatch[2] == 2); /* two slices */
-    CHECK(lowest.steps[3].list == CACAO_LIST_GENERATE); /* indirect, over the needed tiles */
+    CHECK(strcmp(lowest.steps[Q + 3].key_name, "generate.q0") == 0 && lowest.steps[Q + 3].dispatch[2] == 2); /* two slices */
+    CHECK(lowest.steps[Q + 3].list == CACAO_LIST_GENERATE); /* indirect, over the needed tiles */
     /* 1920x1080: slices 960x540, tiles of 8x8 texels 120x68; a blur group of 2 passes outputs
      * 64x32 texels (8x8 threads of 8x4 each, from their footprints). */
     CHECK(lowest.tiles_x == 120 && lowest.tiles_y == 68 && lowest.blur_groups_x == 15 && lowest.blur_groups_y == 17);
     /* header, classes, five lists of a tile each (generate, fill, the horizon estimators' prepare
      * list, the blur list, the blocks), then a needed flag per tile and per blur group; reuse's
      * four words per tile (changed, least z, row sum, recompute) and a recompute flag per blur
-     * group; 18 gate commands */
-    CHECK(lowest.tile_buffer_bytes == 4u * (32u + 11u * 120u * 68u + 2u * 15u * 17u + 3u * 18u));
+     * group; 18 gate commands and each one's grid x */
+    CHECK(lowest.tile_buffer_bytes == 4u * (32u + 11u * 120u * 68u + 2u * 15u * 17u + 3u * 18u + 18u));
     cacao_plan highest =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .generate_normals = true}, 1920, 1080);
     const cacao_plan_image *depths = find_image(&highest, CACAO_RES_DEPTHS);
@@ -201,36 +209,36 @@ static void test_dispatch_sizes(void) {
     /* prepare.mips (depths and normals from depth): 2x2 texels per invocation, ceil(960/16),
      * ceil(540/16) */
     CHECK(strcmp(p.steps[0].key_name, "clear.importance") == 0 && p.steps[0].clear); /* first: no dispatch */
-    CHECK(strcmp(p.steps[1].key_name, "prepare.mips.native") == 0);
-    CHECK(p.steps[1].dispatch[0] == 60 && p.steps[1].dispatch[1] == 34);
+    CHECK(strcmp(p.steps[Q + 1].key_name, "prepare.mips.native") == 0);
+    CHECK(p.steps[Q + 1].dispatch[0] == 60 && p.steps[Q + 1].dispatch[1] == 34);
     cacao_plan given = build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST}, 1920, 1080);
-    CHECK(strcmp(given.steps[1].key_name, "prepare_depths.mips.native") == 0);
-    CHECK(given.steps[1].dispatch[0] == 60 && given.steps[1].dispatch[1] == 34); /* mips: 2x2 texels each */
-    CHECK(strcmp(given.steps[2].key_name, "prepare_normals.native") == 0);
-    CHECK(given.steps[2].dispatch[0] == 120 && given.steps[2].dispatch[1] == 68); /* the caller's: one each */
+    CHECK(strcmp(given.steps[Q + 1].key_name, "prepare_depths.mips.native") == 0);
+    CHECK(given.steps[Q + 1].dispatch[0] == 60 && given.steps[Q + 1].dispatch[1] == 34); /* mips: 2x2 texels each */
+    CHECK(strcmp(given.steps[Q + 2].key_name, "prepare_normals.native") == 0);
+    CHECK(given.steps[Q + 2].dispatch[0] == 120 && given.steps[Q + 2].dispatch[1] == 68); /* the caller's: one each */
     CHECK(given.step_count == p.step_count + 1);
-    CHECK(p.steps[2].dispatch[0] == 15 && p.steps[2].dispatch[1] == 9);     /* classify: 120x68 tiles / 8x8 */
-    CHECK(p.steps[3].dispatch[0] == (120 * 68 + 15 * 17 + 63) / 64);         /* compact: tiles + blur groups */
+    CHECK(p.steps[Q + 2].dispatch[0] == 15 && p.steps[Q + 2].dispatch[1] == 9);     /* classify: 120x68 tiles / 8x8 */
+    CHECK(p.steps[Q + 3].dispatch[0] == (120 * 68 + 15 * 17 + 63) / 64);         /* compact: tiles + blur groups */
     /* the Q3 base pass (the map cleared first): an invocation per importance texel (its 2x2
      * slice texels in all 4 layers), at most ceil(480/8), ceil(270/8) groups (a group is a block of
      * 2x2 tiles), one z; the importance passes the same grid */
-    CHECK(strcmp(p.steps[4].key_name, "generate.q3base") == 0);
-    CHECK(p.steps[4].dispatch[0] == 60 && p.steps[4].dispatch[1] == 34 && p.steps[4].dispatch[2] == 1);
-    CHECK(p.steps[5].dispatch[0] == 60 && p.steps[5].dispatch[1] == 34);    /* importance_a */
-    CHECK(p.steps[7].dispatch[2] == 4);                                     /* generate.q3: 4 slices */
-    CHECK(p.steps[10].dispatch[0] == 15 && p.steps[10].dispatch[1] == 17);  /* blur, N = 2: ceil(960/64), ceil(540/32) */
+    CHECK(strcmp(p.steps[Q + 4].key_name, "generate.q3base") == 0);
+    CHECK(p.steps[Q + 4].dispatch[0] == 60 && p.steps[Q + 4].dispatch[1] == 34 && p.steps[Q + 4].dispatch[2] == 1);
+    CHECK(p.steps[Q + 5].dispatch[0] == 60 && p.steps[Q + 5].dispatch[1] == 34);    /* importance_a */
+    CHECK(p.steps[Q + 7].dispatch[2] == 4);                                     /* generate.q3: 4 slices */
+    CHECK(p.steps[Q + 10].dispatch[0] == 15 && p.steps[Q + 10].dispatch[1] == 17);  /* blur, N = 2: ceil(960/64), ceil(540/32) */
     /* past CACAO_BLUR_REGISTER_PASSES a group computes its 64x32 padded tile less N each side */
     cacao_plan b8 = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .blur_pass_count = 8, .generate_normals = true},
                           1920, 1080);
     CHECK(strcmp(b8.steps[b8.step_count - 2].key_name, "blur.8.fp32") == 0);
     CHECK(b8.blur_groups_x == 20 && b8.blur_groups_y == 34); /* ceil(960/48), ceil(540/16) */
-    CHECK(p.steps[11].dispatch[0] == 60 && p.steps[11].dispatch[1] == 34); /* smart apply: 4x4 per invocation */
+    CHECK(p.steps[Q + 11].dispatch[0] == 60 && p.steps[Q + 11].dispatch[1] == 34); /* smart apply: 4x4 per invocation */
     /* the list's indirect command takes its z from these: generate and the blur cover the four
      * layers with z, a fill group loops over them, a base pass group covers its block's layers */
-    CHECK(p.steps[8].dispatch[2] == 1 && p.steps[9].dispatch[2] == 1 && p.steps[10].dispatch[2] == 4);
-    CHECK(p.steps[7].list == CACAO_LIST_GENERATE && p.steps[8].list == CACAO_LIST_FILL_SLICES &&
-          p.steps[10].list == CACAO_LIST_BLUR && p.steps[11].list == CACAO_LIST_NONE &&
-          p.steps[4].list == CACAO_LIST_BLOCKS && p.steps[5].list == CACAO_LIST_NONE);
+    CHECK(p.steps[Q + 8].dispatch[2] == 1 && p.steps[Q + 9].dispatch[2] == 1 && p.steps[Q + 10].dispatch[2] == 4);
+    CHECK(p.steps[Q + 7].list == CACAO_LIST_GENERATE && p.steps[Q + 8].list == CACAO_LIST_FILL_SLICES &&
+          p.steps[Q + 10].list == CACAO_LIST_BLUR && p.steps[Q + 11].list == CACAO_LIST_NONE &&
+          p.steps[Q + 4].list == CACAO_LIST_BLOCKS && p.steps[Q + 5].list == CACAO_LIST_NONE);
     cacao_plan d =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true, .generate_normals = true}, 1001, 37);
     CHECK(d.slice_width == 251 && d.slice_height == 10); /* ceil(ceil(1001/2)/2), ceil(ceil(37/2)/2) */
@@ -299,10 +307,10 @@ static void test_small_mip_chain(void) {
         CHECK(depths->width == cases[c].atlas_w && depths->height == cases[c].atlas_h);
         CHECK(depths->bytes == (uint64_t)cases[c].atlas_w * cases[c].atlas_h * 4 * 2);
         /* prepare.mips: constants, source depth, the atlas, the normals */
-        const cacao_plan_binding *b = &p.steps[0].bindings[2];
-        CHECK(p.steps[0].binding_count == 4 && b->binding == CACAO_BINDING_DEPTHS_IMAGE && b->write &&
+        const cacao_plan_binding *b = &p.steps[Q].bindings[2];
+        CHECK(p.steps[Q].binding_count == 4 && b->binding == CACAO_BINDING_DEPTHS_IMAGE && b->write &&
               b->resource == CACAO_RES_DEPTHS);
-        CHECK(p.steps[0].bindings[3].binding == CACAO_BINDING_NORMALS_IMAGE && p.steps[0].bindings[3].write);
+        CHECK(p.steps[Q].bindings[3].binding == CACAO_BINDING_NORMALS_IMAGE && p.steps[Q].bindings[3].write);
     }
 }
 
@@ -332,7 +340,9 @@ static void test_reuse(void) {
             cacao_settings plain_settings = s;
             plain_settings.reuse_unchanged = false;
             cacao_plan plain = build(plain_settings, 1920, 1080);
-            CHECK(p.step_count == plain.step_count + 3);
+            /* (without reuse the CPU forms test for a quiet frame first: classify.quiet and its fill) */
+            const uint32_t quiet = gpu ? 0 : Q;
+            CHECK(p.step_count == plain.step_count + 3 - quiet);
             const char *diff = gpu ? (normals ? "reuse.diff_normals_gpu" : "reuse.diff_gpu")
                                    : (normals ? "reuse.diff_normals" : "reuse.diff");
             CHECK(strcmp(p.steps[0].key_name, diff) == 0);
@@ -345,7 +355,7 @@ static void test_reuse(void) {
                     CHECK(st->gate == 0);
                     continue;
                 }
-                CHECK(strcmp(st->key_name, plain.steps[i - 3].key_name) == 0); /* the same steps after them */
+                CHECK(strcmp(st->key_name, plain.steps[i - 3 + quiet].key_name) == 0); /* the same steps after them */
                 if (st->list) {
                     CHECK(st->gate == 0); /* a list's command is compact's */
                 } else {
@@ -382,8 +392,49 @@ static void test_reuse(void) {
         }
 }
 
+/* A quiet frame (docs/tiles.md): CACAO's CPU forms without reuse test for it first; every direct
+ * step after that test runs from a gate, numbered in step order from the quiet fill's (1), which
+ * covers every tile's output pixels; the list steps have none. With reuse (whose gates are the
+ * reach pass's) and in the GPU forms there is no such test. */
+static void test_quiet_frame(void) {
+    for (int ds = 0; ds < 2; ++ds)
+        for (int q = 1; q <= 5; ++q) {
+            const cacao_settings s = {.quality = (cacao_quality)q, .downsample = ds, .generate_normals = true};
+            const cacao_plan p = build(s, 1001, 37);
+            const uint32_t first = q == 5 ? 1 : 0; /* after HIGHEST's clear */
+            CHECK(strcmp(p.steps[first].key_name, "classify.quiet") == 0 && p.steps[first].gate == 0);
+            CHECK(p.steps[first].dispatch[0] == (p.tiles_x + 7) / 8 && p.steps[first].dispatch[1] == (p.tiles_y + 7) / 8);
+            const cacao_plan_step *fill = &p.steps[first + 1];
+            CHECK(strcmp(fill->key_name, "fill.output_quiet") == 0 && fill->gate == 1 && fill->list == CACAO_LIST_NONE);
+            CHECK(fill->dispatch[0] == p.tiles_x && fill->dispatch[1] == p.tiles_y && fill->dispatch[2] == 1);
+            /* a tile's output pixels, each way (16 native, 32 downsampled), cover the output */
+            CHECK(p.tiles_x * (ds ? 32u : 16u) >= 1001 && p.tiles_y * (ds ? 32u : 16u) >= 37);
+            CHECK(fill->binding_count == 2 && fill->bindings[1].resource == CACAO_RES_OUTPUT && fill->bindings[1].write);
+            uint32_t gate = 1;
+            for (uint32_t i = first + 2; i < p.step_count; ++i) {
+                const cacao_plan_step *st = &p.steps[i];
+                if (st->list || st->clear) {
+                    CHECK(st->gate == 0);
+                } else {
+                    CHECK(st->gate == gate + 1);
+                    gate = st->gate;
+                }
+            }
+            CHECK(p.steps[p.step_count - 1].gate == gate || p.steps[p.step_count - 1].list); /* apply, or the listed upsample */
+            for (int other = 0; other < 2; ++other) {
+                cacao_settings o = s;
+                if (other) o.reuse_unchanged = true;
+                else o.shader_forms = CACAO_SHADER_FORMS_GPU;
+                const cacao_plan op = build(o, 1001, 37);
+                for (uint32_t i = 0; i < op.step_count; ++i)
+                    CHECK(strcmp(op.steps[i].key_name, "classify.quiet") != 0 && strcmp(op.steps[i].key_name, "fill.output_quiet") != 0);
+            }
+        }
+}
+
 int main(void) {
     test_steps_per_quality();
+    test_quiet_frame();
     test_reuse();
     test_gpu_forms_skip_in_shader();
     test_horizon_clears();

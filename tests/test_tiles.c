@@ -73,7 +73,11 @@ static bool same_as_all_tiles(vkdev *dev, cacao_settings s, const vkdev_frame *f
                     (int)s.quality, s.downsample ? "downsampled" : "native", s.blur_pass_count,
                     forms == CACAO_SHADER_FORMS_GPU ? "GPU" : "CPU", differ);
         CHECK(differ == 0);
-        CHECK(on->active + on->faded + on->background == on->tiles);
+        /* a quiet frame classifies nothing (docs/tiles.md "A quiet frame"): the CPU forms of CACAO
+         * without reuse only; never with compute_all_tiles */
+        const bool can_be_quiet = s.estimator <= CACAO_ESTIMATOR_CACAO && forms == CACAO_SHADER_FORMS_CPU && !s.reuse_unchanged;
+        CHECK(!off.quiet && (can_be_quiet || !on->quiet));
+        CHECK(on->active + on->faded + on->background == (on->quiet ? 0 : on->tiles));
         CHECK(on->generate_run >= on->active && on->generate_run <= on->tiles); /* active tiles and a margin */
         CHECK(off.active == off.tiles && off.generate_run == off.tiles && off.blur_run == off.blur_total);
         CHECK(on->generate_total == on->tiles && on->blur_run <= on->blur_total);
@@ -141,7 +145,9 @@ static void test_all_background(vkdev *dev, const scene_buffers *sb) {
                 size_t not_one = 0;
                 for (size_t i = 0; i < n; ++i) not_one += ao[i] != 1.0f;
                 CHECK(not_one == 0);
-                CHECK(c.background == c.tiles && c.generate_run == 0 && c.blur_run == 0 && c.blocks_run == 0);
+                /* the CPU forms find the frame quiet before classifying it (below) */
+                CHECK(c.quiet == (forms == CACAO_SHADER_FORMS_CPU));
+                CHECK(c.background == (c.quiet ? 0 : c.tiles) && c.generate_run == 0 && c.blur_run == 0 && c.blocks_run == 0);
                 cacao_tile_counts unused;
                 same_as_all_tiles(dev, s, &f, "all background", &unused);
             }
@@ -257,6 +263,64 @@ static void test_mostly_faded(vkdev *dev, uint32_t width, uint32_t height, bool 
     scene_buffers_free(&sb);
 }
 
+/* A quiet frame (docs/tiles.md "A quiet frame"): in the CPU forms classify.quiet first tests the
+ * caller's depth, and where no pixel can make a texel that is not quiet, only the output's fill
+ * runs. Each case against compute_all_tiles (the same output, every tile computed), and whether it
+ * is quiet, at an even size and at an odd one (where the prepare reads depth 0 past the image's
+ * right and bottom edges: with standard Z the near plane, a texel that is not quiet unless the
+ * fade-out takes it), standard and reverse Z:
+ *   - sky (the far plane) everywhere: quiet, except odd and standard Z;
+ *   - the scene with a fade-out nearer than its nearest pixel (and than the near plane): quiet;
+ *   - sky with NaN holes: quiet as sky;
+ *   - sky with one pixel of the scene: not quiet (the classification finds its tile active). */
+static void test_quiet_frames(vkdev *dev) {
+    static const struct {
+        cacao_quality quality;
+        bool downsample;
+    } configs[] = {{CACAO_QUALITY_LOWEST, false}, {CACAO_QUALITY_HIGH, false}, {CACAO_QUALITY_HIGHEST, false},
+                   {CACAO_QUALITY_HIGH, true}};
+    for (int odd = 0; odd < 2; ++odd) {
+        const cacao_scene scene = cacao_default_scene(256 - odd, 144 - odd);
+        scene_buffers sb;
+        scene_buffers_render(&scene, &sb);
+        const size_t n = (size_t)sb.width * sb.height;
+        float *depth = malloc(n * sizeof(float)), *ao = malloc(n * sizeof(float));
+        for (int rev = 0; rev < 2; ++rev)
+            for (int kind = 0; kind < 4; ++kind) {
+                const float *scene_depth = rev ? sb.depth_reversed : sb.depth;
+                const float far = rev ? 0.0f : 1.0f;
+                size_t one = n;  /* the pixel of the scene that kind 3 keeps: the middle's, not sky */
+                for (size_t i = n / 2; i < n && one == n; ++i)
+                    if (sb.depth[i] < 1.0f) one = i;
+                CHECK(one < n);
+                for (size_t i = 0; i < n; ++i)
+                    depth[i] = kind == 1 ? scene_depth[i] : kind == 2 && i % 7 == 0 ? NAN : kind == 3 && i == one ? scene_depth[i] : far;
+                vkdev_frame f = scene_frame(&sb, rev != 0, false);
+                f.depth = depth;
+                const bool expect = kind == 3 ? false : kind == 1 ? true : !(odd && !rev);
+                for (size_t k = 0; k < sizeof configs / sizeof configs[0]; ++k) {
+                    cacao_settings s = {.quality = configs[k].quality, .downsample = configs[k].downsample,
+                                        .generate_normals = true, .fade_out_from = 1e6f, .fade_out_to = 2e6f};
+                    if (kind == 1) s.fade_out_from = 0.5e-3f, s.fade_out_to = 1e-3f; /* before the near plane */
+                    cacao_tile_counts c;
+                    if (!same_as_all_tiles(dev, s, &f, "quiet frame", &c) || !run_counts(dev, &s, &f, ao, &c)) continue;
+                    size_t not_one = 0;
+                    for (size_t i = 0; i < n; ++i) not_one += ao[i] != 1.0f;
+                    if (c.quiet != expect)
+                        fprintf(stderr, "quiet frame: case %d, %s, %s Z, quality %d, %s: quiet %d, expected %d\n", kind,
+                                odd ? "odd" : "even", rev ? "reverse" : "standard", (int)s.quality,
+                                s.downsample ? "downsampled" : "native", c.quiet, expect);
+                    CHECK(c.quiet == expect);
+                    CHECK(c.quiet ? not_one == 0 && c.generate_run == 0 : c.active + c.faded + c.background == c.tiles);
+                    if (kind == 3) CHECK(c.active > 0); /* (a lone pixel occludes nothing: its AO is 1 too) */
+                }
+            }
+        free(depth);
+        free(ao);
+        scene_buffers_free(&sb);
+    }
+}
+
 static void test_nan_depth(vkdev *dev, const scene_buffers *sb) {
     const size_t n = (size_t)sb->width * sb->height;
     float *holes = malloc(n * sizeof(float));
@@ -346,6 +410,7 @@ int main(void) {
     test_mostly_faded(&dev, 512, 288, true);
     test_nan_depth(&dev, &sb);
     test_faded_layer(&dev, &sb, &scene.camera);
+    test_quiet_frames(&dev);
     /* the GPU forms: the same cases (lavapipe runs both sides of their skip, slowly: the
      * downsampled frame once, with the CPU forms); mostly faded at 512x288, where the GPU blur's
      * larger groups (up to 64x48 texels) leave some away from every active tile */

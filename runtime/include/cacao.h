@@ -303,9 +303,12 @@ typedef struct cacao_plan_step {
                                    pass computes keep (docs/tiles.md); no pipeline, dispatch 0 0 0 */
     uint32_t binding_count;
     cacao_plan_binding bindings[CACAO_PLAN_MAX_BINDINGS];
-    uint8_t gate;               /* reuse_unchanged: 0 none; else a direct step dispatched indirectly
-                                   from gate command gate - 1, which a frame with nothing changed
-                                   zeroes (the full grid otherwise) */
+    uint8_t gate;               /* 0 none; else a direct step dispatched indirectly from gate
+                                   command gate - 1: with reuse_unchanged, the full grid, which a
+                                   frame with nothing changed zeroes; in the CPU forms without
+                                   reuse (the steps after classify.quiet), 0, which a frame that is
+                                   not quiet opens to the full grid, and the quiet fill's the full
+                                   grid, which such a frame closes (docs/tiles.md "A quiet frame") */
     bool barrier_before;        /* a barrier precedes this step (compute, and transfer for clears) */
     uint32_t barrier_resources; /* bit mask of cacao_resource the barrier orders */
 } cacao_plan_step;
@@ -535,6 +538,12 @@ typedef struct cacao_tile_counts {
                                                     downsampled estimator); the GPU form of the Q3
                                                     base pass: its active tiles, of all tiles; 0 of
                                                     0 where neither runs (docs/tiles.md) */
+    bool quiet;                                  /* the frame was quiet: no pixel of the depth can
+                                                    make AO other than 1 (background, or beyond the
+                                                    fade-out), so only the output's fill ran and no
+                                                    tile was classified (the counts above are 0).
+                                                    The CPU forms without reuse (docs/tiles.md
+                                                    "A quiet frame"); false elsewhere */
 } cacao_tile_counts;
 
 #define CACAO_TILE_COUNTS_BYTES 128

@@ -247,6 +247,19 @@ static void fill_tile_constants(const cacao_plan *plan, const projection_view *v
         if (plan->steps[i].list == CACAO_LIST_BLOCKS) c->active_blocks = 1;
         else if (plan->steps[i].list == CACAO_LIST_PREPARE && plan->settings.estimator == CACAO_ESTIMATOR_CACAO)
             c->needed_list = 1;
+    c->tile_pixels = plan->settings.estimator != CACAO_ESTIMATOR_CACAO ? CACAO_TILE
+                                                                        : (int)(CACAO_TILE * (plan->settings.downsample ? 4 : 2));
+    /* A plan that can find its frame quiet (classify.quiet first: docs/tiles.md "A quiet frame"):
+     * every direct step after that pass runs from a gate, the quiet frame's fill from the last
+     * one. The prepare reads depth 0 past the image's edge where its slice texels cover more than
+     * the image: the test takes that depth too. */
+    for (uint32_t i = 0; i < plan->step_count; ++i) {
+        const cacao_plan_step *st = &plan->steps[i];
+        if (st->key[0] == CACAO_PASS_FILL && st->key[1] == CACAO_FILL_OUTPUT_QUIET) c->quiet_gate = st->gate;
+        if (st->gate > c->gate_count) c->gate_count = st->gate;
+    }
+    const uint32_t scale = plan->settings.downsample ? 4 : 2;
+    c->quiet_zero_depth = plan->slice_width * scale > plan->width || plan->slice_height * scale > plan->height;
     c->tiles_x = (int)plan->tiles_x;
     c->tiles_y = (int)plan->tiles_y;
     c->blur_groups_x = (int)plan->blur_groups_x;
@@ -273,7 +286,6 @@ static void fill_reuse_constants(const cacao_plan *plan, cacao_constants *c) {
         /* the horizon estimators: any change recomputes the whole frame (no reach bound); their
          * tiles are 8x8 pixels, native and downsampled */
         c->reuse_all_or_nothing = 1;
-        c->reuse_tile_pixels = CACAO_TILE;
         return;
     }
     float longest = 0.0f, scale = 0.0f;
@@ -290,7 +302,6 @@ static void fill_reuse_constants(const cacao_plan *plan, cacao_constants *c) {
     const bool mips = plan->settings.quality >= CACAO_QUALITY_HIGH; /* Q2 and Q3 read the depth mips */
     c->reuse_margin = (mips ? 8 : 0) + 1 + 2 + blur + 2 + 1;
     c->reuse_all_or_nothing = plan->settings.quality == CACAO_QUALITY_HIGHEST ? 1 : 0;
-    c->reuse_tile_pixels = (int)(CACAO_TILE * (plan->settings.downsample ? 4 : 2));
     /* the near limit scales the radius by sat(|p| near_limit_rec) 0.8 + 0.2, and |p| <= z near_k,
      * near_k the length of (ndc_to_view xy, 1) at the image's farthest corner */
     const float ax = fmaxf(fabsf(c->ndc_to_view_add.x), fabsf(c->ndc_to_view_mul.x + c->ndc_to_view_add.x));

@@ -226,6 +226,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
 
     plan_builder b = {plan, 0, 0};
     unsigned gates = 0;
+    bool quiet = false;
     for (size_t i = 0; i < count; ++i) {
         cacao_plan_step *st = &plan->steps[plan->step_count++];
         const cacao_key *key = &steps[i].key;
@@ -243,6 +244,10 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
              * frame with nothing changed zeroes it); gates are numbered in step order, so
              * apply's, the last step's, is the last */
             if (config.reuse && !st->list && key->pass != CACAO_PASS_REUSE) st->gate = (uint8_t)++gates;
+            /* a plan that can find its frame quiet: every direct step after classify.quiet, the
+             * quiet fill's gate open by default, the others' closed (docs/tiles.md "A quiet frame") */
+            if (quiet && !st->list) st->gate = (uint8_t)++gates;
+            if (key->pass == CACAO_PASS_CLASSIFY && key->variant == CACAO_CLASSIFY_QUIET) quiet = true;
         }
         for (size_t j = 0; j < binding_count[i]; ++j) {
             const cacaoi_pass_binding *b = &bindings[i][j];

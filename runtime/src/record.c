@@ -215,14 +215,24 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
         } else {
             ctx->vk.CmdFillBuffer(cmd, ctx->buffers[CACAO_RES_TILES], lists, gates - lists, CACAO_TILE_NO_ENTRY);
         }
-        /* reuse: each gated step's full grid (the reach pass zeroes x when nothing changed) */
-        uint32_t commands[3 * CACAO_TILE_GATE_MAX];
-        for (uint32_t i = 0; i < p->step_count; ++i)
-            if (p->steps[i].gate)
-                memcpy(&commands[3 * (p->steps[i].gate - 1)], p->steps[i].dispatch, sizeof p->steps[i].dispatch);
+        /* reuse: each gated step's full grid (the reach pass zeroes x when nothing changed). A plan
+         * that can find its frame quiet: the quiet fill's full grid, the others' with x 0 and
+         * their x among the grids, which classify.quiet copies in on a frame that is not quiet
+         * (docs/tiles.md "A quiet frame") */
+        uint32_t commands[3 * CACAO_TILE_GATE_MAX], grids[CACAO_TILE_GATE_MAX];
+        for (uint32_t i = 0; i < p->step_count; ++i) {
+            const cacao_plan_step *st = &p->steps[i];
+            if (!st->gate) continue;
+            memcpy(&commands[3 * (st->gate - 1)], st->dispatch, sizeof st->dispatch);
+            grids[st->gate - 1] = st->dispatch[0];
+            if (constants->quiet_gate && st->gate != constants->quiet_gate) commands[3 * (st->gate - 1)] = 0;
+        }
         const uint32_t count = gate_count(p);
         if (count)
             ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], gates, sizeof(uint32_t) * 3 * count, commands);
+        if (count && constants->quiet_gate)
+            ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], TILE_REGION_OFFSET(p, CACAO_TILE_GATE_GRIDS),
+                                    sizeof(uint32_t) * count, grids);
     }
     const VkMemoryBarrier memory = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
@@ -422,6 +432,9 @@ cacao_result cacao_tile_counts_decode(const cacao_context *ctx, const void *byte
         .changed = h[CACAO_TILE_COUNT_CHANGED],
         .recomputed = h[CACAO_TILE_COUNT_RECOMPUTE],
     };
+    for (uint32_t i = 0; i < p->step_count; ++i) /* a plan that can find its frame quiet (docs/tiles.md) */
+        if (p->steps[i].key[0] == CACAO_PASS_CLASSIFY && p->steps[i].key[1] == CACAO_CLASSIFY_QUIET)
+            out->quiet = h[CACAO_TILE_NOT_QUIET] == 0;
     for (uint32_t i = 0; i < p->step_count; ++i) { /* a step over compact's blocks, or the GPU form's base pass */
         const cacao_plan_step *st = &p->steps[i];
         if (st->list == CACAO_LIST_BLOCKS) {

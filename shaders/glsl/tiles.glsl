@@ -37,8 +37,8 @@ bool group_of(out ivec2 g)
 #define CACAO_CLASSIFIES_DEPTH ((CACAO_PASS == CACAO_PASS_CLASSIFY && CACAO_VARIANT == CACAO_CLASSIFY_HORIZON) || \
                                 CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU)
 
-#if CACAO_CLASSIFIES || CACAO_PASS == CACAO_PASS_COMPACT || CACAO_PASS == CACAO_PASS_FILL || \
-    CACAO_PASS == CACAO_PASS_REUSE || CACAO_SKIPS_BY_CLASS || CACAO_READS_CLASSES
+#if (CACAO_CLASSIFIES || CACAO_PASS == CACAO_PASS_COMPACT || CACAO_PASS == CACAO_PASS_FILL || \
+     CACAO_PASS == CACAO_PASS_REUSE || CACAO_SKIPS_BY_CLASS || CACAO_READS_CLASSES) && defined(CACAO_BIND_TILES)
 /* Tile t's index in the per-tile regions of the tile buffer (cacao_shared.h), and where its class is. */
 uint tile_index(ivec2 t) { return uint(t.y * CB.tiles_x + t.x); }
 uint class_index(ivec2 t) { return uint(CACAO_TILE_CLASSES) + tile_index(t); }
@@ -272,6 +272,46 @@ uint tile_flags(ivec2 t)
     }
     return flags;
 }
+#elif CACAO_VARIANT == CACAO_CLASSIFY_QUIET
+/* docs/tiles.md "A quiet frame": whether raw depth d can give a texel that is not quiet, by the
+ * rules of slice_z_flags, which classify applies to the R16F view z the prepare stores. The
+ * prepare's z is view_z(d) rounded to half: within 2^-11 of it, relative (an absolute 2^-25 below
+ * half's normal range), and this pass's view_z may differ from the prepare's by ulps; so z is
+ * widened by 2^-10 both ways (and 1e-7), and a texel is called quiet only if every z in that range
+ * is background, or faded by twice the margin (the fade argument is linear in z: its ends decide).
+ * A NaN or infinite z, or one well past CACAO_MAX_VIEW_Z, is that value in the prepare (view_z),
+ * background; a negative z too, but the ulps of a z near 0 could give the prepare a small positive
+ * one: called active (only depths outside the projection's range have it). */
+bool may_be_active(float d)
+{
+    float z = (CB.depth_unpack.x + CB.depth_unpack_d.x * d) / (CB.depth_unpack.y + CB.depth_unpack_d.y * d);
+    if (isnan(z) || isinf(z) || z >= CACAO_MAX_VIEW_Z * (1.0 + 1.0 / 1024.0)) return false;
+    if (z < 0.0) return true;
+    float lo = z * (1.0 - 1.0 / 1024.0) - 1.0e-7, hi = z * (1.0 + 1.0 / 1024.0) + 1.0e-7;
+    if (lo >= CB.background_z) return false;
+    float m = CB.depth_precision_offset_mod * CB.effect_fade_out_mul;
+    return !(lo * m + CB.effect_fade_out_add < -2.0 * CB.quiet_margin &&
+             hi * m + CB.effect_fade_out_add < -2.0 * CB.quiet_margin);
+}
+
+/* Any pixel of tile t's output pixels (CB.tile_pixels each way) that may make a texel active:
+ * a scan that stops at the first. Gathers of 2x2 pixels; past the image's edge the sampler
+ * clamps to pixels of the image, which the prepare reads there too (or depth 0: quiet_zero_depth). */
+bool tile_may_be_active(ivec2 t)
+{
+    ivec2 size = textureSize(src_depth, 0);
+    vec2 inv_size = 1.0 / vec2(size);
+    ivec2 p0 = t * CB.tile_pixels;
+    bool found = false;
+    for (int y = 0; y < CB.tile_pixels && !found; y += 2) {
+        for (int x = 0; x < CB.tile_pixels && !found; x += 2) {
+            ivec2 p = min(p0 + ivec2(x, y), size - 1);
+            vec4 d = textureGather(src_depth, vec2(p + 1) * inv_size, 0);
+            found = may_be_active(d.x) || may_be_active(d.y) || may_be_active(d.z) || may_be_active(d.w);
+        }
+    }
+    return found;
+}
 #else
 /* A tile is quiet only where every layer is: each layer is scanned until a texel that is not
  * quiet (a scan that stopped at the first layer with a texel that is not background called a tile
@@ -299,12 +339,30 @@ uint tile_flags(ivec2 t)
 }
 #endif
 
+#if CACAO_VARIANT == CACAO_CLASSIFY_QUIET
+/* The host wrote every gate but the quiet fill's with x 0 and the quiet fill's with its grid. The
+ * first invocation to find a pixel that may be active (compute_all_tiles: every one) opens the
+ * gates (each one's grid from CACAO_TILE_GATE_GRIDS) and closes the quiet fill's; the others only
+ * find the flag set. A frame where none finds one runs the quiet fill alone. */
+void main()
+{
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    if (!in_rect(t, ivec2(CB.tiles_x, CB.tiles_y))) return;
+    bool found = CB.tiles_all != 0 || tile_may_be_active(t) || (t == ivec2(0) && CB.quiet_zero_depth != 0 && may_be_active(0.0));
+    if (found && atomicExchange(tiles[CACAO_TILE_NOT_QUIET], 1u) == 0u) {
+        uint gates = TILE_REGION(CACAO_TILE_GATES), grids = TILE_REGION(CACAO_TILE_GATE_GRIDS);
+        for (int g = 0; g < CB.gate_count; ++g)
+            tiles[gates + uint(3 * g)] = g + 1 == CB.quiet_gate ? 0u : tiles[grids + uint(g)];
+    }
+}
+#else
 void main()
 {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
     if (!in_rect(t, ivec2(CB.tiles_x, CB.tiles_y))) return;
     store_tile_class(t, tile_flags(t));
 }
+#endif
 #endif /* CLASSIFY */
 
 /* ---- compact ---- */
@@ -368,6 +426,14 @@ void main()
     ivec2 p = texel_of(group);
 #if CACAO_VARIANT == CACAO_FILL_OUTPUT
     if (in_rect(p, imageSize(output_image))) imageStore(output_image, p, vec4(1.0, 0.0, 0.0, 0.0));
+#elif CACAO_VARIANT == CACAO_FILL_OUTPUT_QUIET
+    /* a direct grid of every tile: its tile_pixels x tile_pixels output pixels (docs/tiles.md
+     * "A quiet frame": the frame's one pass) */
+    int n = CB.tile_pixels / CACAO_TILE;
+    ivec2 p0 = group * CB.tile_pixels + n * ivec2(gl_LocalInvocationID.xy), osize = imageSize(output_image);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x)
+            if (in_rect(p0 + ivec2(x, y), osize)) imageStore(output_image, p0 + ivec2(x, y), vec4(1.0, 0.0, 0.0, 0.0));
 #elif CACAO_VARIANT == CACAO_FILL_OUTPUT_WIDE
     /* a tile of 32x32 output pixels, 4x4 per invocation: compile-time counts, and the horizon
      * estimators' fill keeps its one pixel per invocation */
@@ -450,7 +516,7 @@ void main()
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
     if (!in_rect(t, ivec2(CB.tiles_x, CB.tiles_y))) return;
     ivec2 size = textureSize(src_depth, 0);
-    int n = CB.reuse_tile_pixels;
+    int n = CB.tile_pixels;
     ivec2 p0 = t * n, p1 = min(p0 + n, size);
     vec2 inv_size = 1.0 / vec2(size);
     bool changed = false;
@@ -496,9 +562,9 @@ void main()
     /* the tiles of the group's pixels: one (CACAO: 16 or 32 pixels a side), or 2x2 (the horizon
      * estimators' tiles of 8) */
     ivec2 first = ivec2(gl_WorkGroupID.xy) * 16;
-    ivec2 t0 = first / CB.reuse_tile_pixels, t1 = min((first + 15) / CB.reuse_tile_pixels, ivec2(CB.tiles_x, CB.tiles_y) - 1);
+    ivec2 t0 = first / CB.tile_pixels, t1 = min((first + 15) / CB.tile_pixels, ivec2(CB.tiles_x, CB.tiles_y) - 1);
     float zmin = least_view_z(key_value(group_dmin), key_value(group_dmax));
-    /* unrolled (at most 2x2 tiles: reuse_tile_pixels is 8 or more): a GPU compiler knows the count */
+    /* unrolled (at most 2x2 tiles: tile_pixels is 8 or more): a GPU compiler knows the count */
     [[unroll]] for (int dy = 0; dy < 2; ++dy)
         [[unroll]] for (int dx = 0; dx < 2; ++dx) {
             if (t0.x + dx > t1.x || t0.y + dy > t1.y) continue;

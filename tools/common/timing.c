@@ -74,6 +74,7 @@ void cacao_tile_counts_print(FILE *out, const cacao_tile_counts *c) {
         fprintf(out, ", %u of %u %s (%.1f%%)", c->blocks_total - c->blocks_run, c->blocks_total,
                 c->blocks_total == c->tiles ? "tiles of the Q3 base pass" : "blocks of 2x2 tiles",
                 share(c->blocks_total - c->blocks_run, c->blocks_total));
+    if (c->quiet) fprintf(out, "; a quiet frame (no pixel can be occluded): no tile classified, only the output's fill ran");
     fprintf(out, "\n");
 }
 
@@ -92,6 +93,7 @@ void cacao_tile_counts_add_json(cJSON *object, const cacao_tile_counts *c) {
     cJSON_AddNumberToObject(o, "blur_total", c->blur_total);
     cJSON_AddNumberToObject(o, "blocks_run", c->blocks_run); /* 0 of 0 where no step runs over blocks */
     cJSON_AddNumberToObject(o, "blocks_total", c->blocks_total);
+    cJSON_AddBoolToObject(o, "quiet", c->quiet); /* docs/tiles.md "A quiet frame" */
 }
 
 void cacao_timings_add_json(cJSON *object, const cacao_plan *plan, const cacao_timings *t) {
