@@ -312,7 +312,10 @@ static void test_quiet_frames(vkdev *dev) {
                                 s.downsample ? "downsampled" : "native", c.quiet, expect);
                     CHECK(c.quiet == expect);
                     CHECK(c.quiet ? not_one == 0 && c.generate_run == 0 : c.active + c.faded + c.background == c.tiles);
-                    if (kind == 3) CHECK(c.active > 0); /* (a lone pixel occludes nothing: its AO is 1 too) */
+                    /* the classification finds the pixel's tile active where every pixel makes a
+                     * texel (native, above LOWEST, whose two slices read half the pixels; the
+                     * downsampled ones a quarter): the quiet test looks at every pixel */
+                    if (kind == 3 && !s.downsample && s.quality != CACAO_QUALITY_LOWEST) CHECK(c.active > 0);
                 }
             }
         free(depth);

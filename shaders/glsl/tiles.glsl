@@ -347,7 +347,9 @@ uint tile_flags(ivec2 t)
 void main()
 {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
-    if (!in_rect(t, ivec2(CB.tiles_x, CB.tiles_y))) return;
+    /* once a group found one (on most frames the first), the others need not look: a load costs
+     * lavapipe less than the scan's first gather */
+    if (!in_rect(t, ivec2(CB.tiles_x, CB.tiles_y)) || tiles[CACAO_TILE_NOT_QUIET] != 0u) return;
     bool found = CB.tiles_all != 0 || tile_may_be_active(t) || (t == ivec2(0) && CB.quiet_zero_depth != 0 && may_be_active(0.0));
     if (found && atomicExchange(tiles[CACAO_TILE_NOT_QUIET], 1u) == 0u) {
         uint gates = TILE_REGION(CACAO_TILE_GATES), grids = TILE_REGION(CACAO_TILE_GATE_GRIDS);
