@@ -153,8 +153,12 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                             /* the mips variant reduces a 2x2 quad per invocation in registers */
                             .quad = {[CACAO_DEPTHS_MIPS] = 2}},
     /* spec: prepare.md "Normals from input normals" (from depth: PREPARE). */
-    PASS(PREPARE_NORMALS) = {"prepare_normals", {NULL}, 1, true, false, false, WG(PREPARE), CACAOI_GRID_SLICE, 3,
-                             {CONSTANTS, R(SRC_NORMALS, NORMALS_INPUT, ALL), W(NORMALS_IMAGE, NORMALS, ALL)}},
+    /* list: the CPU forms without reuse, after compact, over the tiles whose normals generate
+     * reads (docs/tiles.md); a group is a tile */
+    PASS(PREPARE_NORMALS) = {"prepare_normals", {NULL, "list"}, 2, true, false, false, WG(PREPARE), CACAOI_GRID_SLICE, 4,
+                             {CONSTANTS, R(SRC_NORMALS, NORMALS_INPUT, ALL), W(NORMALS_IMAGE, NORMALS, ALL),
+                              R(TILES, TILES, V(CACAO_PREPARE_NORMALS_LISTED))},
+                             .lists = {[CACAO_PREPARE_NORMALS_LISTED] = CACAO_LIST_NORMALS}},
     /* spec: generate.md. Q3 (HIGHEST's adaptive pass) adds its base, the importance map and the
      * load counter; the Q3 base pass writes the second AO buffer and the importance map
      * (importance.md "GenerateImportanceMap"): an invocation per importance texel computes the

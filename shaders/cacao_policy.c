@@ -174,9 +174,12 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
         push(out, &n, CACAO_PASS_REUSE, CACAO_REUSE_PREFIX, 0, 0, 0);
         push(out, &n, CACAO_PASS_REUSE, CACAO_REUSE_REACH, 0, 0, 0);
     }
+    /* the caller's normals in the CPU forms without reuse: transformed after compact, over the
+     * tiles whose normals generate reads (docs/tiles.md) */
+    const bool listed_normals = c->normals_from_input && !c->gpu_forms && !c->reuse;
     if (c->normals_from_input) {
         push(out, &n, CACAO_PASS_PREPARE_DEPTHS, depths, ds, 0, 0);
-        push(out, &n, CACAO_PASS_PREPARE_NORMALS, 0, ds, 0, 0);
+        if (!listed_normals) push(out, &n, CACAO_PASS_PREPARE_NORMALS, 0, ds, 0, 0);
     } else {
         push(out, &n, cacaoi_form_pass(CACAO_PASS_PREPARE, c->gpu_forms), depths, ds, 0, 0); /* depths and normals in one pass */
     }
@@ -186,6 +189,7 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
      * no fills (docs/tiles.md). */
     const bool lists = !c->gpu_forms;
     if (lists) push(out, &n, CACAO_PASS_COMPACT, 0, 0, 0, 0);
+    if (listed_normals) push(out, &n, CACAO_PASS_PREPARE_NORMALS, CACAO_PREPARE_NORMALS_LISTED, ds, 0, 0);
     if (c->quality == CACAO_KEY_QUALITY_HIGHEST) {
         /* The base pass computes the tiles holding an active texel; the others' importance is 0:
          * the CPU form runs over compact's list of blocks (the map was cleared first), the GPU

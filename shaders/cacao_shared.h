@@ -76,6 +76,9 @@
  * forms without reuse, the output's other tiles filled with 1 (docs/tiles.md) */
 #define CACAO_UPSAMPLE_LISTED 3 /* + CACAO_OUTPUT_*: smart_list, nonsmart_list, half_list */
 
+/* prepare_normals' variants: every texel, or the tiles of CACAO_LIST_NORMALS (a group each) */
+#define CACAO_PREPARE_NORMALS_LISTED 1
+
 /* Slice-prepare variants: normals reconstructed from depth, or transformed from the input. */
 #define CACAO_HORIZON_NORMALS_DEPTH 0
 #define CACAO_HORIZON_NORMALS_INPUT 1
@@ -171,20 +174,24 @@
 #define CACAO_LIST_BLOCKS 5              /* blocks of 2x2 tiles holding an active tile (CPU forms): a group
                                             each of CACAO's Q3 base pass (HIGHEST) and of the horizon
                                             estimators' downsampled estimator; the rest is quiet */
-#define CACAO_LIST_COUNT 5
+#define CACAO_LIST_NORMALS 6             /* tiles within two tiles of an active one (CACAO's CPU forms
+                                            without reuse, the caller's normals): prepare_normals.list,
+                                            a group each; generate reads the normals of the needed
+                                            tiles and one texel around them */
+#define CACAO_LIST_COUNT 6
 #define CACAO_TILE_HEADER 32
 #define CACAO_TILE_COMMAND(list) (3 * ((list) - 1)) /* header: list's indirect command (x, y, z) */
-#define CACAO_TILE_COUNT_ACTIVE 15       /* header: tiles per class */
-#define CACAO_TILE_COUNT_FADED 16
-#define CACAO_TILE_COUNT_BACKGROUND 17
+#define CACAO_TILE_COUNT_ACTIVE 18       /* header: tiles per class */
+#define CACAO_TILE_COUNT_FADED 19
+#define CACAO_TILE_COUNT_BACKGROUND 20
 #define CACAO_TILE_LIST_ENTRIES(list) (CACAO_TILE_COUNT_BACKGROUND + (list)) /* header: entries in list */
-#define CACAO_TILE_COUNT_NEEDED 23       /* header: needed tiles and blur groups (classify's flags), */
-#define CACAO_TILE_COUNT_BLUR_NEEDED 24  /* counted by the GPU forms' generate and blur as they run them */
-#define CACAO_TILE_COUNT_CHANGED 25      /* header, reuse: tiles whose depth (or normals) changed */
-#define CACAO_TILE_COUNT_RECOMPUTE 26    /* header, reuse: tiles whose output a change can reach */
-#define CACAO_TILE_NOT_QUIET 27          /* header: 1 once classify.quiet found a pixel that is not quiet */
+#define CACAO_TILE_COUNT_NEEDED 27       /* header: needed tiles and blur groups (classify's flags), */
+#define CACAO_TILE_COUNT_BLUR_NEEDED 28  /* counted by the GPU forms' generate and blur as they run them */
+#define CACAO_TILE_COUNT_CHANGED 29      /* header, reuse: tiles whose depth (or normals) changed */
+#define CACAO_TILE_COUNT_RECOMPUTE 30    /* header, reuse: tiles whose output a change can reach */
+#define CACAO_TILE_NOT_QUIET 31          /* header: 1 once classify.quiet found a pixel that is not quiet */
 #define CACAO_TILE_CLASSES CACAO_TILE_HEADER /* first tile class */
-/* First entry of list 1..5 (tiles: tiles_x tiles_y): a tile's worth of entries each (a plan has
+/* First entry of list 1..6 (tiles: tiles_x tiles_y): a tile's worth of entries each (a plan has
  * no more blur groups than tiles: cacao_plan_build checks); the uints of the whole buffer. */
 #define CACAO_TILE_LIST_BASE(list, tiles) (CACAO_TILE_CLASSES + (tiles) * (list))
 /* After the lists: one flag per tile and one per blur group, 0 where the lists would hold it
@@ -440,6 +447,7 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(INT, tiles_all)                   /* 1: every tile active (no skipping: measurement, tests) */ \
     M(INT, needed_list)                 /* 1: CACAO's compact lists the needed tiles in CACAO_LIST_PREPARE */ \
     M(INT, active_blocks)               /* 1: compact lists the blocks holding an active tile (CACAO_LIST_BLOCKS) */ \
+    M(INT, normals_list)                /* 1: compact lists the tiles whose normals generate reads (CACAO_LIST_NORMALS) */ \
     M(INT, tile_pixels)                 /* output pixels per tile side (CACAO: 16 native, 32 downsampled;
                                            the horizon estimators 8) */ \
     M(INT, quiet_gate)                  /* classify.quiet: the gate of the quiet frame's fill (from 1), 0 none */ \

@@ -245,6 +245,7 @@ static void fill_tile_constants(const cacao_plan *plan, const projection_view *v
     c->tiles_all = plan->settings.compute_all_tiles ? 1 : 0;
     for (uint32_t i = 0; i < plan->step_count; ++i) /* a step over compact's blocks, or the needed tiles (docs/tiles.md) */
         if (plan->steps[i].list == CACAO_LIST_BLOCKS) c->active_blocks = 1;
+        else if (plan->steps[i].list == CACAO_LIST_NORMALS) c->normals_list = 1;
         else if (plan->steps[i].list == CACAO_LIST_PREPARE && plan->settings.estimator == CACAO_ESTIMATOR_CACAO)
             c->needed_list = 1;
     c->tile_pixels = plan->settings.estimator != CACAO_ESTIMATOR_CACAO ? CACAO_TILE

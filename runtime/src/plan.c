@@ -311,7 +311,8 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
                                                  "unneeded tiles",
                                                  "tiles not all background",
                                                  "blur groups at needed tiles",
-                                                 "blocks of 2x2 tiles with an active tile"};
+                                                 "blocks of 2x2 tiles with an active tile",
+                                                 "tiles within two of an active tile"};
         _Static_assert(sizeof list_names / sizeof list_names[0] == CACAO_LIST_COUNT + 1, "a name per list");
         if (s->clear) {
             fprintf(out, "  %2u %-34s clear (no dispatch)            writes", i, s->key_name);

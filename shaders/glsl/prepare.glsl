@@ -367,7 +367,9 @@ layout(local_size_x = CACAO_WG_PREPARE_X, local_size_y = CACAO_WG_PREPARE_Y) in;
 
 void main()
 {
-    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 g; /* listed: a tile (the group's 8x8 texels) */
+    if (!group_of(g)) return;
+    ivec2 t = texel_of(g);
     if (!in_rect(t, imageSize(normals_image).xy)) return; /* no side effects: no LDS, no atomics */
     /* Transform the caller's normal; not renormalised ([quirk] NORMALS-NOT-NORMALIZED). */
     ivec2 size = textureSize(src_normals, 0);

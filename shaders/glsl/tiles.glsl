@@ -402,6 +402,10 @@ void main()
 #else
         /* downsampled, the CPU forms without reuse: the upsample over the needed tiles */
         if (CB.needed_list != 0 && touches_needed(g, g)) append(CACAO_LIST_PREPARE, g);
+        /* the caller's normals, the CPU forms without reuse: generate reads the normals of the
+         * needed tiles and of one texel around them, the Q3 base pass those of its blocks and one
+         * texel around: the tiles within two of an active tile */
+        if (CB.normals_list != 0 && touches_needed(g - 1, g + 1)) append(CACAO_LIST_NORMALS, g);
 #endif
     } else if (i < t + b) {
         i -= t;

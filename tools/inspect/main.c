@@ -235,6 +235,9 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
     if (nothing_changed)
         printf("tiles: %u (%ux%u of 8x8 slice texels): classify did not run (nothing changed)\n", c->tiles,
                plan->tiles_x, plan->tiles_y);
+    else if (c->quiet)
+        printf("tiles: %u (%ux%u of 8x8 slice texels): a quiet frame (no pixel can be occluded), classify did not run\n",
+               c->tiles, plan->tiles_x, plan->tiles_y);
     else
         printf("tiles: %u (%ux%u of 8x8 slice texels): %u active (%.1f%%), %u faded (%.1f%%), %u background (%.1f%%)\n",
                c->tiles, plan->tiles_x, plan->tiles_y, c->active, percent(c->active, c->tiles), c->faded,
@@ -248,6 +251,24 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
     for (uint32_t i = 0; i < plan->step_count; ++i) {
         const cacao_plan_step *st = &plan->steps[i];
         printf("  %2u %-34s ", i, st->key_name);
+        if (st->key[0] == CACAO_PASS_CLASSIFY && st->key[1] == CACAO_CLASSIFY_QUIET) {
+            printf(c->quiet ? "found no pixel that can be occluded: the frame is quiet\n"
+                            : "found a pixel that can be occluded: the frame is not quiet\n");
+            continue;
+        }
+        if (st->key[0] == CACAO_PASS_FILL && st->key[1] == CACAO_FILL_OUTPUT_QUIET) {
+            printf(c->quiet ? "writes AO 1 into every output pixel (the quiet frame's one pass)\n"
+                            : "gated: the frame is not quiet, dispatches nothing\n");
+            continue;
+        }
+        if (c->quiet && !(st->clear && st->bindings[0].resource == CACAO_RES_IMPORTANCE)) {
+            printf("%s: the frame is quiet, dispatches nothing\n", st->list ? "its list is empty" : "gated");
+            continue;
+        }
+        if (st->list == CACAO_LIST_NORMALS) {
+            printf("transforms the normals of the tiles within two of an active tile (generate's reads)\n");
+            continue;
+        }
         if (st->clear && st->bindings[0].resource == CACAO_RES_IMPORTANCE) {
             printf("clears the importance map to 0; the %u blocks the base pass skips keep it (%.1f%%)\n",
                    c->blocks_total - c->blocks_run, percent(c->blocks_total - c->blocks_run, c->blocks_total));
