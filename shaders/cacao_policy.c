@@ -209,14 +209,16 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
             rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0), CACAO_BINDING_SSAO_IMAGE, CACAO_RES_SSAO_PONG);
         push(out, &n, cacaoi_form_pass(CACAO_PASS_BLUR, c->gpu_forms), 0, 0, c->blur_passes, fp);
     }
-    /* Downsampled, the CPU forms without reuse: the upsample over the needed tiles, the output's
-     * other tiles filled with 1 (with reuse it runs from a gate, over every tile) */
-    const bool listed_upsample = c->downsampled && lists && !c->reuse;
-    if (listed_upsample) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT_WIDE, 0, 0, 0);
+    /* The CPU forms without reuse: the upsample (downsampled) or apply over the groups that touch a
+     * needed tile, the output's other tiles filled with 1 (with reuse they run from a gate, over
+     * every tile) */
+    const bool listed_output = lists && !c->reuse;
+    if (listed_output) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT_WIDE, 0, 0, 0);
     cacaoi_step *s = push(out, &n, cacaoi_form_pass(c->downsampled ? CACAO_PASS_UPSAMPLE : CACAO_PASS_APPLY, c->gpu_forms),
                           c->downsampled ? cacaoi_qualities[c->quality].output_downsampled +
-                                               (listed_upsample ? CACAO_UPSAMPLE_LISTED : 0)
-                                         : cacaoi_qualities[c->quality].output_native,
+                                               (listed_output ? CACAO_UPSAMPLE_LISTED : 0)
+                                         : cacaoi_qualities[c->quality].output_native +
+                                               (listed_output ? CACAO_APPLY_LISTED : 0),
                           0, 0, fp);
     if (c->blur_passes > 0) rebind(s, CACAO_BINDING_SSAO, CACAO_RES_SSAO_PONG);
     return n;

@@ -75,6 +75,10 @@
 /* The upsample's variants over compact's list of the needed tiles (CACAO_LIST_PREPARE): the CPU
  * forms without reuse, the output's other tiles filled with 1 (docs/tiles.md) */
 #define CACAO_UPSAMPLE_LISTED 3 /* + CACAO_OUTPUT_*: smart_list, nonsmart_list, half_list */
+/* The same for apply (native), over compact's list of the groups whose output pixels touch a
+ * needed tile (CACAO_LIST_PREPARE): smart, a block of 2x2 tiles; non-smart and half, a tile's
+ * worth of quads (shifted a pixel left or up where the output's size is odd) */
+#define CACAO_APPLY_LISTED 3
 
 /* prepare_normals' variants: every texel, or the tiles of CACAO_LIST_NORMALS (a group each) */
 #define CACAO_PREPARE_NORMALS_LISTED 1
@@ -120,7 +124,8 @@
 #define CACAO_FILL_OUTPUT 2
 #define CACAO_FILL_VIEW 3
 #define CACAO_FILL_IMPORTANCE 4 /* a clear of the importance map to 0 (the Q3 base pass over its list) */
-#define CACAO_FILL_OUTPUT_WIDE 5 /* the output's tiles of 32x32 pixels (CACAO downsampled): 4x4 per invocation */
+#define CACAO_FILL_OUTPUT_WIDE 5 /* CACAO's output over the unneeded tiles: a tile's 16x16 pixels (native) or 32x32
+                                    (downsampled), 2x2 or 4x4 per invocation */
 #define CACAO_FILL_OUTPUT_QUIET 6 /* every tile's output pixels, a direct grid: a quiet frame's one pass */
 
 /* Reuse variants: compare the caller's depth (and normals) with the copy the previous frame kept,
@@ -168,8 +173,9 @@
 #define CACAO_LIST_GENERATE 1            /* needed tiles (one generate group each, z = layers) */
 #define CACAO_LIST_FILL_SLICES 2         /* tiles that are not needed (z 1: a group fills every layer) */
 #define CACAO_LIST_PREPARE 3             /* horizon estimators: tiles not all background (their prepare);
-                                            CACAO downsampled, the CPU forms: the needed tiles, a group
-                                            of the upsample each (z 1) */
+                                            CACAO, the CPU forms without reuse: the groups of the
+                                            upsample (downsampled: the needed tiles) or of apply
+                                            (native: those whose pixels touch a needed tile) */
 #define CACAO_LIST_BLUR 4                /* blur groups touching a needed tile (z = layers) */
 #define CACAO_LIST_BLOCKS 5              /* blocks of 2x2 tiles holding an active tile (CPU forms): a group
                                             each of CACAO's Q3 base pass (HIGHEST) and of the horizon
@@ -445,7 +451,10 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(FLOAT, background_z)              /* stored view z at or beyond which a texel is background */ \
     M(FLOAT, quiet_margin)              /* classification: fade argument below -margin is quiet */ \
     M(INT, tiles_all)                   /* 1: every tile active (no skipping: measurement, tests) */ \
-    M(INT, needed_list)                 /* 1: CACAO's compact lists the needed tiles in CACAO_LIST_PREPARE */ \
+    M(INT, needed_list)                 /* CACAO's compact lists in CACAO_LIST_PREPARE: 1 the needed tiles (the
+                                           upsample), 2 the blocks of 2x2 tiles holding one (smart apply), 3 the
+                                           tiles whose quads' pixels touch one (non-smart and half apply) */ \
+    M(INT, needed_shift)                /* needed_list 3: bit 0, 1: the quads lie a pixel left, up (odd output) */ \
     M(INT, active_blocks)               /* 1: compact lists the blocks holding an active tile (CACAO_LIST_BLOCKS) */ \
     M(INT, normals_list)                /* 1: compact lists the tiles whose normals generate reads (CACAO_LIST_NORMALS) */ \
     M(INT, tile_pixels)                 /* output pixels per tile side (CACAO: 16 native, 32 downsampled;

@@ -400,8 +400,16 @@ void main()
         /* the background tiles keep the clear's view z and normal (what the prepare would store) */
         if (tiles[CACAO_TILE_CLASSES + i] != CACAO_TILE_CLASS_BACKGROUND) append(CACAO_LIST_PREPARE, g);
 #else
-        /* downsampled, the CPU forms without reuse: the upsample over the needed tiles */
-        if (CB.needed_list != 0 && touches_needed(g, g)) append(CACAO_LIST_PREPARE, g);
+        /* the CPU forms without reuse: the groups of the upsample (downsampled: the needed tiles)
+         * or of apply (native: smart, the blocks of 2x2 tiles holding a needed one, appended by
+         * their first tile; non-smart and half, the tiles whose quads' pixels, a pixel left or
+         * up where the output's size is odd, touch a needed tile: this one, or that one and the
+         * one before) */
+        if (CB.needed_list == 1 && touches_needed(g, g)) append(CACAO_LIST_PREPARE, g);
+        if (CB.needed_list == 2 && (g.x & 1) == 0 && (g.y & 1) == 0 && touches_needed(g, g + 1))
+            append(CACAO_LIST_PREPARE, g / 2);
+        if (CB.needed_list == 3 && touches_needed(max(g - ivec2(CB.needed_shift & 1, CB.needed_shift >> 1), ivec2(0)), g))
+            append(CACAO_LIST_PREPARE, g);
         /* the caller's normals, the CPU forms without reuse: generate reads the normals of the
          * needed tiles and of one texel around them, the Q3 base pass those of its blocks and one
          * texel around: the tiles within two of an active tile */
@@ -432,20 +440,15 @@ void main()
     ivec2 p = texel_of(group);
 #if CACAO_VARIANT == CACAO_FILL_OUTPUT
     if (in_rect(p, imageSize(output_image))) imageStore(output_image, p, vec4(1.0, 0.0, 0.0, 0.0));
-#elif CACAO_VARIANT == CACAO_FILL_OUTPUT_QUIET
-    /* a direct grid of every tile: its tile_pixels x tile_pixels output pixels (docs/tiles.md
-     * "A quiet frame": the frame's one pass) */
+#elif CACAO_VARIANT == CACAO_FILL_OUTPUT_WIDE || CACAO_VARIANT == CACAO_FILL_OUTPUT_QUIET
+    /* CACAO's tiles of tile_pixels x tile_pixels output pixels (16 native, 32 downsampled), n x n
+     * per invocation: the unneeded ones (wide: the fill list), or every one (quiet: a direct grid,
+     * docs/tiles.md "A quiet frame", the frame's one pass); the horizon estimators' fill keeps its
+     * one pixel per invocation */
     int n = CB.tile_pixels / CACAO_TILE;
     ivec2 p0 = group * CB.tile_pixels + n * ivec2(gl_LocalInvocationID.xy), osize = imageSize(output_image);
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x)
-            if (in_rect(p0 + ivec2(x, y), osize)) imageStore(output_image, p0 + ivec2(x, y), vec4(1.0, 0.0, 0.0, 0.0));
-#elif CACAO_VARIANT == CACAO_FILL_OUTPUT_WIDE
-    /* a tile of 32x32 output pixels, 4x4 per invocation: compile-time counts, and the horizon
-     * estimators' fill keeps its one pixel per invocation */
-    ivec2 p0 = group * (4 * CACAO_TILE) + 4 * ivec2(gl_LocalInvocationID.xy), osize = imageSize(output_image);
-    [[unroll]] for (int y = 0; y < 4; ++y)
-        [[unroll]] for (int x = 0; x < 4; ++x)
             if (in_rect(p0 + ivec2(x, y), osize)) imageStore(output_image, p0 + ivec2(x, y), vec4(1.0, 0.0, 0.0, 0.0));
 #else
     if (in_rect(p, imageSize(ssao_image).xy))
