@@ -76,9 +76,6 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
 #define GEN CACAO_LIST_GENERATE
 #define DIFFS_NORMALS (V(CACAO_REUSE_DIFF_NORMALS) | V(CACAO_REUSE_DIFF_NORMALS_GPU))
 #define DIFFS (V(CACAO_REUSE_DIFF) | V(CACAO_REUSE_DIFF_GPU) | DIFFS_NORMALS)
-#define LISTED_APPLIES                                                                                     \
-    (V(CACAO_APPLY_LISTED + CACAO_OUTPUT_SMART) | V(CACAO_APPLY_LISTED + CACAO_OUTPUT_NON_SMART) |          \
-     V(CACAO_APPLY_LISTED + CACAO_OUTPUT_HALF))
 #define LISTED_UPSAMPLES                                                                                   \
     (V(CACAO_UPSAMPLE_LISTED + CACAO_OUTPUT_SMART) | V(CACAO_UPSAMPLE_LISTED + CACAO_OUTPUT_NON_SMART) | \
      V(CACAO_UPSAMPLE_LISTED + CACAO_OUTPUT_HALF))
@@ -178,19 +175,16 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                   {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(SSAO_IMAGE, SSAO_PONG, ALL), R(TILES, TILES, ALL)},
                   .lists = {CACAO_LIST_BLUR}},
     /* spec: apply.md, upsample.md. They read the blur's output where a blur ran (step override).
-     * The listed variants (the CPU forms without reuse): over compact's list of the groups whose
-     * pixels touch a needed tile, the output's other tiles filled with 1 (fill.output_wide);
-     * the others over every group (docs/tiles.md). */
-    PASS(APPLY) = {"apply", {"smart", "nonsmart", "half", "smart_list", "nonsmart_list", "half_list"}, 6, false, false,
-                   true, WG(APPLY), CACAOI_GRID_OUTPUT, 4,
-                   {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL), R(TILES, TILES, LISTED_APPLIES)},
+     * smart_list (the CPU forms without reuse): over compact's list of the blocks of 2x2 tiles
+     * holding a needed tile, the output's other tiles filled with 1 (fill.output_wide); the
+     * others over every group (docs/tiles.md). */
+    PASS(APPLY) = {"apply", {"smart", "nonsmart", "half", "smart_list"}, 4, false, false, true, WG(APPLY),
+                   CACAOI_GRID_OUTPUT, 4,
+                   {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL), R(TILES, TILES, V(CACAO_APPLY_SMART_LIST))},
                    /* smart: 4x4 output pixels per invocation; non-smart and half: 2x2 */
                    .quad = {[CACAO_OUTPUT_SMART] = 4, [CACAO_OUTPUT_NON_SMART] = 2, [CACAO_OUTPUT_HALF] = 2,
-                            [CACAO_APPLY_LISTED + CACAO_OUTPUT_SMART] = 4, [CACAO_APPLY_LISTED + CACAO_OUTPUT_NON_SMART] = 2,
-                            [CACAO_APPLY_LISTED + CACAO_OUTPUT_HALF] = 2},
-                   .lists = {[CACAO_APPLY_LISTED + CACAO_OUTPUT_SMART] = CACAO_LIST_PREPARE,
-                             [CACAO_APPLY_LISTED + CACAO_OUTPUT_NON_SMART] = CACAO_LIST_PREPARE,
-                             [CACAO_APPLY_LISTED + CACAO_OUTPUT_HALF] = CACAO_LIST_PREPARE}},
+                            [CACAO_APPLY_SMART_LIST] = 4},
+                   .lists = {[CACAO_APPLY_SMART_LIST] = CACAO_LIST_PREPARE}},
     /* The upsample's listed variants: over compact's list of the needed tiles (a group is a tile,
      * 32x32 pixels), the others' output filled with 1 (fill.output): the CPU forms without reuse
      * (the upsample's bilateral filter over every pixel was most of a downsampled frame with sky). */

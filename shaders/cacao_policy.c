@@ -174,9 +174,11 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
         push(out, &n, CACAO_PASS_REUSE, CACAO_REUSE_PREFIX, 0, 0, 0);
         push(out, &n, CACAO_PASS_REUSE, CACAO_REUSE_REACH, 0, 0, 0);
     }
-    /* the caller's normals in the CPU forms without reuse: transformed after compact, over the
-     * tiles whose normals generate reads (docs/tiles.md) */
-    const bool listed_normals = c->normals_from_input && !c->gpu_forms && !c->reuse;
+    /* the caller's normals in the CPU forms without reuse, from MEDIUM up: transformed after
+     * compact, over the tiles whose normals generate reads (docs/tiles.md; at LOWEST and LOW the
+     * list cost a frame with nothing to skip more than 1%) */
+    const bool listed_normals = c->normals_from_input && !c->gpu_forms && !c->reuse &&
+                                c->quality >= CACAO_KEY_QUALITY_MEDIUM;
     if (c->normals_from_input) {
         push(out, &n, CACAO_PASS_PREPARE_DEPTHS, depths, ds, 0, 0);
         if (!listed_normals) push(out, &n, CACAO_PASS_PREPARE_NORMALS, 0, ds, 0, 0);
@@ -209,16 +211,18 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
             rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0), CACAO_BINDING_SSAO_IMAGE, CACAO_RES_SSAO_PONG);
         push(out, &n, cacaoi_form_pass(CACAO_PASS_BLUR, c->gpu_forms), 0, 0, c->blur_passes, fp);
     }
-    /* The CPU forms without reuse: the upsample (downsampled) or apply over the groups that touch a
-     * needed tile, the output's other tiles filled with 1 (with reuse they run from a gate, over
-     * every tile) */
-    const bool listed_output = lists && !c->reuse;
+    /* The CPU forms without reuse: the upsample (downsampled) or smart apply over the groups that
+     * touch a needed tile, the output's other tiles filled with 1 (with reuse they run from a
+     * gate, over every tile; the non-smart and half applies, LOWEST and LOW, over every group:
+     * listed, they cost a frame with nothing to skip more than they saved, docs/tiles.md) */
+    const unsigned output = c->downsampled ? cacaoi_qualities[c->quality].output_downsampled
+                                           : cacaoi_qualities[c->quality].output_native;
+    const bool listed_output = lists && !c->reuse && (c->downsampled || output == CACAO_OUTPUT_SMART);
     if (listed_output) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT_WIDE, 0, 0, 0);
     cacaoi_step *s = push(out, &n, cacaoi_form_pass(c->downsampled ? CACAO_PASS_UPSAMPLE : CACAO_PASS_APPLY, c->gpu_forms),
-                          c->downsampled ? cacaoi_qualities[c->quality].output_downsampled +
-                                               (listed_output ? CACAO_UPSAMPLE_LISTED : 0)
-                                         : cacaoi_qualities[c->quality].output_native +
-                                               (listed_output ? CACAO_APPLY_LISTED : 0),
+                          !listed_output    ? output
+                          : c->downsampled ? output + CACAO_UPSAMPLE_LISTED
+                                           : CACAO_APPLY_SMART_LIST,
                           0, 0, fp);
     if (c->blur_passes > 0) rebind(s, CACAO_BINDING_SSAO, CACAO_RES_SSAO_PONG);
     return n;

@@ -75,10 +75,11 @@
 /* The upsample's variants over compact's list of the needed tiles (CACAO_LIST_PREPARE): the CPU
  * forms without reuse, the output's other tiles filled with 1 (docs/tiles.md) */
 #define CACAO_UPSAMPLE_LISTED 3 /* + CACAO_OUTPUT_*: smart_list, nonsmart_list, half_list */
-/* The same for apply (native), over compact's list of the groups whose output pixels touch a
- * needed tile (CACAO_LIST_PREPARE): smart, a block of 2x2 tiles; non-smart and half, a tile's
- * worth of quads (shifted a pixel left or up where the output's size is odd) */
-#define CACAO_APPLY_LISTED 3
+/* Smart apply (native) over compact's list of the blocks of 2x2 tiles holding a needed tile
+ * (CACAO_LIST_PREPARE; a group is a block): the CPU forms without reuse. The non-smart and half
+ * applies (LOWEST, LOW) run over every group: listed, they cost a frame with nothing to skip more
+ * than they saved (docs/tiles.md). */
+#define CACAO_APPLY_SMART_LIST 3
 
 /* prepare_normals' variants: every texel, or the tiles of CACAO_LIST_NORMALS (a group each) */
 #define CACAO_PREPARE_NORMALS_LISTED 1
@@ -174,8 +175,8 @@
 #define CACAO_LIST_FILL_SLICES 2         /* tiles that are not needed (z 1: a group fills every layer) */
 #define CACAO_LIST_PREPARE 3             /* horizon estimators: tiles not all background (their prepare);
                                             CACAO, the CPU forms without reuse: the groups of the
-                                            upsample (downsampled: the needed tiles) or of apply
-                                            (native: those whose pixels touch a needed tile) */
+                                            upsample (downsampled: the needed tiles) or of smart
+                                            apply (native: blocks of 2x2 tiles holding one) */
 #define CACAO_LIST_BLUR 4                /* blur groups touching a needed tile (z = layers) */
 #define CACAO_LIST_BLOCKS 5              /* blocks of 2x2 tiles holding an active tile (CPU forms): a group
                                             each of CACAO's Q3 base pass (HIGHEST) and of the horizon
@@ -452,9 +453,7 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(FLOAT, quiet_margin)              /* classification: fade argument below -margin is quiet */ \
     M(INT, tiles_all)                   /* 1: every tile active (no skipping: measurement, tests) */ \
     M(INT, needed_list)                 /* CACAO's compact lists in CACAO_LIST_PREPARE: 1 the needed tiles (the
-                                           upsample), 2 the blocks of 2x2 tiles holding one (smart apply), 3 the
-                                           tiles whose quads' pixels touch one (non-smart and half apply) */ \
-    M(INT, needed_shift)                /* needed_list 3: bit 0, 1: the quads lie a pixel left, up (odd output) */ \
+                                           upsample), 2 the blocks of 2x2 tiles holding one (smart apply) */ \
     M(INT, active_blocks)               /* 1: compact lists the blocks holding an active tile (CACAO_LIST_BLOCKS) */ \
     M(INT, normals_list)                /* 1: compact lists the tiles whose normals generate reads (CACAO_LIST_NORMALS) */ \
     M(INT, tile_pixels)                 /* output pixels per tile side (CACAO: 16 native, 32 downsampled;

@@ -36,9 +36,8 @@ static void test_rows(void) {
         CHECK(row->name && row->variants >= 1 && row->variants <= CACAOI_MAX_VARIANTS);
         CHECK(row->binding_count <= CACAOI_PASS_MAX_BINDINGS);
         /* quads: only variants the row has, and only on a direct slice or output grid (the lists'
-         * groups are tiles), or apply's listed variants (CACAO's output groups at needed tiles:
-         * compact lists their groups, a block of 2x2 tiles for 4x4 pixels per invocation, a tile
-         * for 2x2); a variant's own grid: only variants the row has, a direct one (a list's groups
+         * groups are tiles), or smart apply's listed variant (compact lists its groups, blocks of
+         * 2x2 tiles: 4x4 pixels per invocation); a variant's own grid: only variants the row has, a direct one (a list's groups
          * are its entries), a grid rule that exists */
         CHECK(row->grid != CACAOI_GRID_ROW && row->grid <= CACAOI_GRID_TILES);
         for (unsigned v = 0; v < CACAOI_MAX_VARIANTS; ++v) {
@@ -47,8 +46,8 @@ static void test_rows(void) {
             if (row->quad[v] > 1)
                 CHECK((grid == CACAOI_GRID_SLICE || grid == CACAOI_GRID_OUTPUT) &&
                       (row->lists[v] == CACAO_LIST_NONE ||
-                       (p == CACAO_PASS_APPLY && v >= CACAO_APPLY_LISTED && row->lists[v] == CACAO_LIST_PREPARE &&
-                        row->quad[v] == row->quad[v - CACAO_APPLY_LISTED])));
+                       (p == CACAO_PASS_APPLY && v == CACAO_APPLY_SMART_LIST && row->lists[v] == CACAO_LIST_PREPARE &&
+                        row->quad[v] == row->quad[CACAO_OUTPUT_SMART])));
             CHECK(row->grids[v] <= CACAOI_GRID_TILE_ROWS && (v < row->variants || row->grids[v] == CACAOI_GRID_ROW));
             /* a list's groups are tiles (or blur groups); the exception, the blocks list, holds
              * blocks of 2x2 tiles: the groups of a grid of CACAO_TILE x CACAO_TILE invocations,

@@ -35,11 +35,11 @@ static void test_steps_per_quality(void) {
 #define FILLS "fill", "fill"
     /* first the quiet frame's test and its fill (docs/tiles.md "A quiet frame") */
 #define QUIET "classify.quiet", "fill.output_quiet"
-    /* apply over compact's list of its groups at needed tiles, the other tiles' output filled */
+    /* smart apply over compact's list of its groups at needed tiles, the other tiles' output filled */
 #define OUT "fill.output_wide",
     const char *expected[5][16] = {
-        {QUIET, "prepare.half.native", TILES, "generate.q0", FILLS, "blur.2.fp32", OUT "apply.half_list.fp32"},
-        {QUIET, "prepare.full.native", TILES, "generate.q0", FILLS, "blur.2.fp32", OUT "apply.nonsmart_list.fp32"},
+        {QUIET, "prepare.half.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.half.fp32"},
+        {QUIET, "prepare.full.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.nonsmart.fp32"},
         {QUIET, "prepare.full.native", TILES, "generate.q1", FILLS, "blur.2.fp32", OUT "apply.smart_list.fp32"},
         {QUIET, "prepare.mips.native", TILES, "generate.q2", FILLS, "blur.2.fp32", OUT "apply.smart_list.fp32"},
         {"clear.importance", QUIET, "prepare.mips.native", TILES, "generate.q3base", "importance_a", "importance_b",
@@ -164,20 +164,22 @@ static void test_only_needed_resources(void) {
     CHECK(!low.uses_load_counter);
     CHECK(find_image(&low, CACAO_RES_DEPTHS)->mips == 1); /* LOW reads no mips */
     CHECK(low.steps[Q].dispatch[0] == 60 && low.steps[Q].dispatch[1] == 34); /* prepare.full: 2x2 texels each */
-    CHECK(low.step_count == Q + 7); /* (the quiet steps) prepare, classify, compact, generate, fill, the output's fill,
-                                       apply: no blur, one fill of the AO */
-    /* apply.nonsmart: a 2x2 quad of output pixels per invocation, one per slice texel: ceil(960/8), ceil(540/8) at most */
-    CHECK(strcmp(low.steps[Q + 6].key_name, "apply.nonsmart_list.fp32") == 0 && low.steps[Q + 6].list == CACAO_LIST_PREPARE);
-    CHECK(low.steps[Q + 6].dispatch[0] == 120 && low.steps[Q + 6].dispatch[1] == 68);
+    CHECK(low.step_count == Q + 6); /* (the quiet steps) prepare, classify, compact, generate, fill, apply: no blur, one fill */
+    /* apply.nonsmart: a 2x2 quad of output pixels per invocation, one per slice texel: ceil(960/8), ceil(540/8) */
+    CHECK(strcmp(low.steps[Q + 5].key_name, "apply.nonsmart.fp32") == 0 && low.steps[Q + 5].list == CACAO_LIST_NONE);
+    CHECK(low.steps[Q + 5].dispatch[0] == 120 && low.steps[Q + 5].dispatch[1] == 68);
     cacao_plan given_low = build((cacao_settings){.quality = CACAO_QUALITY_LOW, .blur_pass_count = CACAO_BLUR_NONE}, 1920, 1080);
-    CHECK(given_low.step_count == Q + 8); /* normals given: prepare_depths and prepare_normals */
+    CHECK(given_low.step_count == Q + 7); /* normals given: prepare_depths and prepare_normals */
     CHECK(strcmp(given_low.steps[Q].key_name, "prepare_depths.full.native") == 0);
     CHECK(given_low.steps[Q].dispatch[0] == 120 && given_low.steps[Q].dispatch[1] == 68); /* a texel each */
-    /* the CPU forms transform the caller's normals after compact, over its list */
-    CHECK(strcmp(given_low.steps[Q + 3].key_name, "prepare_normals.list.native") == 0 &&
-          given_low.steps[Q + 3].list == CACAO_LIST_NORMALS && strcmp(given_low.steps[Q + 2].key_name, "compact") == 0);
+    /* at LOW the caller's normals are transformed everywhere, after the depths (from MEDIUM up the
+     * CPU forms transform them after compact, over its list: below) */
+    CHECK(strcmp(given_low.steps[Q + 1].key_name, "prepare_normals.native") == 0);
+    cacao_plan given_medium = build((cacao_settings){.quality = CACAO_QUALITY_MEDIUM}, 1920, 1080);
+    CHECK(strcmp(given_medium.steps[Q + 3].key_name, "prepare_normals.list.native") == 0 &&
+          given_medium.steps[Q + 3].list == CACAO_LIST_NORMALS && strcmp(given_medium.steps[Q + 2].key_name, "compact") == 0);
     cacao_plan odd = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true}, 1001, 37);
-    CHECK(strcmp(odd.steps[odd.step_count - 1].key_name, "apply.half_list.fp32") == 0);
+    CHECK(strcmp(odd.steps[odd.step_count - 1].key_name, "apply.half.fp32") == 0);
     /* odd sizes: still one quad per slice texel (501x19): ceil(501/8), ceil(19/8) */
     CHECK(odd.steps[odd.step_count - 1].dispatch[0] == 63 && odd.steps[odd.step_count - 1].dispatch[1] == 3);
     cacao_plan medium = build((cacao_settings){.quality = CACAO_QUALITY_MEDIUM, .generate_normals = true}, 1920, 1080);

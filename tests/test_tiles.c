@@ -334,7 +334,7 @@ static void test_quiet_frames(vkdev *dev) {
  * every tile holds a wrong normal; then the three-quarters-faded frame with the right ones, whose output must be the
  * reference's (compute_all_tiles, a context of its own). Normals the second frame read but did not
  * transform would be the first frame's: a list that left out every fourth column of needed tiles
- * made 4255-6377 pixels differ. (One cut to the needed tiles, without the ring of one tile that
+ * made 4255-6377 pixels differ at LOW (then listed), HIGH and HIGHEST. (One cut to the needed tiles, without the ring of one tile that
  * the edges of their border texels read, made none differ here, blur 2 or 8: the ring is kept
  * because those edges enter the blur of their neighbours.) */
 static void test_stale_normals(vkdev *dev) {
@@ -351,7 +351,7 @@ static void test_stale_normals(vkdev *dev) {
     vkdev_frame first = scene_frame(&sb, false, false), real = scene_frame(&sb, false, true);
     first.depth = walled;
     vkdev_frame_set_view_normals(&first, flipped);
-    static const cacao_quality qs[] = {CACAO_QUALITY_LOW, CACAO_QUALITY_HIGH, CACAO_QUALITY_HIGHEST};
+    static const cacao_quality qs[] = {CACAO_QUALITY_MEDIUM, CACAO_QUALITY_HIGH, CACAO_QUALITY_HIGHEST}; /* the listed normals */
     for (int ds = 0; ds < 2; ++ds)
         for (size_t q = 0; q < sizeof qs / sizeof qs[0]; ++q) {
             cacao_settings s = {.quality = qs[q], .downsample = ds, .fade_out_from = 0.5f * to, .fade_out_to = to, .blur_pass_count = 8,
@@ -472,8 +472,8 @@ int main(void) {
     test_all_background(&dev, &sb);
     test_no_background(&dev, &sb);
     test_mostly_faded(&dev, 256, 144, false, true);
-    /* an odd size: apply's quads lie a pixel left and up of the tiles (the listed non-smart and
-     * half applies take the tiles before too); at LOWEST less than half the tiles are skipped */
+    /* an odd size (the slices' last texels lie half outside the image; at LOWEST less than half
+     * the tiles are skipped) */
     test_mostly_faded(&dev, 255, 143, false, false);
     test_mostly_faded(&dev, 512, 288, true, true);
     test_nan_depth(&dev, &sb);

@@ -247,10 +247,8 @@ static void fill_tile_constants(const cacao_plan *plan, const projection_view *v
         if (plan->steps[i].list == CACAO_LIST_BLOCKS) c->active_blocks = 1;
         else if (plan->steps[i].list == CACAO_LIST_NORMALS) c->normals_list = 1;
         else if (plan->steps[i].list == CACAO_LIST_PREPARE && plan->settings.estimator == CACAO_ESTIMATOR_CACAO)
-            /* the upsample's groups are the needed tiles; smart apply's blocks of 2x2 tiles; the
-             * other applies' a tile's quads, a pixel left (up) where the width (height) is odd */
-            c->needed_list = plan->settings.downsample ? 1
-                             : plan->steps[i].key[1] == CACAO_APPLY_LISTED + CACAO_OUTPUT_SMART ? 2 : 3;
+            /* the upsample's groups are the needed tiles, smart apply's blocks of 2x2 tiles */
+            c->needed_list = plan->settings.downsample ? 1 : 2;
     c->tile_pixels = plan->settings.estimator != CACAO_ESTIMATOR_CACAO ? CACAO_TILE
                                                                         : (int)(CACAO_TILE * (plan->settings.downsample ? 4 : 2));
     /* A plan that can find its frame quiet (classify.quiet first: docs/tiles.md "A quiet frame"):
@@ -262,7 +260,6 @@ static void fill_tile_constants(const cacao_plan *plan, const projection_view *v
         if (st->key[0] == CACAO_PASS_FILL && st->key[1] == CACAO_FILL_OUTPUT_QUIET) c->quiet_gate = st->gate;
         if (st->gate > c->gate_count) c->gate_count = st->gate;
     }
-    if (c->needed_list == 3) c->needed_shift = (int)((plan->width & 1) | (plan->height & 1) << 1);
     const uint32_t scale = plan->settings.downsample ? 4 : 2;
     c->quiet_zero_depth = plan->slice_width * scale > plan->width || plan->slice_height * scale > plan->height;
     c->tiles_x = (int)plan->tiles_x;

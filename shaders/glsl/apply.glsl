@@ -58,8 +58,7 @@ int lerp_texel8(int f, int a, int b) { return a + ((f * (b - a) + 128) >> 8); }
 int texel8(float v) { return int(v * 255.0 + 0.5); }
 ivec4 texel8(vec4 v) { return ivec4(v * 255.0 + 0.5); }
 
-#define APPLY_KIND (CACAO_VARIANT % CACAO_APPLY_LISTED) /* CACAO_OUTPUT_*, listed or not */
-#if APPLY_KIND == CACAO_OUTPUT_SMART
+#if CACAO_VARIANT == CACAO_OUTPUT_SMART || CACAO_VARIANT == CACAO_APPLY_SMART_LIST
 /* The sampler's bilinear read, to the bit, from a 4x4 window w of one layer's texels (window
  * texel 0 at slice texel base) at sampler coordinate uv. Along an axis the read starts at window
  * texel lo, or (shift: where the edges can move it by one) at lo or lo + 1. */
@@ -134,7 +133,7 @@ void main()
 #else
 /* Non-smart and half: the mean of the layers (all four, or slices 0 and 3) read bilinearly at
  * uv = p / output size (no +0.5, as AMD). One invocation computes a 2x2 quad of output pixels. */
-#if APPLY_KIND == CACAO_OUTPUT_NON_SMART
+#if CACAO_VARIANT == CACAO_OUTPUT_NON_SMART
 #define APPLY_LAYERS 4
 #else
 #define APPLY_LAYERS 2 /* layers 0,1 = slices 0,3 */
@@ -148,9 +147,7 @@ void main()
      * per layer at the corner between those texels reads the four texels of all four pixels, and
      * the filter is done here as the sampler does it on 8-bit texels, to the bit, with a quarter of
      * its reads. */
-    ivec2 g; /* listed: a tile's 8x8 quads */
-    if (!group_of(g)) return;
-    ivec2 q = texel_of(g);
+    ivec2 q = ivec2(gl_GlobalInvocationID.xy);
     ivec2 osize = imageSize(output_image);
     ivec2 ssize = textureSize(ssao, 0).xy;
     vec2 inv_o = CB.output_buffer_inverse_dimensions;
