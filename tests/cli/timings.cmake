@@ -1,13 +1,15 @@
 # --timings prints one row per step of the plan, named by its permutation key, then the total;
 # --json records settings, device, size, repeat, the per-pass times, the total and the output path.
-# At quality high, native resolution, 2 blur passes, fp32, with normals given, the plan is nine
+# At quality high, native resolution, 2 blur passes, fp32, with normals given, the plan is twelve
 # steps (spec: prepare depths with mips, prepare normals from the input, generate Q2, blur, apply;
-# docs/tiles.md: classify and compact before generate, the two fills before the blur), which is
-# what the table and the report must list, in that order, followed by the tile counts.
+# docs/tiles.md: the quiet frame's test and fill first, classify and compact before generate, the
+# normals then over compact's list, the two fills before the blur, the output's fill before apply
+# over its list), which is what the table and the report must list, in that order, followed by
+# the tile counts.
 include(${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake)
 cacao_ok(run --scene ${ROOM} --quality high --validate --timings --repeat 3 --json ${WORK}/t.json -o ${WORK}/t.png)
-set(expected prepare_depths.mips.native prepare_normals.native classify compact generate.q2 fill fill
-    blur.2.fp32 apply.smart.fp32)
+set(expected classify.quiet fill.output_quiet prepare_depths.mips.native classify compact prepare_normals.list.native
+    generate.q2 fill fill blur.2.fp32 fill.output_wide apply.smart_list.fp32)
 string(REGEX MATCHALL "\n[a-z_0-9.]+ +[0-9]+\\.[0-9]+" rows "${run_out}")
 set(names "")
 foreach(row ${rows})

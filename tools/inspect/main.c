@@ -299,11 +299,25 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
                    percent(generate_skipped, c->generate_total));
             break;
         case CACAO_LIST_FILL_SLICES:
-            if (reuse)
+            if (st->key[0] == CACAO_PASS_FILL && st->key[1] == CACAO_FILL_OUTPUT_WIDE)
+                printf("writes AO 1 into the output of the %u skipped tiles (%.1f%% of the tiles)\n", generate_skipped,
+                       percent(generate_skipped, c->generate_total));
+            else if (reuse)
                 printf("writes AO 1 into the skipped tiles a change reaches (at most %u)\n", c->recomputed);
             else
                 printf("writes AO 1 into the %u skipped tiles (%.1f%% of the tiles)\n", generate_skipped,
                        percent(generate_skipped, c->generate_total));
+            break;
+        case CACAO_LIST_PREPARE:
+            if (plan->settings.estimator == CACAO_ESTIMATOR_CACAO) {
+                printf(plan->settings.downsample ? "runs over the %u needed tiles, skips %u (%.1f%%)\n"
+                                                 : "runs over the blocks of 2x2 tiles holding one of the %u needed tiles "
+                                                   "(skips the blocks of the %u others, %.1f%% of the tiles)\n",
+                       c->generate_run, generate_skipped, percent(generate_skipped, c->generate_total));
+                break;
+            }
+            printf("runs over the tiles not all background, skips the %u background ones (%.1f%%)\n", c->background,
+                   percent(c->background, c->tiles));
             break;
         case CACAO_LIST_BLUR:
             printf("runs %u of %u groups, skips %u (%.1f%%)\n", c->blur_run, c->blur_total, blur_skipped,
