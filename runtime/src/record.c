@@ -219,7 +219,10 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
          * that can find its frame quiet: the quiet fill's full grid, the others' with x 0 and
          * their x among the grids, which classify.quiet copies in on a frame that is not quiet
          * (docs/tiles.md "A quiet frame") */
-        uint32_t commands[3 * CACAO_TILE_GATE_MAX], grids[CACAO_TILE_GATE_MAX];
+        _Static_assert(CACAO_TILE_GATE_GRIDS(0, 0) == CACAO_TILE_GATES(0, 0) + 3 * CACAO_TILE_GATE_MAX,
+                       "the grids follow the gate commands");
+        uint32_t words[4 * CACAO_TILE_GATE_MAX] = {0}; /* the commands, then the grids */
+        uint32_t *commands = words, *grids = words + 3 * CACAO_TILE_GATE_MAX;
         for (uint32_t i = 0; i < p->step_count; ++i) {
             const cacao_plan_step *st = &p->steps[i];
             if (!st->gate) continue;
@@ -227,12 +230,11 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
             grids[st->gate - 1] = st->dispatch[0];
             if (constants->quiet_gate && st->gate != constants->quiet_gate) commands[3 * (st->gate - 1)] = 0;
         }
+        /* the grids only where classify.quiet reads them: one update either way */
         const uint32_t count = gate_count(p);
         if (count)
-            ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], gates, sizeof(uint32_t) * 3 * count, commands);
-        if (count && constants->quiet_gate)
-            ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], TILE_REGION_OFFSET(p, CACAO_TILE_GATE_GRIDS),
-                                    sizeof(uint32_t) * count, grids);
+            ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], gates,
+                                    constants->quiet_gate ? sizeof words : sizeof(uint32_t) * 3 * count, words);
     }
     const VkMemoryBarrier memory = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,

@@ -47,13 +47,19 @@ int slice_of_layer(int layer) { return CB.slice_count == 2 ? layer * 3 : layer; 
 /* Round a value to half precision and back: mirrors AMD's half-precision shared memory. */
 float round_to_half(float x) { return unpackHalf2x16(packHalf2x16(vec2(x, 0.0))).x; }
 
-/* Raw hardware depth -> positive view-space z (spec: prepare.md "Depth linearisation").
- * A depth that gives no finite positive z (NaN in the depth buffer, d == A on an infinite far
- * plane, d beyond the far plane) becomes CACAO_MAX_VIEW_Z: far background, which the fade-out
- * removes. AMD divides blindly there ([quirk] INF-DEPTH); finite depths are unchanged. */
+/* Raw hardware depth -> view-space z (spec: prepare.md "Depth linearisation"), as the projection
+ * gives it: NaN, infinite or negative where the depth is invalid (classify.quiet tells those apart). */
+float view_z_unclamped(float d)
+{
+    return (CB.depth_unpack.x + CB.depth_unpack_d.x * d) / (CB.depth_unpack.y + CB.depth_unpack_d.y * d);
+}
+
+/* ... and positive: a depth that gives no finite positive z (NaN in the depth buffer, d == A on an
+ * infinite far plane, d beyond the far plane) becomes CACAO_MAX_VIEW_Z: far background, which the
+ * fade-out removes. AMD divides blindly there ([quirk] INF-DEPTH); finite depths are unchanged. */
 float view_z(float d)
 {
-    float z = (CB.depth_unpack.x + CB.depth_unpack_d.x * d) / (CB.depth_unpack.y + CB.depth_unpack_d.y * d);
+    float z = view_z_unclamped(d);
     return (z >= 0.0 && z < CACAO_MAX_VIEW_Z) ? z : CACAO_MAX_VIEW_Z;
 }
 

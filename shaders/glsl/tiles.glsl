@@ -284,7 +284,7 @@ uint tile_flags(ivec2 t)
  * one: called active (only depths outside the projection's range have it). */
 bool may_be_active(float d)
 {
-    float z = (CB.depth_unpack.x + CB.depth_unpack_d.x * d) / (CB.depth_unpack.y + CB.depth_unpack_d.y * d);
+    float z = view_z_unclamped(d);
     if (isnan(z) || isinf(z) || z >= CACAO_MAX_VIEW_Z * (1.0 + 1.0 / 1024.0)) return false;
     if (z < 0.0) return true;
     float lo = z * (1.0 - 1.0 / 1024.0) - 1.0e-7, hi = z * (1.0 + 1.0 / 1024.0) + 1.0e-7;
