@@ -220,8 +220,10 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                       CACAOI_GRID_TILES, 4,
                       {CONSTANTS, R(DEPTHS, DEPTHS, V(CACAO_CLASSIFY_SLICES)),
                        R(SRC_DEPTH, DEPTH_INPUT, V(CACAO_CLASSIFY_HORIZON) | V(CACAO_CLASSIFY_QUIET)), W(TILES, TILES, ALL)}},
-    PASS(COMPACT) = {"compact", {NULL, "horizon"}, 2, false, false, false, {CACAO_WG_COMPACT, 1}, CACAOI_GRID_COMPACT, 2,
-                     {CONSTANTS, W(TILES, TILES, ALL)}},
+    /* it also stores the AO 1 of the output's unneeded tiles where a list step writes the others
+     * (docs/tiles.md "What runs") */
+    PASS(COMPACT) = {"compact", {NULL, "horizon"}, 2, false, false, false, {CACAO_WG_COMPACT, 1}, CACAOI_GRID_COMPACT, 3,
+                     {CONSTANTS, W(TILES, TILES, ALL), W(OUTPUT, OUTPUT, ALL)}},
     /* spec: prepare.md, normals from depth: PREPARE_DEPTHS's variants and the normals in one pass,
      * a 2x2 quad of slice texels per invocation sharing one block of depths. */
     PASS(PREPARE) = PREPARE_ROW("prepare", 0u),
@@ -250,20 +252,19 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * normals for background: clears of the whole image before the passes that write the needed
      * tiles (on lavapipe a clear of a 16-bit image costs a full frame of CACAO about 4%, a fill
      * over an empty list nothing: docs/tiles.md). */
-    PASS(FILL) = {"fill", {NULL, "horizon", "output", "view", "importance", "output_wide", "output_quiet"}, 7, false, false, false,
+    PASS(FILL) = {"fill", {NULL, "horizon", "view", "importance", "output_quiet"}, 5, false, false, false,
                   {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE, 8,
                   {CONSTANTS,
-                   R(TILES, TILES, V(CACAO_FILL_SLICES) | V(CACAO_FILL_OUTPUT) | V(CACAO_FILL_OUTPUT_WIDE)),
+                   R(TILES, TILES, V(CACAO_FILL_SLICES)),
                    W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),
                    W(HORIZON_AO_OUT, AO_RAW, V(CACAO_FILL_HORIZON)),
-                   W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT) | V(CACAO_FILL_OUTPUT_WIDE) | V(CACAO_FILL_OUTPUT_QUIET)),
+                   W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT_QUIET)),
                    W(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_FILL_VIEW)),
                    W(VIEW_NORMALS, VIEW_NORMALS, V(CACAO_FILL_VIEW)),
                    W(IMPORTANCE_MAP_IMAGE, IMPORTANCE, V(CACAO_FILL_IMPORTANCE))},
                   /* the horizon estimators' own images, and CACAO's importance map before the CPU
                    * form of the Q3 base pass, are cleared (cacao_plan_step.clear) */
-                  .lists = {[CACAO_FILL_SLICES] = CACAO_LIST_FILL_SLICES, [CACAO_FILL_OUTPUT] = CACAO_LIST_FILL_SLICES,
-                            [CACAO_FILL_OUTPUT_WIDE] = CACAO_LIST_FILL_SLICES}},
+                  .lists = {[CACAO_FILL_SLICES] = CACAO_LIST_FILL_SLICES}},
     /* docs/tiles.md "Reusing the previous frame": the diff, one invocation per tile, compares the
      * caller's depth (and normals) with the copies the previous frame kept and updates them; the
      * prefix sums each row of tiles' changed flags (one invocation per row); the reach marks the

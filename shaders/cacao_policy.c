@@ -92,8 +92,8 @@ static void push_denoise_passes(cacaoi_step *out, size_t *n, unsigned pass_id, u
  * prepare over the tiles that are not all background (a clear before it gives the others the view
  * z and normal the prepare would store there). Native: the intermediates the denoise passes read
  * cleared to AO 1, the estimator over the needed tiles (into the output when no denoise pass
- * runs), the fill of the output's other tiles with AO 1, then the denoise passes over the needed
- * tiles. Downsampled: the estimator at one pixel of each 2x2 block (a direct grid of half the
+ * runs), then the denoise passes over the needed tiles; compact stores the AO 1 of the output's
+ * other tiles. Downsampled: the estimator at one pixel of each 2x2 block (a direct grid of half the
  * size, into AO_HALF), then the upsample over the needed tiles as the first filter pass (into the
  * output, or AO_PONG when denoise passes follow); the clears give the later passes' inputs their
  * 1 on the tiles they skip. The GPU forms: the same passes on direct grids, with no classify,
@@ -133,14 +133,12 @@ static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI
             rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0), CACAO_BINDING_HORIZON_AO_OUT, CACAO_RES_AO_HALF);
         push(out, &n, gpu ? CACAO_PASS_HORIZON_MAIN_GPU : CACAO_PASS_HORIZON_MAIN,
              gtao ? CACAO_HORIZON_GTAO_HALF : CACAO_HORIZON_BITMASK_HALF, 0, 0, 0);
-        if (!gpu) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT, 0, 0, 0);
         push(out, &n, denoise, blur == 1 ? CACAO_DENOISE_UPSAMPLE_FINAL : CACAO_DENOISE_UPSAMPLE, 0, 0, 0);
         push_denoise_passes(out, &n, denoise, 2, blur, CACAO_RES_AO_PONG);
         return n;
     }
     push(out, &n, gpu ? CACAO_PASS_HORIZON_MAIN_GPU : CACAO_PASS_HORIZON_MAIN,
          (gtao ? CACAO_HORIZON_GTAO : CACAO_HORIZON_BITMASK) + (blur == 0 ? CACAO_HORIZON_GTAO_DIRECT : 0), 0, 0, 0);
-    if (!gpu) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT, 0, 0, 0);
     push_denoise_passes(out, &n, denoise, 1, blur, CACAO_RES_AO_RAW);
     return n;
 }
@@ -212,13 +210,12 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
         push(out, &n, cacaoi_form_pass(CACAO_PASS_BLUR, c->gpu_forms), 0, 0, c->blur_passes, fp);
     }
     /* The CPU forms without reuse: the upsample (downsampled) or smart apply over the groups that
-     * touch a needed tile, the output's other tiles filled with 1 (with reuse they run from a
+     * touch a needed tile, the output's other tiles given their 1 by compact (with reuse they run from a
      * gate, over every tile; the non-smart and half applies, LOWEST and LOW, over every group:
      * listed, they cost a frame with nothing to skip more than they saved, docs/tiles.md) */
     const unsigned output = c->downsampled ? cacaoi_qualities[c->quality].output_downsampled
                                            : cacaoi_qualities[c->quality].output_native;
     const bool listed_output = lists && !c->reuse && (c->downsampled || output == CACAO_OUTPUT_SMART);
-    if (listed_output) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT_WIDE, 0, 0, 0);
     cacaoi_step *s = push(out, &n, cacaoi_form_pass(c->downsampled ? CACAO_PASS_UPSAMPLE : CACAO_PASS_APPLY, c->gpu_forms),
                           !listed_output    ? output
                           : c->downsampled ? output + CACAO_UPSAMPLE_LISTED

@@ -116,18 +116,15 @@
 #define CACAO_CLASSIFY_QUIET 2
 
 /* Fill variants: AO 1 into the slices' AO (CACAO), into the horizon estimators' AO intermediate,
- * or into the caller's output (a horizon estimator's last pass writes it over the needed tiles);
- * or the view z (-1) and normal the horizon prepare stores for background. The slices' and the
- * output's are dispatches over the unneeded tiles; the horizon estimators' own images are cleared
+ * or into the whole caller's output (a quiet frame); or the view z (-1) and normal the horizon
+ * prepare stores for background. The slices' is a dispatch over the unneeded tiles; the horizon estimators' own images are cleared
  * whole before the passes that write the needed tiles (cacao_plan_step.clear). */
 #define CACAO_FILL_SLICES 0
 #define CACAO_FILL_HORIZON 1
-#define CACAO_FILL_OUTPUT 2
-#define CACAO_FILL_VIEW 3
-#define CACAO_FILL_IMPORTANCE 4 /* a clear of the importance map to 0 (the Q3 base pass over its list) */
-#define CACAO_FILL_OUTPUT_WIDE 5 /* CACAO's output over the unneeded tiles: a tile's 16x16 pixels (native) or 32x32
-                                    (downsampled), 2x2 or 4x4 per invocation */
-#define CACAO_FILL_OUTPUT_QUIET 6 /* every tile's output pixels, a direct grid: a quiet frame's one pass */
+#define CACAO_FILL_VIEW 2
+#define CACAO_FILL_IMPORTANCE 3 /* a clear of the importance map to 0 (the Q3 base pass over its list) */
+#define CACAO_FILL_OUTPUT_QUIET 4 /* every tile's output pixels, a direct grid: a quiet frame's one pass (the
+                                     output's unneeded tiles on other frames: compact stores their AO 1) */
 
 /* Reuse variants: compare the caller's depth (and normals) with the copy the previous frame kept,
  * per tile; sum the changed tiles along each row of tiles; mark the tiles to recompute. */

@@ -102,13 +102,13 @@ static void test_subset(void) {
                               "prepare_normals.native", "prepare_normals.list.native", "prepare.full.native", "prepare.mips.native",
                               "generate.q1", "generate.q2", "blur.1.fp32", "blur.2.fp32",
                               "blur.3.fp32", "blur.4.fp32", "blur.5.fp32", "blur.6.fp32",
-                              "blur.7.fp32", "blur.8.fp32", "apply.smart.fp32", "apply.smart_list.fp32", "fill.output_wide", "horizon_prepare.depth",
+                              "blur.7.fp32", "blur.8.fp32", "apply.smart.fp32", "apply.smart_list.fp32", "horizon_prepare.depth",
                               "horizon_prepare.input", "horizon_main.gtao", "horizon_main.bitmask",
                               "horizon_main.gtao_direct", "horizon_main.bitmask_direct",
                               "horizon_denoise.intermediate", "horizon_denoise.final", "classify", "compact", "fill",
                               /* the horizon estimators' tiles (docs/tiles.md; their own images are
                                * cleared, not filled: no key) */
-                              "classify.horizon", "compact.horizon", "fill.output",
+                              "classify.horizon", "compact.horizon",
                               /* CACAO's CPU forms without reuse: the quiet frame's test and fill */
                               "classify.quiet", "fill.output_quiet",
                               /* the GPU forms: a build embeds both, the device chooses (in key order) */

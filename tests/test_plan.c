@@ -35,8 +35,9 @@ static void test_steps_per_quality(void) {
 #define FILLS "fill", "fill"
     /* first the quiet frame's test and its fill (docs/tiles.md "A quiet frame") */
 #define QUIET "classify.quiet", "fill.output_quiet"
-    /* smart apply over compact's list of its groups at needed tiles, the other tiles' output filled */
-#define OUT "fill.output_wide",
+    /* smart apply over compact's list of its groups at needed tiles (compact stores the other
+     * tiles' output) */
+#define OUT
     const char *expected[5][16] = {
         {QUIET, "prepare.half.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.half.fp32"},
         {QUIET, "prepare.full.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.nonsmart.fp32"},
@@ -70,8 +71,7 @@ static void test_steps_per_quality(void) {
             const bool clear = strcmp(p.steps[i].key_name, "clear.importance") == 0;
             CHECK(p.steps[i].clear == clear && (!clear || i == 0));
             const bool independent = (strcmp(p.steps[i].key_name, "fill") == 0 && !strcmp(p.steps[i - 1].key_name, "fill")) ||
-                                     p.steps[i - 1].clear || !strcmp(p.steps[i - 1].key_name, "fill.output_quiet") ||
-                                     !strcmp(p.steps[i].key_name, "fill.output_wide");
+                                     p.steps[i - 1].clear || !strcmp(p.steps[i - 1].key_name, "fill.output_quiet");
             CHECK(p.steps[i].barrier_before == !independent);
             if (clear)
                 CHECK(p.steps[i].binding_count == 1 && p.steps[i].bindings[0].resource == CACAO_RES_IMPORTANCE &&
@@ -128,13 +128,13 @@ static void test_gpu_forms_skip_in_shader(void) {
 
 /* The horizon estimators' own images get the values of the tiles no pass computes from clears
  * (docs/tiles.md): view z and normals before their prepare, the AO intermediates the denoise passes
- * read before the estimator; the caller's output from a fill over the unneeded tiles. A clear is a
+ * read before the estimator; the caller's output from compact, over the unneeded tiles. A clear is a
  * step with no dispatch that writes only the images it clears, and the step after it that uses
  * one waits for it. */
 static void test_horizon_clears(void) {
     const char *expected[] = {"classify.horizon", "compact.horizon", "clear.view_depth", "horizon_prepare.depth",
-                              "clear.ao_raw", "clear.ao_pong", "horizon_main.gtao", "fill.output",
-                              "horizon_denoise.intermediate", "horizon_denoise.final"};
+                              "clear.ao_raw", "clear.ao_pong", "horizon_main.gtao", "horizon_denoise.intermediate",
+                              "horizon_denoise.final"};
     cacao_plan p = build((cacao_settings){.estimator = CACAO_ESTIMATOR_GTAO, .quality = CACAO_QUALITY_HIGH,
                                           .blur_pass_count = 2, .generate_normals = true},
                          640, 360);
@@ -239,25 +239,24 @@ static void test_dispatch_sizes(void) {
     /* past CACAO_BLUR_REGISTER_PASSES a group computes its 64x32 padded tile less N each side */
     cacao_plan b8 = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .blur_pass_count = 8, .generate_normals = true},
                           1920, 1080);
-    CHECK(strcmp(b8.steps[b8.step_count - 3].key_name, "blur.8.fp32") == 0); /* then the output's fill and apply */
+    CHECK(strcmp(b8.steps[b8.step_count - 2].key_name, "blur.8.fp32") == 0); /* then apply */
     CHECK(b8.blur_groups_x == 20 && b8.blur_groups_y == 34); /* ceil(960/48), ceil(540/16) */
-    CHECK(p.steps[Q + 12].dispatch[0] == 60 && p.steps[Q + 12].dispatch[1] == 34); /* smart apply: 4x4 per invocation */
+    CHECK(p.steps[Q + 11].dispatch[0] == 60 && p.steps[Q + 11].dispatch[1] == 34); /* smart apply: 4x4 per invocation */
     /* the list's indirect command takes its z from these: generate and the blur cover the four
      * layers with z, a fill group loops over them, a base pass group covers its block's layers */
     CHECK(p.steps[Q + 8].dispatch[2] == 1 && p.steps[Q + 9].dispatch[2] == 1 && p.steps[Q + 10].dispatch[2] == 4);
     CHECK(p.steps[Q + 7].list == CACAO_LIST_GENERATE && p.steps[Q + 8].list == CACAO_LIST_FILL_SLICES &&
-          p.steps[Q + 10].list == CACAO_LIST_BLUR && p.steps[Q + 12].list == CACAO_LIST_PREPARE &&
-          p.steps[Q + 11].list == CACAO_LIST_FILL_SLICES &&
+          p.steps[Q + 10].list == CACAO_LIST_BLUR && p.steps[Q + 11].list == CACAO_LIST_PREPARE &&
+          p.steps[Q + 9].list == CACAO_LIST_FILL_SLICES && p.step_count == Q + 12 &&
           p.steps[Q + 4].list == CACAO_LIST_BLOCKS && p.steps[Q + 5].list == CACAO_LIST_NONE);
     cacao_plan d =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true, .generate_normals = true}, 1001, 37);
     CHECK(d.slice_width == 251 && d.slice_height == 10); /* ceil(ceil(1001/2)/2), ceil(ceil(37/2)/2) */
-    /* the CPU forms without reuse: the upsample over compact's list of the needed tiles, after the
-     * fill of the output's other tiles */
+    /* the CPU forms without reuse: the upsample over compact's list of the needed tiles (compact
+     * stores the output of the others), after the blur */
     CHECK(strcmp(d.steps[d.step_count - 1].key_name, "upsample.smart_list.fp32") == 0);
     CHECK(d.steps[d.step_count - 1].list == CACAO_LIST_PREPARE && d.steps[d.step_count - 1].dispatch[2] == 1);
-    CHECK(d.steps[d.step_count - 2].key[0] == CACAO_PASS_FILL && d.steps[d.step_count - 2].key[1] == CACAO_FILL_OUTPUT_WIDE &&
-          d.steps[d.step_count - 2].list == CACAO_LIST_FILL_SLICES);
+    CHECK(d.steps[d.step_count - 2].key[0] == CACAO_PASS_BLUR && d.steps[d.step_count - 2].list == CACAO_LIST_BLUR);
     /* upsample: 2x2 full-res pixels per half-res position, 2x2 positions per thread, 8x8 threads:
      * a group is a tile (8x8 slice texels) */
     CHECK(d.steps[d.step_count - 1].dispatch[0] == 32 && d.steps[d.step_count - 1].dispatch[1] == 2); /* /32 */
@@ -361,7 +360,7 @@ static void test_reuse(void) {
             for (uint32_t i = 0; i < plain.step_count; ++i) {
                 const char *name = plain.steps[i].key_name;
                 if (!strcmp(name, "classify.quiet") || !strcmp(name, "fill.output_quiet") ||
-                    !strcmp(name, "fill.output_wide") || !strcmp(name, "prepare_normals.list.native"))
+                    !strcmp(name, "prepare_normals.list.native"))
                     continue;
                 same[m++] = !strcmp(name, "apply.smart_list.fp32") ? "apply.smart.fp32" : name;
                 if (listed_normals && !strcmp(name, "prepare_depths.mips.native")) same[m++] = "prepare_normals.native";

@@ -60,6 +60,17 @@ bool block_has_active(ivec2 b)
  * pass declares its local size (glslang takes 1 x 1 x 1 before). */
 #define texel_of(g) ((g) * ivec2(gl_WorkGroupSize.xy) + ivec2(gl_LocalInvocationID.xy))
 
+#if (CACAO_PASS == CACAO_PASS_COMPACT || CACAO_PASS == CACAO_PASS_FILL) && defined(CACAO_BIND_OUTPUT)
+/* AO 1 into the output's n x n pixels from p0 (those inside the image). */
+void store_output_one(ivec2 p0, int n)
+{
+    ivec2 size = imageSize(output_image);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x)
+            if (in_rect(p0 + ivec2(x, y), size)) imageStore(output_image, p0 + ivec2(x, y), vec4(1.0, 0.0, 0.0, 0.0));
+}
+#endif
+
 /* CACAO_SKIPS_BY_CLASS (the generator's define, cacaoi_skips_by_class): the GPU forms of
  * generate and the blur run every group of a direct grid and skip by classify's flags: a group
  * the lists would leave out stores the AO 1 the CPU forms' fill stores there and computes nothing
@@ -400,8 +411,22 @@ void main()
     int t = CB.tiles_x * CB.tiles_y, b = CB.blur_groups_x * CB.blur_groups_y;
     if (i < t) {
         ivec2 g = ivec2(i % CB.tiles_x, i / CB.tiles_x);
-        /* reuse: a tile it does not recompute keeps the previous frame's values, in no list */
-        if (tile_recomputed(g)) append(touches_needed(g, g) ? CACAO_LIST_GENERATE : CACAO_LIST_FILL_SLICES, g);
+        /* reuse: a tile it does not recompute keeps the previous frame's values, in no list. The
+         * output of an unneeded tile, where list steps write the others' (the horizon estimators'
+         * last pass; CACAO's upsample or smart apply over their lists, needed_list), gets its AO 1
+         * here, a tile's tile_pixels x tile_pixels pixels per invocation: on lavapipe about a third
+         * of what a fill dispatch over the same tiles, an invocation per pixel or four, cost
+         * (docs/tiles.md "What runs"). */
+        if (tile_recomputed(g)) {
+            bool needed = touches_needed(g, g);
+#if CACAO_VARIANT == CACAO_COMPACT_HORIZON
+            if (needed) append(CACAO_LIST_GENERATE, g);
+            else store_output_one(g * CB.tile_pixels, CB.tile_pixels);
+#else
+            append(needed ? CACAO_LIST_GENERATE : CACAO_LIST_FILL_SLICES, g);
+            if (!needed && CB.needed_list != 0) store_output_one(g * CB.tile_pixels, CB.tile_pixels);
+#endif
+        }
         /* The blocks of 2x2 tiles holding an active tile, for CACAO's Q3 base pass at HIGHEST or the
          * horizon estimators' downsampled estimator (the CPU forms): the first tile of each block
          * appends it; every such block whatever reuse recomputes (the load counter sums the whole
@@ -446,18 +471,12 @@ void main()
     ivec2 group;
     if (!group_of(group)) return;
     ivec2 p = texel_of(group);
-#if CACAO_VARIANT == CACAO_FILL_OUTPUT
-    if (in_rect(p, imageSize(output_image))) imageStore(output_image, p, vec4(1.0, 0.0, 0.0, 0.0));
-#elif CACAO_VARIANT == CACAO_FILL_OUTPUT_WIDE || CACAO_VARIANT == CACAO_FILL_OUTPUT_QUIET
-    /* CACAO's tiles of tile_pixels x tile_pixels output pixels (16 native, 32 downsampled), n x n
-     * per invocation: the unneeded ones (wide: the fill list), or every one (quiet: a direct grid,
-     * docs/tiles.md "A quiet frame", the frame's one pass); the horizon estimators' fill keeps its
-     * one pixel per invocation */
+#if CACAO_VARIANT == CACAO_FILL_OUTPUT_QUIET
+    /* every one of CACAO's tiles of tile_pixels x tile_pixels output pixels (16 native, 32
+     * downsampled), n x n per invocation: a direct grid, docs/tiles.md "A quiet frame", the frame's
+     * one pass */
     int n = CB.tile_pixels / CACAO_TILE;
-    ivec2 p0 = group * CB.tile_pixels + n * ivec2(gl_LocalInvocationID.xy), osize = imageSize(output_image);
-    for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x)
-            if (in_rect(p0 + ivec2(x, y), osize)) imageStore(output_image, p0 + ivec2(x, y), vec4(1.0, 0.0, 0.0, 0.0));
+    store_output_one(group * CB.tile_pixels + n * ivec2(gl_LocalInvocationID.xy), n);
 #else
     if (in_rect(p, imageSize(ssao_image).xy))
         for (int layer = 0; layer < CB.slice_count; ++layer) imageStore(ssao_image, ivec3(p, layer), vec4(1.0, 1.0, 0.0, 0.0));

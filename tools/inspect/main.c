@@ -229,6 +229,18 @@ static int cmd_show(const char *key_name) {
 
 static double percent(uint32_t part, uint32_t whole) { return whole ? 100.0 * part / whole : 0.0; }
 
+/* Whether the plan's compact stores the AO 1 of the output's skipped tiles (the horizon
+ * estimators' CPU forms; CACAO's where the upsample or smart apply runs over a list). */
+static bool compact_fills_output(const cacao_plan *plan) {
+    for (uint32_t i = 0; i < plan->step_count; ++i) {
+        const cacao_plan_step *st = &plan->steps[i];
+        if ((st->key[0] == CACAO_PASS_COMPACT && st->key[1] == CACAO_COMPACT_HORIZON) ||
+            (st->list == CACAO_LIST_PREPARE && plan->settings.estimator == CACAO_ESTIMATOR_CACAO))
+            return true;
+    }
+    return false;
+}
+
 /* What each step of the plan did on the frame whose tile counts are c. */
 static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *c, bool output_kept) {
     const bool reuse = plan->settings.reuse_unchanged, nothing_changed = reuse && c->changed == 0;
@@ -299,10 +311,7 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
                    percent(generate_skipped, c->generate_total));
             break;
         case CACAO_LIST_FILL_SLICES:
-            if (st->key[0] == CACAO_PASS_FILL && st->key[1] == CACAO_FILL_OUTPUT_WIDE)
-                printf("writes AO 1 into the output of the %u skipped tiles (%.1f%% of the tiles)\n", generate_skipped,
-                       percent(generate_skipped, c->generate_total));
-            else if (reuse)
+            if (reuse)
                 printf("writes AO 1 into the skipped tiles a change reaches (at most %u)\n", c->recomputed);
             else
                 printf("writes AO 1 into the %u skipped tiles (%.1f%% of the tiles)\n", generate_skipped,
@@ -324,7 +333,11 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
                    percent(blur_skipped, c->blur_total));
             break;
         default:
-            if (st->key[0] == CACAO_PASS_REUSE)
+            if (st->key[0] == CACAO_PASS_COMPACT && compact_fills_output(plan))
+                printf("runs over everything; writes AO 1 into the output of the %u skipped tiles (%.1f%% of the "
+                       "tiles)\n",
+                       generate_skipped, percent(generate_skipped, c->generate_total));
+            else if (st->key[0] == CACAO_PASS_REUSE)
                 printf("reuse's bookkeeping (full frames record only the diff, or nothing)\n");
             else if (st->gate && nothing_changed && (i + 1 < plan->step_count || output_kept))
                 printf("gated: nothing changed, dispatches nothing\n");
