@@ -84,9 +84,11 @@
 /* prepare_normals' variants: every texel, or the tiles of CACAO_LIST_NORMALS (a group each) */
 #define CACAO_PREPARE_NORMALS_LISTED 1
 
-/* Slice-prepare variants: normals reconstructed from depth, or transformed from the input. */
+/* Slice-prepare variants: normals reconstructed from depth, or transformed from the input; or
+ * (the CPU form) the view z alone, where no pass reads the normals (docs/tiles.md). */
 #define CACAO_HORIZON_NORMALS_DEPTH 0
 #define CACAO_HORIZON_NORMALS_INPUT 1
+#define CACAO_HORIZON_VIEW_Z_ONLY 2
 
 /* Slice-main variants: estimator (GTAO or bitmask) x destination (raw intermediate for the
  * denoiser, or the caller's output when no denoise pass runs); the _HALF variants (downsampled)
@@ -170,7 +172,8 @@
 #define CACAO_LIST_NONE 0                /* a direct dispatch */
 #define CACAO_LIST_GENERATE 1            /* needed tiles (one generate group each, z = layers) */
 #define CACAO_LIST_FILL_SLICES 2         /* tiles that are not needed (z 1: a group fills every layer) */
-#define CACAO_LIST_PREPARE 3             /* horizon estimators: tiles not all background (their prepare);
+#define CACAO_LIST_PREPARE 3             /* horizon estimators: tiles not all background and not within two
+                                            of an active one (their prepare of the view z alone);
                                             CACAO, the CPU forms without reuse: the groups of the
                                             upsample (downsampled: the needed tiles) or of smart
                                             apply (native: blocks of 2x2 tiles holding one) */
@@ -181,7 +184,9 @@
 #define CACAO_LIST_NORMALS 6             /* tiles within two tiles of an active one (CACAO's CPU forms
                                             without reuse, the caller's normals): prepare_normals.list,
                                             a group each; generate reads the normals of the needed
-                                            tiles and one texel around them */
+                                            tiles and one texel around them. The horizon estimators'
+                                            CPU forms: their prepare of view z and normals, the
+                                            tiles whose normals the estimator and denoise read */
 #define CACAO_LIST_COUNT 6
 #define CACAO_TILE_HEADER 32
 #define CACAO_TILE_COMMAND(list) (3 * ((list) - 1)) /* header: list's indirect command (x, y, z) */

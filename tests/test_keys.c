@@ -103,7 +103,7 @@ static void test_subset(void) {
                               "generate.q1", "generate.q2", "blur.1.fp32", "blur.2.fp32",
                               "blur.3.fp32", "blur.4.fp32", "blur.5.fp32", "blur.6.fp32",
                               "blur.7.fp32", "blur.8.fp32", "apply.smart.fp32", "apply.smart_list.fp32", "horizon_prepare.depth",
-                              "horizon_prepare.input", "horizon_main.gtao", "horizon_main.bitmask",
+                              "horizon_prepare.input", "horizon_prepare.z", "horizon_main.gtao", "horizon_main.bitmask",
                               "horizon_main.gtao_direct", "horizon_main.bitmask_direct",
                               "horizon_denoise.intermediate", "horizon_denoise.final", "classify", "compact", "fill",
                               /* the horizon estimators' tiles (docs/tiles.md; their own images are

@@ -133,7 +133,7 @@ static void test_gpu_forms_skip_in_shader(void) {
  * one waits for it. */
 static void test_horizon_clears(void) {
     const char *expected[] = {"classify.horizon", "compact.horizon", "clear.view_depth", "horizon_prepare.depth",
-                              "clear.ao_raw", "clear.ao_pong", "horizon_main.gtao", "horizon_denoise.intermediate",
+                              "horizon_prepare.z", "clear.ao_raw", "clear.ao_pong", "horizon_main.gtao", "horizon_denoise.intermediate",
                               "horizon_denoise.final"};
     cacao_plan p = build((cacao_settings){.estimator = CACAO_ESTIMATOR_GTAO, .quality = CACAO_QUALITY_HIGH,
                                           .blur_pass_count = 2, .generate_normals = true},
@@ -151,8 +151,14 @@ static void test_horizon_clears(void) {
     CHECK(p.steps[2].binding_count == 2 && p.steps[2].bindings[0].resource == CACAO_RES_VIEW_DEPTH &&
           p.steps[2].bindings[1].resource == CACAO_RES_VIEW_NORMALS);
     CHECK(p.steps[3].barrier_before && (p.steps[3].barrier_resources & (1u << CACAO_RES_VIEW_DEPTH)));
-    CHECK(p.steps[6].barrier_before && (p.steps[6].barrier_resources & (1u << CACAO_RES_AO_RAW)));
-    CHECK(!p.steps[4].barrier_before && !p.steps[5].barrier_before); /* images nothing touched yet */
+    /* the prepare over compact's two lists: view z and normals within two tiles of an active one,
+     * the view z alone over the other tiles not all background (the second writes only view z) */
+    CHECK(p.steps[3].list == CACAO_LIST_NORMALS && p.steps[4].list == CACAO_LIST_PREPARE);
+    CHECK(p.steps[4].binding_count >= 1 && p.steps[4].barrier_before);
+    for (uint32_t j = 0; j < p.steps[4].binding_count; ++j)
+        CHECK(!p.steps[4].bindings[j].write || p.steps[4].bindings[j].resource == CACAO_RES_VIEW_DEPTH);
+    CHECK(p.steps[7].barrier_before && (p.steps[7].barrier_resources & (1u << CACAO_RES_AO_RAW)));
+    CHECK(!p.steps[5].barrier_before && !p.steps[6].barrier_before); /* images nothing touched yet */
 }
 
 static void test_only_needed_resources(void) {
@@ -402,7 +408,7 @@ static void test_reuse(void) {
                                       .generate_normals = !normals,
                                       .shader_forms = gpu ? CACAO_SHADER_FORMS_GPU : CACAO_SHADER_FORMS_CPU};
             const cacao_plan p = build(s, 960, 540);
-            CHECK(p.step_count == (gpu ? 12u : 17u)); /* the longest sequence the settings allow (CPU forms) */
+            CHECK(p.step_count == (gpu ? 12u : 18u)); /* the longest sequence the settings allow (CPU forms) */
             CHECK(p.steps[0].key[0] == CACAO_PASS_REUSE && p.steps[1].key[0] == CACAO_PASS_REUSE &&
                   p.steps[1].key[1] == CACAO_REUSE_REACH);
             CHECK(p.steps[0].key[1] == (gpu ? (normals ? CACAO_REUSE_DIFF_NORMALS_GPU : CACAO_REUSE_DIFF_GPU)

@@ -434,8 +434,11 @@ void main()
         if (CB.active_blocks != 0 && (g.x & 1) == 0 && (g.y & 1) == 0 && block_has_active(g / 2))
             append(CACAO_LIST_BLOCKS, g / 2);
 #if CACAO_VARIANT == CACAO_COMPACT_HORIZON
-        /* the background tiles keep the clear's view z and normal (what the prepare would store) */
-        if (tiles[CACAO_TILE_CLASSES + i] != CACAO_TILE_CLASS_BACKGROUND) append(CACAO_LIST_PREPARE, g);
+        /* the background tiles keep the clear's view z and normal (what the prepare would store);
+         * the estimator reads the normals of the needed tiles, the denoise passes those of one
+         * pixel around them (the upsample three): the tiles within two of an active one */
+        if (tiles[CACAO_TILE_CLASSES + i] != CACAO_TILE_CLASS_BACKGROUND)
+            append(touches_needed(g - 1, g + 1) ? CACAO_LIST_NORMALS : CACAO_LIST_PREPARE, g);
 #else
         /* the CPU forms without reuse: the groups of the upsample (downsampled: the needed tiles)
          * or of smart apply (native: the blocks of 2x2 tiles holding a needed one, appended by

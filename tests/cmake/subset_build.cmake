@@ -36,7 +36,7 @@ endforeach()
 set(expected prepare_depths.full.native prepare_depths.mips.native prepare_normals.native prepare_normals.list.native
     generate.q1 generate.q2 blur.1.fp32 blur.2.fp32 blur.3.fp32
     blur.4.fp32 blur.5.fp32 blur.6.fp32 blur.7.fp32 blur.8.fp32 apply.smart.fp32 apply.smart_list.fp32
-    horizon_prepare.depth horizon_prepare.input horizon_main.gtao horizon_main.bitmask horizon_main.gtao_direct
+    horizon_prepare.depth horizon_prepare.input horizon_prepare.z horizon_main.gtao horizon_main.bitmask horizon_main.gtao_direct
     horizon_main.bitmask_direct horizon_denoise.intermediate horizon_denoise.final classify classify.horizon classify.quiet compact
     compact.horizon fill fill.output_quiet
     prepare.full.native prepare.mips.native

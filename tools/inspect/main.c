@@ -278,7 +278,10 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
             continue;
         }
         if (st->list == CACAO_LIST_NORMALS) {
-            printf("transforms the normals of the tiles within two of an active tile (generate's reads)\n");
+            printf(plan->settings.estimator == CACAO_ESTIMATOR_CACAO
+                       ? "transforms the normals of the tiles within two of an active tile (generate's reads)\n"
+                       : "view z and normals of the tiles within two of an active tile (the estimator's and the "
+                         "denoise's reads)\n");
             continue;
         }
         if (st->clear && st->bindings[0].resource == CACAO_RES_IMPORTANCE) {
@@ -325,8 +328,8 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
                        c->generate_run, generate_skipped, percent(generate_skipped, c->generate_total));
                 break;
             }
-            printf("runs over the tiles not all background, skips the %u background ones (%.1f%%)\n", c->background,
-                   percent(c->background, c->tiles));
+            printf("view z alone of the other tiles not all background, skips the %u background ones (%.1f%%)\n",
+                   c->background, percent(c->background, c->tiles));
             break;
         case CACAO_LIST_BLUR:
             printf("runs %u of %u groups, skips %u (%.1f%%)\n", c->blur_run, c->blur_total, blur_skipped,
