@@ -48,8 +48,9 @@ vec3 neighbour_dir(vec3 pc, ivec2 q, float zq)
 void prepare_pixel(ivec2 p, ivec2 size)
 {
     float z = load_view_z(p, size);
-    imageStore(view_depth, p, vec4(z));
-#if CACAO_VARIANT != CACAO_HORIZON_VIEW_Z_ONLY
+#if CACAO_VARIANT == CACAO_HORIZON_VIEW_Z_ONLY
+    imageStore(view_depth, p, vec4(z)); /* no pass reads this tile's normals (docs/tiles.md) */
+#else
     vec3 n = vec3(0.0, 0.0, -1.0);
     if (z > 0.0) {
         vec3 pc = horizon_pos(p, z);
@@ -70,6 +71,7 @@ void prepare_pixel(ivec2 p, ivec2 size)
         n = horizon_normal(n, to_camera);
 #endif
     }
+    imageStore(view_depth, p, vec4(z));
     imageStore(view_normals, p, vec4(n, 0.0));
 #endif
 }
