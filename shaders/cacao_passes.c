@@ -113,10 +113,12 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
 
 /* The horizon estimators' rows, for the CPU forms (tiles: R, over lists) and the GPU forms
  * (tiles: W, direct grids: the prepare classifies, the others count the needed groups). */
-#define HORIZON_PREPARE_ROW(name, variants, tiles, ...)                                         \
-    {name, {"depth", "input", "z"}, variants, false, false, false, WG(HORIZON), CACAOI_GRID_OUTPUT, 6,      \
-     {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), R(SRC_NORMALS, NORMALS_INPUT, V(CACAO_HORIZON_NORMALS_INPUT)), \
-      W(VIEW_DEPTH, VIEW_DEPTH, ALL),                                                                      \
+/* view_z: the variants that compute the view z from the caller's depth and store it (the CPU form
+ * of the normals from depth reads the z its view z variant stored). */
+#define HORIZON_PREPARE_ROW(name, variants, view_z, tiles, ...)                                 \
+    {name, {"depth", "input", "z"}, variants, false, false, false, WG(HORIZON), CACAOI_GRID_OUTPUT, 7,      \
+     {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, view_z), R(SRC_NORMALS, NORMALS_INPUT, V(CACAO_HORIZON_NORMALS_INPUT)), \
+      W(VIEW_DEPTH, VIEW_DEPTH, view_z), R(VIEW_DEPTH, VIEW_DEPTH, ALL & ~(view_z)),                       \
       W(VIEW_NORMALS, VIEW_NORMALS, V(CACAO_HORIZON_NORMALS_DEPTH) | V(CACAO_HORIZON_NORMALS_INPUT)),      \
       tiles(TILES, TILES, ALL)},                                                                           \
      .lists = {__VA_ARGS__}}
@@ -199,11 +201,13 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                                 [CACAO_UPSAMPLE_LISTED + CACAO_OUTPUT_HALF] = CACAO_LIST_PREPARE}},
     /* spec: estimators.md. Full-resolution intermediates, read and written as storage images. */
     /* Over the tiles classification found not all background (the clear before stores in the
-     * others what it would): view z and normals over the tiles within two of an active one, whose
-     * normals the estimator and the denoise passes read; the view z alone over the rest
-     * (docs/tiles.md). */
-    PASS(HORIZON_PREPARE) = HORIZON_PREPARE_ROW("horizon_prepare", 3, R, CACAO_LIST_NORMALS, CACAO_LIST_NORMALS,
-                                                CACAO_LIST_PREPARE),
+     * others what it would): the normals over the tiles within two of an active one, whose
+     * normals the estimator and the denoise passes read, and the view z everywhere: the caller's
+     * normals with their view z, the view z alone over the rest; normals from depth from the view
+     * z stored first (docs/tiles.md). */
+    PASS(HORIZON_PREPARE) =
+        HORIZON_PREPARE_ROW("horizon_prepare", 3, V(CACAO_HORIZON_NORMALS_INPUT) | V(CACAO_HORIZON_VIEW_Z_ONLY), R,
+                            CACAO_LIST_NORMALS, CACAO_LIST_NORMALS, CACAO_LIST_PREPARE),
     /* The estimator and the denoise passes run over the needed tiles (docs/tiles.md: a group is a
      * tile of 8x8 pixels); the fills give the rest their AO 1. Downsampled, the estimator runs on
      * a half-size grid over compact's blocks of 2x2 tiles holding an active tile (a clear gives the
@@ -214,7 +218,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * classes, the estimator's and denoise passes' groups that are not needed store AO 1 (and
      * count: group_work). The downsampled estimator: every group of the half grid, one whose 2x2
      * tiles hold no active one storing AO 1 (it reads their classes). */
-    PASS(HORIZON_PREPARE_GPU) = HORIZON_PREPARE_ROW("horizon_prepare_gpu", 2, W, CACAO_LIST_NONE),
+    PASS(HORIZON_PREPARE_GPU) = HORIZON_PREPARE_ROW("horizon_prepare_gpu", 2, ALL, W, CACAO_LIST_NONE),
     PASS(HORIZON_MAIN_GPU) = HORIZON_MAIN_ROW("horizon_main_gpu", W, CACAO_LIST_NONE),
     PASS(HORIZON_DENOISE_GPU) = HORIZON_DENOISE_ROW("horizon_denoise_gpu", W, CACAO_LIST_NONE),
     /* docs/tiles.md: classes (one invocation per tile), then the lists. CACAO classifies its

@@ -119,8 +119,12 @@ static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI
         push(out, &n, CACAO_PASS_CLASSIFY, CACAO_CLASSIFY_HORIZON, 0, 0, 0);
         push(out, &n, CACAO_PASS_COMPACT, CACAO_COMPACT_HORIZON, 0, 0, 0);
         push(out, &n, CACAO_PASS_FILL, CACAO_FILL_VIEW, 0, 0, 0);
+        /* the view z where no normal is read and the normals with theirs; normals from depth: the
+         * view z first, the normals from it (docs/tiles.md) */
+        const bool from_depth = normals == CACAO_HORIZON_NORMALS_DEPTH;
+        if (from_depth) push(out, &n, CACAO_PASS_HORIZON_PREPARE, CACAO_HORIZON_VIEW_Z_ONLY, 0, 0, 0);
         push(out, &n, CACAO_PASS_HORIZON_PREPARE, normals, 0, 0, 0);
-        push(out, &n, CACAO_PASS_HORIZON_PREPARE, CACAO_HORIZON_VIEW_Z_ONLY, 0, 0, 0);
+        if (!from_depth) push(out, &n, CACAO_PASS_HORIZON_PREPARE, CACAO_HORIZON_VIEW_Z_ONLY, 0, 0, 0);
         /* the AO intermediates the denoise passes read, cleared to AO 1 (AO_RAW, AO_PONG) */
         const bool raw = half ? blur >= 3 : blur >= 1, pong = blur >= 2;
         if (raw) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0);

@@ -85,7 +85,8 @@
 #define CACAO_PREPARE_NORMALS_LISTED 1
 
 /* Slice-prepare variants: normals reconstructed from depth, or transformed from the input; or
- * (the CPU form) the view z alone, where no pass reads the normals (docs/tiles.md). */
+ * (the CPU form) the view z alone, where no pass reads the normals or, with normals from depth,
+ * before the normals, which the CPU form then computes from the stored view z (docs/tiles.md). */
 #define CACAO_HORIZON_NORMALS_DEPTH 0
 #define CACAO_HORIZON_NORMALS_INPUT 1
 #define CACAO_HORIZON_VIEW_Z_ONLY 2
@@ -172,8 +173,10 @@
 #define CACAO_LIST_NONE 0                /* a direct dispatch */
 #define CACAO_LIST_GENERATE 1            /* needed tiles (one generate group each, z = layers) */
 #define CACAO_LIST_FILL_SLICES 2         /* tiles that are not needed (z 1: a group fills every layer) */
-#define CACAO_LIST_PREPARE 3             /* horizon estimators: tiles not all background and not within two
-                                            of an active one (their prepare of the view z alone);
+#define CACAO_LIST_PREPARE 3             /* horizon estimators: the tiles not all background where their
+                                            prepare stores the view z alone (beyond two of an active
+                                            tile; every one with normals from depth, before the
+                                            normals' prepare, which reads it);
                                             CACAO, the CPU forms without reuse: the groups of the
                                             upsample (downsampled: the needed tiles) or of smart
                                             apply (native: blocks of 2x2 tiles holding one) */
@@ -457,7 +460,10 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(INT, needed_list)                 /* CACAO's compact lists in CACAO_LIST_PREPARE: 1 the needed tiles (the
                                            upsample), 2 the blocks of 2x2 tiles holding one (smart apply) */ \
     M(INT, active_blocks)               /* 1: compact lists the blocks holding an active tile (CACAO_LIST_BLOCKS) */ \
-    M(INT, normals_list)                /* 1: compact lists the tiles whose normals generate reads (CACAO_LIST_NORMALS) */ \
+    M(INT, normals_list)                /* 1: compact lists the tiles whose normals generate reads (CACAO_LIST_NORMALS);
+                                           the horizon estimators' normals from depth: 2, their view
+                                           z list (CACAO_LIST_PREPARE) holds every tile not all
+                                           background, the normals' prepare reads the stored z */ \
     M(INT, tile_pixels)                 /* output pixels per tile side (CACAO: 16 native, 32 downsampled;
                                            the horizon estimators 8) */ \
     M(INT, quiet_gate)                  /* classify.quiet: the gate of the quiet frame's fill (from 1), 0 none */ \

@@ -132,8 +132,8 @@ static void test_gpu_forms_skip_in_shader(void) {
  * step with no dispatch that writes only the images it clears, and the step after it that uses
  * one waits for it. */
 static void test_horizon_clears(void) {
-    const char *expected[] = {"classify.horizon", "compact.horizon", "clear.view_depth", "horizon_prepare.depth",
-                              "horizon_prepare.z", "clear.ao_raw", "clear.ao_pong", "horizon_main.gtao", "horizon_denoise.intermediate",
+    const char *expected[] = {"classify.horizon", "compact.horizon", "clear.view_depth", "horizon_prepare.z",
+                              "horizon_prepare.depth", "clear.ao_raw", "clear.ao_pong", "horizon_main.gtao", "horizon_denoise.intermediate",
                               "horizon_denoise.final"};
     cacao_plan p = build((cacao_settings){.estimator = CACAO_ESTIMATOR_GTAO, .quality = CACAO_QUALITY_HIGH,
                                           .blur_pass_count = 2, .generate_normals = true},
@@ -151,12 +151,22 @@ static void test_horizon_clears(void) {
     CHECK(p.steps[2].binding_count == 2 && p.steps[2].bindings[0].resource == CACAO_RES_VIEW_DEPTH &&
           p.steps[2].bindings[1].resource == CACAO_RES_VIEW_NORMALS);
     CHECK(p.steps[3].barrier_before && (p.steps[3].barrier_resources & (1u << CACAO_RES_VIEW_DEPTH)));
-    /* the prepare over compact's two lists: view z and normals within two tiles of an active one,
-     * the view z alone over the other tiles not all background (the second writes only view z) */
-    CHECK(p.steps[3].list == CACAO_LIST_NORMALS && p.steps[4].list == CACAO_LIST_PREPARE);
-    CHECK(p.steps[4].binding_count >= 1 && p.steps[4].barrier_before);
+    /* the prepare over compact's two lists (docs/tiles.md). Normals from depth: the view z of
+     * every tile not all background first, writing only view z; then the normals of the tiles
+     * within two of an active one from it (reading view z, writing only the normals) */
+    CHECK(p.steps[3].list == CACAO_LIST_PREPARE && p.steps[4].list == CACAO_LIST_NORMALS);
+    CHECK(p.steps[4].barrier_before && (p.steps[4].barrier_resources & (1u << CACAO_RES_VIEW_DEPTH)));
+    for (uint32_t j = 0; j < p.steps[3].binding_count; ++j)
+        CHECK(!p.steps[3].bindings[j].write || p.steps[3].bindings[j].resource == CACAO_RES_VIEW_DEPTH);
     for (uint32_t j = 0; j < p.steps[4].binding_count; ++j)
-        CHECK(!p.steps[4].bindings[j].write || p.steps[4].bindings[j].resource == CACAO_RES_VIEW_DEPTH);
+        CHECK(p.steps[4].bindings[j].write == (p.steps[4].bindings[j].resource == CACAO_RES_VIEW_NORMALS));
+    /* the caller's normals: their prepare stores the view z with them, then the view z alone over
+     * the other tiles not all background */
+    cacao_plan g = build((cacao_settings){.estimator = CACAO_ESTIMATOR_GTAO, .quality = CACAO_QUALITY_HIGH,
+                                          .blur_pass_count = 2},
+                         640, 360);
+    CHECK(strcmp(g.steps[3].key_name, "horizon_prepare.input") == 0 && g.steps[3].list == CACAO_LIST_NORMALS);
+    CHECK(strcmp(g.steps[4].key_name, "horizon_prepare.z") == 0 && g.steps[4].list == CACAO_LIST_PREPARE);
     CHECK(p.steps[7].barrier_before && (p.steps[7].barrier_resources & (1u << CACAO_RES_AO_RAW)));
     CHECK(!p.steps[5].barrier_before && !p.steps[6].barrier_before); /* images nothing touched yet */
 }

@@ -245,7 +245,13 @@ static void fill_tile_constants(const cacao_plan *plan, const projection_view *v
     c->tiles_all = plan->settings.compute_all_tiles ? 1 : 0;
     for (uint32_t i = 0; i < plan->step_count; ++i) /* a step over compact's blocks, or the needed tiles (docs/tiles.md) */
         if (plan->steps[i].list == CACAO_LIST_BLOCKS) c->active_blocks = 1;
-        else if (plan->steps[i].list == CACAO_LIST_NORMALS) c->normals_list = 1;
+        else if (plan->steps[i].list == CACAO_LIST_NORMALS)
+            /* the horizon estimators' normals from depth: the view z list holds every tile not all
+             * background (their CPU prepare computes the normals from the stored view z) */
+            c->normals_list = plan->steps[i].key[0] == CACAO_PASS_HORIZON_PREPARE &&
+                                      plan->steps[i].key[1] == CACAO_HORIZON_NORMALS_DEPTH
+                                  ? 2
+                                  : 1;
         else if (plan->steps[i].list == CACAO_LIST_PREPARE && plan->settings.estimator == CACAO_ESTIMATOR_CACAO)
             /* the upsample's groups are the needed tiles, smart apply's blocks of 2x2 tiles */
             c->needed_list = plan->settings.downsample ? 1 : 2;

@@ -30,7 +30,15 @@ vec3 horizon_normal(vec3 stored, vec3 to_camera)
 
 #if HORIZON_PREPARE_PASS
 
+#if CACAO_PASS == CACAO_PASS_HORIZON_PREPARE && CACAO_VARIANT == CACAO_HORIZON_NORMALS_DEPTH
+/* The CPU form of the normals from depth: the view z its view z variant stored before, the same
+ * horizon_view_z of the same depth (an image load costs lavapipe less than a fetch and the
+ * division, five of them a pixel). */
+float load_view_z(ivec2 p, ivec2 size) { return in_rect(p, size) ? imageLoad(view_depth, p).r : -1.0; }
+#else
 float load_view_z(ivec2 p, ivec2 size) { return in_rect(p, size) ? horizon_view_z(texelFetch(src_depth, p, 0).r) : -1.0; }
+#endif
+#define HORIZON_STORES_VIEW_Z (CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU || CACAO_VARIANT != CACAO_HORIZON_NORMALS_DEPTH)
 
 #if CACAO_VARIANT == CACAO_HORIZON_NORMALS_DEPTH
 /* Unit direction from pc to a neighbour, zero where the neighbour is missing (off-image or
@@ -44,7 +52,8 @@ vec3 neighbour_dir(vec3 pc, ivec2 q, float zq)
 }
 #endif
 
-/* The view z and normal of pixel p (inside the image). */
+/* The view z and normal of pixel p (inside the image): the view z alone (CACAO_HORIZON_VIEW_Z_ONLY),
+ * or the normal and, unless the view z is already stored (HORIZON_STORES_VIEW_Z), the view z. */
 void prepare_pixel(ivec2 p, ivec2 size)
 {
     float z = load_view_z(p, size);
@@ -71,7 +80,9 @@ void prepare_pixel(ivec2 p, ivec2 size)
         n = horizon_normal(n, to_camera);
 #endif
     }
+#if HORIZON_STORES_VIEW_Z
     imageStore(view_depth, p, vec4(z));
+#endif
     imageStore(view_normals, p, vec4(n, 0.0));
 #endif
 }
@@ -95,7 +106,7 @@ void main()
 #else
     if (!group_of(group)) return;
     ivec2 p = texel_of(group);
-    ivec2 size = textureSize(src_depth, 0);
+    ivec2 size = imageSize(view_depth);
     if (in_rect(p, size)) prepare_pixel(p, size);
 #endif
 }

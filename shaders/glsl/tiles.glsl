@@ -436,9 +436,14 @@ void main()
 #if CACAO_VARIANT == CACAO_COMPACT_HORIZON
         /* the background tiles keep the clear's view z and normal (what the prepare would store);
          * the estimator reads the normals of the needed tiles, the denoise passes those of one
-         * pixel around them (the upsample three): the tiles within two of an active one */
-        if (tiles[CACAO_TILE_CLASSES + i] != CACAO_TILE_CLASS_BACKGROUND)
-            append(touches_needed(g - 1, g + 1) ? CACAO_LIST_NORMALS : CACAO_LIST_PREPARE, g);
+         * pixel around them (the upsample three): the tiles within two of an active one. The view
+         * z: of the others (the caller's normals: their prepare stores both), or of every one
+         * (normals from depth: computed from the stored z, normals_list 2) */
+        if (tiles[CACAO_TILE_CLASSES + i] != CACAO_TILE_CLASS_BACKGROUND) {
+            bool normals = touches_needed(g - 1, g + 1);
+            if (normals) append(CACAO_LIST_NORMALS, g);
+            if (!normals || CB.normals_list == 2) append(CACAO_LIST_PREPARE, g);
+        }
 #else
         /* the CPU forms without reuse: the groups of the upsample (downsampled: the needed tiles)
          * or of smart apply (native: the blocks of 2x2 tiles holding a needed one, appended by
