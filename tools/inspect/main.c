@@ -241,6 +241,15 @@ static bool compact_fills_output(const cacao_plan *plan) {
     return false;
 }
 
+/* Whether the plan's horizon prepare stores the view z of every tile first (normals from depth,
+ * the CPU forms: the normals' prepare reads it). */
+static bool horizon_z_first(const cacao_plan *plan) {
+    for (uint32_t i = 0; i < plan->step_count; ++i)
+        if (plan->steps[i].key[0] == CACAO_PASS_HORIZON_PREPARE && plan->steps[i].key[1] == CACAO_HORIZON_NORMALS_DEPTH)
+            return true;
+    return false;
+}
+
 /* What each step of the plan did on the frame whose tile counts are c. */
 static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *c, bool output_kept) {
     const bool reuse = plan->settings.reuse_unchanged, nothing_changed = reuse && c->changed == 0;
@@ -328,8 +337,13 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
                        c->generate_run, generate_skipped, percent(generate_skipped, c->generate_total));
                 break;
             }
-            printf("view z alone of the other tiles not all background, skips the %u background ones (%.1f%%)\n",
-                   c->background, percent(c->background, c->tiles));
+            if (horizon_z_first(plan))
+                printf("view z of the tiles not all background (the normals' prepare reads it), skips the %u "
+                       "background ones (%.1f%%)\n",
+                       c->background, percent(c->background, c->tiles));
+            else
+                printf("view z alone of the other tiles not all background, skips the %u background ones (%.1f%%)\n",
+                       c->background, percent(c->background, c->tiles));
             break;
         case CACAO_LIST_BLUR:
             printf("runs %u of %u groups, skips %u (%.1f%%)\n", c->blur_run, c->blur_total, blur_skipped,
