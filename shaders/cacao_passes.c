@@ -225,10 +225,12 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * deinterleaved depths (variant 0 keeps the pass's name), the horizon estimators the caller's
      * depth before their prepare. */
     /* quiet: CACAO's CPU forms without reuse, first: whether the frame is quiet (docs/tiles.md) */
+    /* quiet: the tiles it scans whole (every one on a quiet frame) get their output's AO 1 */
     PASS(CLASSIFY) = {"classify", {NULL, "horizon", "quiet"}, 3, false, false, false, {CACAO_WG_CLASSIFY, CACAO_WG_CLASSIFY},
-                      CACAOI_GRID_TILES, 4,
+                      CACAOI_GRID_TILES, 5,
                       {CONSTANTS, R(DEPTHS, DEPTHS, V(CACAO_CLASSIFY_SLICES)),
-                       R(SRC_DEPTH, DEPTH_INPUT, V(CACAO_CLASSIFY_HORIZON) | V(CACAO_CLASSIFY_QUIET)), W(TILES, TILES, ALL)}},
+                       R(SRC_DEPTH, DEPTH_INPUT, V(CACAO_CLASSIFY_HORIZON) | V(CACAO_CLASSIFY_QUIET)), W(TILES, TILES, ALL),
+                       W(OUTPUT, OUTPUT, V(CACAO_CLASSIFY_QUIET))}},
     /* it also stores the AO 1 of the output's unneeded tiles where a list step writes the others
      * (docs/tiles.md "What runs") */
     PASS(COMPACT) = {"compact", {NULL, "horizon"}, 2, false, false, false, {CACAO_WG_COMPACT, 1}, CACAOI_GRID_COMPACT, 3,
@@ -261,13 +263,12 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * normals for background: clears of the whole image before the passes that write the needed
      * tiles (on lavapipe a clear of a 16-bit image costs a full frame of CACAO about 4%, a fill
      * over an empty list nothing: docs/tiles.md). */
-    PASS(FILL) = {"fill", {NULL, "horizon", "view", "importance", "output_quiet"}, 5, false, false, false,
-                  {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE, 8,
+    PASS(FILL) = {"fill", {NULL, "horizon", "view", "importance"}, 4, false, false, false,
+                  {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE, 7,
                   {CONSTANTS,
                    R(TILES, TILES, V(CACAO_FILL_SLICES)),
                    W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),
                    W(HORIZON_AO_OUT, AO_RAW, V(CACAO_FILL_HORIZON)),
-                   W(OUTPUT, OUTPUT, V(CACAO_FILL_OUTPUT_QUIET)),
                    W(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_FILL_VIEW)),
                    W(VIEW_NORMALS, VIEW_NORMALS, V(CACAO_FILL_VIEW)),
                    W(IMPORTANCE_MAP_IMAGE, IMPORTANCE, V(CACAO_FILL_IMPORTANCE))},

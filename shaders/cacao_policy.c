@@ -163,15 +163,12 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
      * the time of the build before, and 1.00x with the clear first). */
     if (c->quality == CACAO_KEY_QUALITY_HIGHEST && !c->gpu_forms) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_IMPORTANCE, 0, 0, 0);
     /* The CPU forms without reuse: first whether the frame is quiet (no pixel of the depth can make
-     * a texel that is not quiet), then the fill of the whole output that runs on such a frame alone;
-     * the other direct steps run from gates that classify.quiet opens on any other frame, the list
-     * steps from lists that no compact fills then (docs/tiles.md "A quiet frame"). With reuse the
-     * gates are the reach pass's; the GPU forms classify in the prepare (a pass and a barrier more
-     * would cost every frame a few microseconds there). */
-    if (!c->gpu_forms && !c->reuse) {
-        push(out, &n, CACAO_PASS_CLASSIFY, CACAO_CLASSIFY_QUIET, 0, 0, 0);
-        push(out, &n, CACAO_PASS_FILL, CACAO_FILL_OUTPUT_QUIET, 0, 0, 0);
-    }
+     * a texel that is not quiet; on such a frame that test stores the whole output's AO 1 and
+     * nothing else runs); the direct steps after it run from gates that classify.quiet opens on
+     * any other frame, the list steps from lists that no compact fills then (docs/tiles.md "A
+     * quiet frame"). With reuse the gates are the reach pass's; the GPU forms classify in the
+     * prepare (a pass and a barrier more would cost every frame a few microseconds there). */
+    if (!c->gpu_forms && !c->reuse) push(out, &n, CACAO_PASS_CLASSIFY, CACAO_CLASSIFY_QUIET, 0, 0, 0);
     if (c->reuse) { /* docs/tiles.md "Reusing the previous frame" */
         push(out, &n, CACAO_PASS_REUSE, reuse_diff_variant(c), 0, 0, 0);
         push(out, &n, CACAO_PASS_REUSE, CACAO_REUSE_PREFIX, 0, 0, 0);

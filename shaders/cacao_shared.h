@@ -126,8 +126,6 @@
 #define CACAO_FILL_HORIZON 1
 #define CACAO_FILL_VIEW 2
 #define CACAO_FILL_IMPORTANCE 3 /* a clear of the importance map to 0 (the Q3 base pass over its list) */
-#define CACAO_FILL_OUTPUT_QUIET 4 /* every tile's output pixels, a direct grid: a quiet frame's one pass (the
-                                     output's unneeded tiles on other frames: compact stores their AO 1) */
 
 /* Reuse variants: compare the caller's depth (and normals) with the copy the previous frame kept,
  * per tile; sum the changed tiles along each row of tiles; mark the tiles to recompute. */
@@ -466,7 +464,7 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
                                            background, the normals' prepare reads the stored z */ \
     M(INT, tile_pixels)                 /* output pixels per tile side (CACAO: 16 native, 32 downsampled;
                                            the horizon estimators 8) */ \
-    M(INT, quiet_gate)                  /* classify.quiet: the gate of the quiet frame's fill (from 1), 0 none */ \
+    M(INT, quiet_test)                  /* 1: classify.quiet opens the gates (the host writes them closed) */ \
     M(INT, quiet_zero_depth)            /* 1: the prepare reads depth 0 past the image's edge (classify.quiet) */ \
     M(INT, tiles_x)                                                                                \
     M(INT, tiles_y)                                                                                \

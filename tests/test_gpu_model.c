@@ -25,7 +25,7 @@ static void test_every_key_has_a_stage(void) {
         const bool known = gpu_stage_of_key(name, &stage);
         if (!known) fprintf(stderr, "no stage for %s\n", name);
         CHECK(known);
-        /* the fills dispatch nothing when every tile is active (fill.output_quiet: on a quiet frame only) */
+        /* the fills dispatch nothing when every tile is active */
         CHECK(!known || (stage == GPU_STAGE_LEFT_OUT) == (strncmp(name, "fill", 4) == 0));
     }
     gpu_stage stage;

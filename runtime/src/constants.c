@@ -258,12 +258,12 @@ static void fill_tile_constants(const cacao_plan *plan, const projection_view *v
     c->tile_pixels = plan->settings.estimator != CACAO_ESTIMATOR_CACAO ? CACAO_TILE
                                                                         : (int)(CACAO_TILE * (plan->settings.downsample ? 4 : 2));
     /* A plan that can find its frame quiet (classify.quiet first: docs/tiles.md "A quiet frame"):
-     * every direct step after that pass runs from a gate, the quiet frame's fill from the last
-     * one. The prepare reads depth 0 past the image's edge where its slice texels cover more than
-     * the image: the test takes that depth too. */
+     * every direct step after that pass runs from a gate it opens. The prepare reads depth 0 past
+     * the image's edge where its slice texels cover more than the image: the test takes that depth
+     * too. */
     for (uint32_t i = 0; i < plan->step_count; ++i) {
         const cacao_plan_step *st = &plan->steps[i];
-        if (st->key[0] == CACAO_PASS_FILL && st->key[1] == CACAO_FILL_OUTPUT_QUIET) c->quiet_gate = st->gate;
+        if (st->key[0] == CACAO_PASS_CLASSIFY && st->key[1] == CACAO_CLASSIFY_QUIET) c->quiet_test = 1;
         if (st->gate > c->gate_count) c->gate_count = st->gate;
     }
     const uint32_t scale = plan->settings.downsample ? 4 : 2;

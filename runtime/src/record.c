@@ -216,9 +216,8 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
             ctx->vk.CmdFillBuffer(cmd, ctx->buffers[CACAO_RES_TILES], lists, gates - lists, CACAO_TILE_NO_ENTRY);
         }
         /* reuse: each gated step's full grid (the reach pass zeroes x when nothing changed). A plan
-         * that can find its frame quiet: the quiet fill's full grid, the others' with x 0 and
-         * their x among the grids, which classify.quiet copies in on a frame that is not quiet
-         * (docs/tiles.md "A quiet frame") */
+         * that can find its frame quiet: every one with x 0 and their x among the grids, which
+         * classify.quiet copies in on a frame that is not quiet (docs/tiles.md "A quiet frame") */
         _Static_assert(CACAO_TILE_GATE_GRIDS(0, 0) == CACAO_TILE_GATES(0, 0) + 3 * CACAO_TILE_GATE_MAX,
                        "the grids follow the gate commands");
         uint32_t words[4 * CACAO_TILE_GATE_MAX] = {0}; /* the commands, then the grids */
@@ -228,13 +227,13 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
             if (!st->gate) continue;
             memcpy(&commands[3 * (st->gate - 1)], st->dispatch, sizeof st->dispatch);
             grids[st->gate - 1] = st->dispatch[0];
-            if (constants->quiet_gate && st->gate != constants->quiet_gate) commands[3 * (st->gate - 1)] = 0;
+            if (constants->quiet_test) commands[3 * (st->gate - 1)] = 0;
         }
         /* the grids only where classify.quiet reads them: one update either way */
         const uint32_t count = gate_count(p);
         if (count)
             ctx->vk.CmdUpdateBuffer(cmd, ctx->buffers[CACAO_RES_TILES], gates,
-                                    constants->quiet_gate ? sizeof words : sizeof(uint32_t) * 3 * count, words);
+                                    constants->quiet_test ? sizeof words : sizeof(uint32_t) * 3 * count, words);
     }
     const VkMemoryBarrier memory = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,

@@ -60,7 +60,7 @@ bool block_has_active(ivec2 b)
  * pass declares its local size (glslang takes 1 x 1 x 1 before). */
 #define texel_of(g) ((g) * ivec2(gl_WorkGroupSize.xy) + ivec2(gl_LocalInvocationID.xy))
 
-#if (CACAO_PASS == CACAO_PASS_COMPACT || CACAO_PASS == CACAO_PASS_FILL) && defined(CACAO_BIND_OUTPUT)
+#if (CACAO_PASS == CACAO_PASS_COMPACT || CACAO_PASS == CACAO_PASS_CLASSIFY) && defined(CACAO_BIND_OUTPUT)
 /* AO 1 into the output's n x n pixels from p0 (those inside the image). */
 void store_output_one(ivec2 p0, int n)
 {
@@ -305,22 +305,23 @@ bool may_be_active(float d)
              hi * m + CB.effect_fade_out_add < -2.0 * CB.quiet_margin);
 }
 
-/* The host wrote every gate but the quiet fill's with x 0 and the quiet fill's with its grid. The
- * first invocation to find a pixel that may be active (compute_all_tiles: every one) opens the
- * gates (each one's grid from CACAO_TILE_GATE_GRIDS) and closes the quiet fill's. */
+/* The host wrote every gate with x 0. The first invocation to find a pixel that may be active
+ * (compute_all_tiles: every one) opens the gates (each one's grid from CACAO_TILE_GATE_GRIDS). */
 void open_gates()
 {
     if (atomicExchange(tiles[CACAO_TILE_NOT_QUIET], 1u) != 0u) return;
     uint gates = TILE_REGION(CACAO_TILE_GATES), grids = TILE_REGION(CACAO_TILE_GATE_GRIDS);
-    for (int g = 0; g < CB.gate_count; ++g)
-        tiles[gates + uint(3 * g)] = g + 1 == CB.quiet_gate ? 0u : tiles[grids + uint(g)];
+    for (int g = 0; g < CB.gate_count; ++g) tiles[gates + uint(3 * g)] = tiles[grids + uint(g)];
 }
 
 /* Scans tile t's output pixels (CB.tile_pixels each way) for one that may make a texel active,
  * with gathers of 2x2 pixels (past the image's edge the sampler clamps to pixels of the image,
  * which the prepare reads there too, or depth 0: quiet_zero_depth), and opens the gates at the
  * first. Every row it stops when another invocation has found one: on most frames one soon does,
- * and a scan of a quiet tile would otherwise keep its whole SIMD row looping (lavapipe). */
+ * and a scan of a quiet tile would otherwise keep its whole SIMD row looping (lavapipe). A tile
+ * scanned whole stores the AO 1 of its output pixels: on a quiet frame every tile does, and this
+ * is the frame's output; on another frame the passes the gates open write every output pixel
+ * again (apply or the upsample, and compact over the tiles they skip). */
 void scan_tile(ivec2 t)
 {
     ivec2 size = textureSize(src_depth, 0);
@@ -337,6 +338,7 @@ void scan_tile(ivec2 t)
             }
         }
     }
+    store_output_one(p0, CB.tile_pixels);
 }
 #else
 /* A tile is quiet only where every layer is: each layer is scanned until a texel that is not
@@ -479,16 +481,8 @@ void main()
     ivec2 group;
     if (!group_of(group)) return;
     ivec2 p = texel_of(group);
-#if CACAO_VARIANT == CACAO_FILL_OUTPUT_QUIET
-    /* every one of CACAO's tiles of tile_pixels x tile_pixels output pixels (16 native, 32
-     * downsampled), n x n per invocation: a direct grid, docs/tiles.md "A quiet frame", the frame's
-     * one pass */
-    int n = CB.tile_pixels / CACAO_TILE;
-    store_output_one(group * CB.tile_pixels + n * ivec2(gl_LocalInvocationID.xy), n);
-#else
     if (in_rect(p, imageSize(ssao_image).xy))
         for (int layer = 0; layer < CB.slice_count; ++layer) imageStore(ssao_image, ivec3(p, layer), vec4(1.0, 1.0, 0.0, 0.0));
-#endif
 }
 #endif /* FILL */
 

@@ -38,7 +38,7 @@ set(expected prepare_depths.full.native prepare_depths.mips.native prepare_norma
     blur.4.fp32 blur.5.fp32 blur.6.fp32 blur.7.fp32 blur.8.fp32 apply.smart.fp32 apply.smart_list.fp32
     horizon_prepare.depth horizon_prepare.input horizon_prepare.z horizon_main.gtao horizon_main.bitmask horizon_main.gtao_direct
     horizon_main.bitmask_direct horizon_denoise.intermediate horizon_denoise.final classify classify.horizon classify.quiet compact
-    compact.horizon fill fill.output_quiet
+    compact.horizon fill
     prepare.full.native prepare.mips.native
     blur_gpu.1.fp32 blur_gpu.2.fp32 blur_gpu.3.fp32 blur_gpu.4.fp32 blur_gpu.5.fp32 blur_gpu.6.fp32 blur_gpu.7.fp32
     blur_gpu.8.fp32 apply_gpu.smart.fp32 prepare_gpu.full.native prepare_gpu.mips.native generate_gpu.q1 generate_gpu.q2

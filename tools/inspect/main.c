@@ -273,13 +273,9 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
         const cacao_plan_step *st = &plan->steps[i];
         printf("  %2u %-34s ", i, st->key_name);
         if (st->key[0] == CACAO_PASS_CLASSIFY && st->key[1] == CACAO_CLASSIFY_QUIET) {
-            printf(c->quiet ? "found no pixel that can be occluded: the frame is quiet\n"
+            printf(c->quiet ? "found no pixel that can be occluded: the frame is quiet; wrote AO 1 into every output "
+                              "pixel (the frame's one pass)\n"
                             : "found a pixel that can be occluded: the frame is not quiet\n");
-            continue;
-        }
-        if (st->key[0] == CACAO_PASS_FILL && st->key[1] == CACAO_FILL_OUTPUT_QUIET) {
-            printf(c->quiet ? "writes AO 1 into every output pixel (the quiet frame's one pass)\n"
-                            : "gated: the frame is not quiet, dispatches nothing\n");
             continue;
         }
         if (c->quiet && !(st->clear && st->bindings[0].resource == CACAO_RES_IMPORTANCE)) {
