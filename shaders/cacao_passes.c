@@ -224,8 +224,8 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     /* docs/tiles.md: classes (one invocation per tile), then the lists. CACAO classifies its
      * deinterleaved depths (variant 0 keeps the pass's name), the horizon estimators the caller's
      * depth before their prepare. */
-    /* quiet: CACAO's CPU forms without reuse, first: whether the frame is quiet (docs/tiles.md) */
-    /* quiet: the tiles it scans whole (every one on a quiet frame) get their output's AO 1 */
+    /* quiet: CACAO's CPU forms without reuse, first: whether the frame is quiet (docs/tiles.md);
+     * the tiles it scans whole (every one on a quiet frame) get their output's AO 1 */
     PASS(CLASSIFY) = {"classify", {NULL, "horizon", "quiet"}, 3, false, false, false, {CACAO_WG_CLASSIFY, CACAO_WG_CLASSIFY},
                       CACAOI_GRID_TILES, 5,
                       {CONSTANTS, R(DEPTHS, DEPTHS, V(CACAO_CLASSIFY_SLICES)),

@@ -118,10 +118,11 @@
  * is quiet: only the output's fill runs (docs/tiles.md "A quiet frame") */
 #define CACAO_CLASSIFY_QUIET 2
 
-/* Fill variants: AO 1 into the slices' AO (CACAO), into the horizon estimators' AO intermediate,
- * or into the whole caller's output (a quiet frame); or the view z (-1) and normal the horizon
- * prepare stores for background. The slices' is a dispatch over the unneeded tiles; the horizon estimators' own images are cleared
- * whole before the passes that write the needed tiles (cacao_plan_step.clear). */
+/* Fill variants: AO 1 into the slices' AO (CACAO) or into the horizon estimators' AO intermediate;
+ * or the view z (-1) and normal the horizon prepare stores for background; or CACAO's importance
+ * map's 0. The slices' is a dispatch over the unneeded tiles; the others are clears of the whole
+ * image before the passes that write the needed tiles (cacao_plan_step.clear). The caller's
+ * output gets its 1s from compact (the unneeded tiles) or classify.quiet (a quiet frame). */
 #define CACAO_FILL_SLICES 0
 #define CACAO_FILL_HORIZON 1
 #define CACAO_FILL_VIEW 2
@@ -186,8 +187,9 @@
                                             without reuse, the caller's normals): prepare_normals.list,
                                             a group each; generate reads the normals of the needed
                                             tiles and one texel around them. The horizon estimators'
-                                            CPU forms: their prepare of view z and normals, the
-                                            tiles whose normals the estimator and denoise read */
+                                            CPU forms: their prepare of the normals (the caller's:
+                                            with the view z), the tiles not all background whose
+                                            normals the estimator and denoise passes read */
 #define CACAO_LIST_COUNT 6
 #define CACAO_TILE_HEADER 32
 #define CACAO_TILE_COMMAND(list) (3 * ((list) - 1)) /* header: list's indirect command (x, y, z) */

@@ -58,7 +58,7 @@ void prepare_pixel(ivec2 p, ivec2 size)
 {
     float z = load_view_z(p, size);
 #if CACAO_VARIANT == CACAO_HORIZON_VIEW_Z_ONLY
-    imageStore(view_depth, p, vec4(z)); /* no pass reads this tile's normals (docs/tiles.md) */
+    imageStore(view_depth, p, vec4(z)); /* the normals: none read here, or computed next from this */
 #else
     vec3 n = vec3(0.0, 0.0, -1.0);
     if (z > 0.0) {
