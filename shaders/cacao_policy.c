@@ -59,8 +59,8 @@ static void rebind(cacaoi_step *s, unsigned slot, cacao_resource resource) {
 /* The longest sequences: CACAO with the caller's normals at HIGHEST with a blur (prepare twice,
  * classify, compact, the importance map's clear, Q3 base, importance twice, generate, fill twice,
  * blur, apply: 13, and 3 reuse steps before), and the horizon estimators with the most denoise
- * passes: native, classify, compact, the view's clear, prepare, two AO clears, the estimator,
- * the output's fill and a pass per blur iteration; downsampled, the half-size AO's clear and the
+ * passes: native, classify, compact, the view's clear, the prepare twice (normals, view z), two AO
+ * clears, the estimator and a pass per blur iteration; downsampled, the half-size AO's clear and the
  * upsample besides, and at most CACAO_HORIZON_HALF_MAX_PASSES (the settings refuse more;
  * key_dispatched leaves such configurations out); with reuse, 2 steps before (diff, reach). */
 _Static_assert(16 <= CACAOI_SEQUENCE_MAX && 2 + 8 + CACAO_KEY_MAX_BLUR_PASSES <= CACAOI_SEQUENCE_MAX &&

@@ -115,7 +115,7 @@
 #define CACAO_CLASSIFY_HORIZON 1
 /* CACAO's CPU forms without reuse, first in the frame: whether any pixel of the caller's depth can
  * make a texel that is not quiet (conservatively, from the raw depth); where none can, the frame
- * is quiet: only the output's fill runs (docs/tiles.md "A quiet frame") */
+ * is quiet: only this test runs, and it stores the output's 1s (docs/tiles.md "A quiet frame") */
 #define CACAO_CLASSIFY_QUIET 2
 
 /* Fill variants: AO 1 into the slices' AO (CACAO) or into the horizon estimators' AO intermediate;

@@ -61,9 +61,8 @@ static void test_steps_per_quality(void) {
             CHECK(strcmp(p.steps[i].key_name, expected[q][i]) == 0);
         }
         /* No barrier before the first step, between the two fills (the AO and the blur's output),
-         * after the clear of the importance map (classify.quiet does not touch it), nor between
-         * the quiet fill and the prepare (the output and the depths); every other step depends on
-         * the one before. The clear is a transfer: it writes the map and
+         * nor after the clear of the importance map (classify.quiet does not touch it); every
+         * other step depends on the one before. The clear is a transfer: it writes the map and
          * dispatches nothing; the barriers before the base pass order it (they are global). */
         CHECK(!p.steps[0].barrier_before);
         CHECK(p.steps[0].clear == (q == 4));

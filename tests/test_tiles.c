@@ -268,8 +268,8 @@ static void test_mostly_faded(vkdev *dev, uint32_t width, uint32_t height, bool 
 }
 
 /* A quiet frame (docs/tiles.md "A quiet frame"): in the CPU forms classify.quiet first tests the
- * caller's depth, and where no pixel can make a texel that is not quiet, only the output's fill
- * runs. Each case against compute_all_tiles (the same output, every tile computed), and whether it
+ * caller's depth, and where no pixel can make a texel that is not quiet, only that test runs (it
+ * stores the output's 1s). Each case against compute_all_tiles (the same output, every tile computed), and whether it
  * is quiet, at an even size and at an odd one (where the prepare reads depth 0 past the image's
  * right and bottom edges: with standard Z the near plane, a texel that is not quiet unless the
  * fade-out takes it), standard and reverse Z:

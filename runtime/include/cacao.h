@@ -307,8 +307,7 @@ typedef struct cacao_plan_step {
                                    command gate - 1: with reuse_unchanged, the full grid, which a
                                    frame with nothing changed zeroes; in the CPU forms without
                                    reuse (the steps after classify.quiet), 0, which a frame that is
-                                   not quiet opens to the full grid, and the quiet fill's the full
-                                   grid, which such a frame closes (docs/tiles.md "A quiet frame") */
+                                   not quiet opens to the full grid (docs/tiles.md "A quiet frame") */
     bool barrier_before;        /* a barrier precedes this step (compute, and transfer for clears) */
     uint32_t barrier_resources; /* bit mask of cacao_resource the barrier orders */
 } cacao_plan_step;
@@ -540,8 +539,9 @@ typedef struct cacao_tile_counts {
                                                     0 where neither runs (docs/tiles.md) */
     bool quiet;                                  /* the frame was quiet: no pixel of the depth can
                                                     make AO other than 1 (background, or beyond the
-                                                    fade-out), so only the output's fill ran and no
-                                                    tile was classified (the counts above are 0).
+                                                    fade-out), so only the quiet test ran (it wrote
+                                                    the output) and no tile was classified (the
+                                                    counts above are 0).
                                                     The CPU forms without reuse (docs/tiles.md
                                                     "A quiet frame"); false elsewhere */
 } cacao_tile_counts;

@@ -244,8 +244,8 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
              * frame with nothing changed zeroes it); gates are numbered in step order, so
              * apply's, the last step's, is the last */
             if (config.reuse && !st->list && key->pass != CACAO_PASS_REUSE) st->gate = (uint8_t)++gates;
-            /* a plan that can find its frame quiet: every direct step after classify.quiet, the
-             * quiet fill's gate open by default, the others' closed (docs/tiles.md "A quiet frame") */
+            /* a plan that can find its frame quiet: every direct step after classify.quiet, closed
+             * until it opens them (docs/tiles.md "A quiet frame") */
             if (quiet && !st->list) st->gate = (uint8_t)++gates;
             if (key->pass == CACAO_PASS_CLASSIFY && key->variant == CACAO_CLASSIFY_QUIET) quiet = true;
         }

@@ -368,7 +368,7 @@ uint tile_flags(ivec2 t)
 #endif
 
 #if CACAO_VARIANT == CACAO_CLASSIFY_QUIET
-/* A frame where no invocation finds a pixel that may be active runs the quiet fill alone. The
+/* A frame where no invocation finds a pixel that may be active runs this pass alone. The
  * groups take the tiles bottom row first: lavapipe runs groups in order, every group before the
  * first finder scans its tiles whole, and an upright camera sees the nearest surfaces (the ground)
  * at the bottom and the sky and the distance, which the fade-out takes, at the top (on

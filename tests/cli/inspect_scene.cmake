@@ -54,7 +54,7 @@ number_after("${out}" "apply\\.smart_list\\.fp32 +runs over the blocks of 2x2 ti
 number_after("${out}" "compact +runs over everything; writes AO 1 into the output of the ([0-9]+) skipped tiles" output_filled)
 if(NOT apply_needed EQUAL gen_run OR NOT output_filled EQUAL gen_skipped OR
    NOT out MATCHES "classify\\.quiet +found a pixel that can be occluded: the frame is not quiet")
-  message(FATAL_ERROR "apply over its list, the output's fill and the quiet test:\n${out}")
+  message(FATAL_ERROR "apply over its list, compact's stores of the output and the quiet test:\n${out}")
 endif()
 
 # The same frame through the cacao command: the same counts.

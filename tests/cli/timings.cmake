@@ -1,10 +1,10 @@
 # --timings prints one row per step of the plan, named by its permutation key, then the total;
 # --json records settings, device, size, repeat, the per-pass times, the total and the output path.
-# At quality high, native resolution, 2 blur passes, fp32, with normals given, the plan is twelve
+# At quality high, native resolution, 2 blur passes, fp32, with normals given, the plan is ten
 # steps (spec: prepare depths with mips, prepare normals from the input, generate Q2, blur, apply;
-# docs/tiles.md: the quiet frame's test and fill first, classify and compact before generate, the
-# normals then over compact's list, the two fills before the blur, the output's fill before apply
-# over its list), which is what the table and the report must list, in that order, followed by
+# docs/tiles.md: the quiet frame's test first, classify and compact (which stores the output of
+# the skipped tiles) before generate, the normals then over compact's list, the two fills before
+# the blur, apply over its list), which is what the table and the report must list, in that order, followed by
 # the tile counts.
 include(${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake)
 cacao_ok(run --scene ${ROOM} --quality high --validate --timings --repeat 3 --json ${WORK}/t.json -o ${WORK}/t.png)

@@ -74,7 +74,7 @@ void cacao_tile_counts_print(FILE *out, const cacao_tile_counts *c) {
         fprintf(out, ", %u of %u %s (%.1f%%)", c->blocks_total - c->blocks_run, c->blocks_total,
                 c->blocks_total == c->tiles ? "tiles of the Q3 base pass" : "blocks of 2x2 tiles",
                 share(c->blocks_total - c->blocks_run, c->blocks_total));
-    if (c->quiet) fprintf(out, "; a quiet frame (no pixel can be occluded): no tile classified, only the output's fill ran");
+    if (c->quiet) fprintf(out, "; a quiet frame (no pixel can be occluded): no tile classified, only the quiet test ran (it wrote the output)");
     fprintf(out, "\n");
 }
 
