@@ -180,7 +180,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                   .lists = {CACAO_LIST_BLUR}},
     /* spec: apply.md, upsample.md. They read the blur's output where a blur ran (step override).
      * smart_list (the CPU forms without reuse): over compact's list of the blocks of 2x2 tiles
-     * holding a needed tile, the output's other tiles filled with 1 (fill.output_wide); the
+     * holding a needed tile, the output's other tiles given their 1 by compact; the
      * others over every group (docs/tiles.md). */
     PASS(APPLY) = {"apply", {"smart", "nonsmart", "half", "smart_list"}, 4, false, false, true, WG(APPLY),
                    CACAOI_GRID_OUTPUT, 4,
@@ -190,7 +190,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                             [CACAO_APPLY_SMART_LIST] = 4},
                    .lists = {[CACAO_APPLY_SMART_LIST] = CACAO_LIST_PREPARE}},
     /* The upsample's listed variants: over compact's list of the needed tiles (a group is a tile,
-     * 32x32 pixels), the others' output filled with 1 (fill.output): the CPU forms without reuse
+     * 32x32 pixels), the others' output given its 1 by compact: the CPU forms without reuse
      * (the upsample's bilateral filter over every pixel was most of a downsampled frame with sky). */
     PASS(UPSAMPLE) = {"upsample", {"smart", "nonsmart", "half", "smart_list", "nonsmart_list", "half_list"}, 6, false,
                       false, true, WG(UPSAMPLE), CACAOI_GRID_UPSAMPLE, 6,
@@ -209,7 +209,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
         HORIZON_PREPARE_ROW("horizon_prepare", 3, V(CACAO_HORIZON_NORMALS_INPUT) | V(CACAO_HORIZON_VIEW_Z_ONLY), R,
                             CACAO_LIST_NORMALS, CACAO_LIST_NORMALS, CACAO_LIST_PREPARE),
     /* The estimator and the denoise passes run over the needed tiles (docs/tiles.md: a group is a
-     * tile of 8x8 pixels); the fills give the rest their AO 1. Downsampled, the estimator runs on
+     * tile of 8x8 pixels); the clears and compact give the rest their AO 1. Downsampled, the estimator runs on
      * a half-size grid over compact's blocks of 2x2 tiles holding an active tile (a clear gives the
      * rest the 1 it would store there) and the upsample over the needed tiles. */
     PASS(HORIZON_MAIN) = HORIZON_MAIN_ROW("horizon_main", R, GEN, GEN, GEN, GEN, CACAO_LIST_BLOCKS, CACAO_LIST_BLOCKS),

@@ -365,9 +365,9 @@ static void test_reuse(void) {
             plain_settings.reuse_unchanged = false;
             cacao_plan plain = build(plain_settings, 1920, 1080);
             /* The steps after the reuse passes are those of the plan without reuse, but for what
-             * the CPU forms without reuse do otherwise: the quiet frame's test and fill first, the
-             * caller's normals transformed over a list after compact, apply over a list after a
-             * fill of the output's other tiles (docs/tiles.md). That plan, undone: */
+             * the CPU forms without reuse do otherwise: the quiet frame's test first, the caller's
+             * normals transformed over a list after compact, apply over a list (compact stores the
+             * output's other tiles) (docs/tiles.md). That plan, undone: */
             const char *same[CACAO_PLAN_MAX_STEPS];
             uint32_t m = 0;
             const bool listed_normals = !gpu && normals;

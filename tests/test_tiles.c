@@ -401,7 +401,7 @@ static void test_nan_depth(vkdev *dev, const scene_buffers *sb) {
 }
 
 /* The horizon estimators classify too: a tile is 8x8 pixels; the estimator and the denoise
- * passes run over the needed tiles, and the fills give the rest the 1 they compute there. The
+ * passes run over the needed tiles, and the clears and compact give the rest the 1 they compute there. The
  * reference (compute_all_tiles) runs them over every tile, as before classification existed.
  * Every case above, for GTAO and the bitmask, their smallest and a middle budget, no denoise, one,
  * two (both intermediates filled) and eight passes, normals from depth and given; and downsampled

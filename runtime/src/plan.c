@@ -309,7 +309,7 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
         static const char *const list_names[] = {"",
                                                  "needed tiles",
                                                  "unneeded tiles",
-                                                 "tiles not all background, or output groups at needed tiles",
+                                                 "view z tiles (horizon estimators), or output groups at needed tiles",
                                                  "blur groups at needed tiles",
                                                  "blocks of 2x2 tiles with an active tile",
                                                  "tiles within two of an active tile"};

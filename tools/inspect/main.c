@@ -285,6 +285,9 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
         if (st->list == CACAO_LIST_NORMALS) {
             printf(plan->settings.estimator == CACAO_ESTIMATOR_CACAO
                        ? "transforms the normals of the tiles within two of an active tile (generate's reads)\n"
+                   : st->key[1] == CACAO_HORIZON_NORMALS_DEPTH
+                       ? "normals from the stored view z, of the tiles within two of an active tile (the "
+                         "estimator's and the denoise's reads)\n"
                        : "view z and normals of the tiles within two of an active tile (the estimator's and the "
                          "denoise's reads)\n");
             continue;
