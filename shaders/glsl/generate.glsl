@@ -118,8 +118,15 @@ void accumulate_tap(vec4 s, bool use_pattern_weight, vec2 uvd, vec2 inv_s, int l
     [[unroll]] for (int side = 0; side < 2; ++side) {
 #if GEN_GPU
         vec2 uv = uvd + (side == 0 ? fo : -fo) * inv_s;
+#if GEN_Q < 2
+        /* Level 0 is the whole image here (no atlas below HIGH): the sampler's nearest texel and
+         * clamp to the edge are the texel the integer path picks (uv is at a texel centre). */
+        float z = textureLod(depths, vec3(uv, float(layer)), 0.0).r;
+#else
         ivec2 t = clamp(ivec2(uv * extent_f), ivec2(0), extent - 1);
-#if GEN_Q == 3
+#endif
+#if GEN_Q < 2
+#elif GEN_Q == 3
         float z = imageLoad(depths_image, ivec3(t + place, layer)).r;
 #else
         /* The same texel through the sampled view: measured faster on a GPU for Q0..Q2, slower
