@@ -23,6 +23,8 @@ const cacaoi_slot_row cacaoi_slots[CACAO_BINDING_COUNT] = {
     SLOT(VIEW_NORMALS, STORAGE_IMAGE, NONE),    SLOT(HORIZON_AO, STORAGE_IMAGE, NONE),
     SLOT(HORIZON_AO_OUT, STORAGE_IMAGE, NONE),  SLOT(OUTPUT, STORAGE_IMAGE, NONE),
     SLOT(DEPTH_HISTORY, STORAGE_IMAGE, NONE),   SLOT(NORMALS_HISTORY, STORAGE_IMAGE, NONE),
+    SLOT(DEPTHS_MIP1, STORAGE_IMAGE, NONE),     SLOT(DEPTHS_MIP2, STORAGE_IMAGE, NONE),
+    SLOT(DEPTHS_MIP3, STORAGE_IMAGE, NONE),
 };
 #undef SLOT
 
@@ -63,10 +65,17 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
 #undef TILES_BUFFER
 #undef IMAGE
 
+#define COMMA ,
 /* Binding rows: R reads, W writes; ALL variants or only those listed (bit mask). */
 #define R(slot, res, variants) {CACAO_BINDING_##slot, CACAO_RES_##res, 0, false, variants}
 #define W(slot, res, variants) {CACAO_BINDING_##slot, CACAO_RES_##res, 0, true, variants}
 #define W_LEVELS(slot, res, levels, variants) {CACAO_BINDING_##slot, CACAO_RES_##res, levels, true, variants}
+/* the GPU forms' mip chain: levels 1..3 of the depths, each through its own slot (a view of that
+ * level); the image then holds CACAO_DEPTH_MIP_COUNT levels as mip levels, not an atlas */
+#define W_CHAIN(variants)                                                                        \
+    W_LEVELS(DEPTHS_MIP1, DEPTHS, CACAO_DEPTH_MIP_COUNT, variants),                              \
+        W_LEVELS(DEPTHS_MIP2, DEPTHS, CACAO_DEPTH_MIP_COUNT, variants),                          \
+        W_LEVELS(DEPTHS_MIP3, DEPTHS, CACAO_DEPTH_MIP_COUNT, variants)
 #define W_NATIVE(slot, res, variants) {CACAO_BINDING_##slot, CACAO_RES_##res, 0, true, variants, true}
 #define ALL CACAOI_ALL_VARIANTS
 #define V(v) CACAOI_VARIANT(v)
@@ -80,18 +89,19 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
     (V(CACAO_UPSAMPLE_LISTED + CACAO_OUTPUT_SMART) | V(CACAO_UPSAMPLE_LISTED + CACAO_OUTPUT_NON_SMART) | \
      V(CACAO_UPSAMPLE_LISTED + CACAO_OUTPUT_HALF))
 
-/* The generate row and its GPU form's (the same grids), `taps` the variants whose taps' depths
- * come through the storage image with imageLoad: every variant of the CPU form (lavapipe runs it
- * faster than a fetch through the sampled view); Q3 and its base pass of the GPU form, whose
- * Q0..Q2 fetch them through the sampled view (measured on a GPU: docs/gpu.md). `list` is the
+/* The generate row and its GPU form's (the same grids), `taps` the binding (with its comma) through
+ * which the taps' depths come with imageLoad: the CPU form's every variant (lavapipe runs it
+ * faster than a fetch through the sampled view; the atlas, cacao_shared.h); the GPU form has none:
+ * it samples the mip chain through the sampled view, the sampler choosing level and texel
+ * (docs/gpu.md). `count` the row's bindings. `list` is the
  * tile list: the CPU form runs over the needed tiles' list; the GPU form over every tile, a group
  * whose tile is not needed (classify's flag) storing AO 1 and returning (docs/tiles.md: a
  * workgroup-uniform branch). */
-#define GENERATE_ROW(name, taps, list, base_list, base_grid, tiles)                                     \
-    {name, {"q0", "q1", "q2", "q3", "q3base"}, 5, false, false, false, WG(GENERATE), CACAOI_GRID_SLICE_LAYERS, 12, \
+#define GENERATE_ROW(name, taps, count, list, base_list, base_grid, tiles)                              \
+    {name, {"q0", "q1", "q2", "q3", "q3base"}, 5, false, false, false, WG(GENERATE), CACAOI_GRID_SLICE_LAYERS, count, \
      {CONSTANTS, R(LOAD_COUNTER, LOAD_COUNTER, V(CACAO_GENERATE_Q3)), R(DEPTHS, DEPTHS, ALL),               \
       /* the normals' single texels: imageLoad (cacao.comp) */                                     \
-      R(DEPTHS_IMAGE, DEPTHS, taps), R(NORMALS_IMAGE, NORMALS, ALL), R(SSAO_BASE, SSAO_PONG, V(CACAO_GENERATE_Q3)), \
+      taps R(NORMALS_IMAGE, NORMALS, ALL), R(SSAO_BASE, SSAO_PONG, V(CACAO_GENERATE_Q3)), \
       R(IMPORTANCE_MAP, IMPORTANCE, V(CACAO_GENERATE_Q3)), W(SSAO_IMAGE, SSAO_PING, ALL & ~V(CACAO_GENERATE_Q3_BASE)), \
       W(SSAO_IMAGE, SSAO_PONG, V(CACAO_GENERATE_Q3_BASE)), W(IMPORTANCE_MAP_IMAGE, IMPORTANCE, V(CACAO_GENERATE_Q3_BASE)), \
       tiles(TILES, TILES, ALL & ~V(CACAO_GENERATE_Q3_BASE)), R(TILES, TILES, V(CACAO_GENERATE_Q3_BASE))}, \
@@ -104,11 +114,10 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
 /* The fused prepare (normals from depth) and its GPU form's row; the GPU form's native keys also
  * classify the tiles (tiles_variants: ALL; the CPU form, and the GPU form downsampled, run the
  * classify pass). */
-#define PREPARE_ROW(name, tiles_variants)                                                          \
-    {name, {"half", "full", "mips"}, 3, true, false, false, WG(PREPARE), CACAOI_GRID_SLICE, 6,          \
+#define PREPARE_ROW(name, tiles_variants, mips_binding, count)                                    \
+    {name, {"half", "full", "mips"}, 3, true, false, false, WG(PREPARE), CACAOI_GRID_SLICE, count,      \
      {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), W(DEPTHS_IMAGE, DEPTHS, V(CACAO_DEPTHS_HALF) | V(CACAO_DEPTHS_FULL)), \
-      W_LEVELS(DEPTHS_IMAGE, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS)), W(NORMALS_IMAGE, NORMALS, ALL), \
-      W_NATIVE(TILES, TILES, tiles_variants)},                                                      \
+      mips_binding, W(NORMALS_IMAGE, NORMALS, ALL), W_NATIVE(TILES, TILES, tiles_variants)},          \
      .quad = {[CACAO_DEPTHS_HALF] = 2, [CACAO_DEPTHS_FULL] = 2, [CACAO_DEPTHS_MIPS] = 2}}
 
 /* The horizon estimators' rows, for the CPU forms (tiles: R, over lists) and the GPU forms
@@ -149,13 +158,14 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     /* spec: prepare.md. HALF = slices 0 and 3 (LOWEST), FULL = four slices, MIPS = + mips 1..3,
      * all levels in one atlas image (cacao_shared.h). Where the caller gives normals; with
      * normals from depth PREPARE writes the same depths and the normals in one pass. */
-    PASS(PREPARE_DEPTHS) = {"prepare_depths", {"half", "full", "mips"}, 3, true, false, false, WG(PREPARE),
-                            CACAOI_GRID_SLICE, 4,
+    PASS(PREPARE_DEPTHS) = {"prepare_depths", {"half", "full", "mips", "mips_chain"}, 4, true, false, false, WG(PREPARE),
+                            CACAOI_GRID_SLICE, 7,
                             {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL),
-                             W(DEPTHS_IMAGE, DEPTHS, V(CACAO_DEPTHS_HALF) | V(CACAO_DEPTHS_FULL)),
-                             W_LEVELS(DEPTHS_IMAGE, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS))},
-                            /* the mips variant reduces a 2x2 quad per invocation in registers */
-                            .quad = {[CACAO_DEPTHS_MIPS] = 2}},
+                             W(DEPTHS_IMAGE, DEPTHS, V(CACAO_DEPTHS_HALF) | V(CACAO_DEPTHS_FULL) | V(CACAO_DEPTHS_MIPS_CHAIN)),
+                             W_LEVELS(DEPTHS_IMAGE, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS)),
+                             W_CHAIN(V(CACAO_DEPTHS_MIPS_CHAIN))},
+                            /* the mips variants reduce a 2x2 quad per invocation in registers */
+                            .quad = {[CACAO_DEPTHS_MIPS] = 2, [CACAO_DEPTHS_MIPS_CHAIN] = 2}},
     /* spec: prepare.md "Normals from input normals" (from depth: PREPARE). */
     /* list: the CPU forms without reuse, after compact, over the tiles whose normals generate
      * reads (docs/tiles.md); a group is a tile */
@@ -167,7 +177,8 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * load counter; the Q3 base pass writes the second AO buffer and the importance map
      * (importance.md "GenerateImportanceMap"): an invocation per importance texel computes the
      * 2x2 slice texels of every layer that texel reads. */
-    PASS(GENERATE) = GENERATE_ROW("generate", ALL, GEN, CACAO_LIST_BLOCKS, CACAOI_GRID_IMPORTANCE, R),
+    PASS(GENERATE) = GENERATE_ROW("generate", R(DEPTHS_IMAGE, DEPTHS, ALL) COMMA, 12, GEN, CACAO_LIST_BLOCKS,
+                                  CACAOI_GRID_IMPORTANCE, R),
     /* spec: importance.md: two smoothing passes (ping-pong) of the map the Q3 base pass wrote. */
     PASS(IMPORTANCE_A) = {"importance_a", {NULL}, 1, false, false, false, WG(IMPORTANCE), CACAOI_GRID_IMPORTANCE, 3,
                           {CONSTANTS, R(IMPORTANCE_MAP, IMPORTANCE, ALL), W(IMPORTANCE_MAP_IMAGE, IMPORTANCE_PONG, ALL)}},
@@ -237,7 +248,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                      {CONSTANTS, W(TILES, TILES, ALL), W(OUTPUT, OUTPUT, ALL)}},
     /* spec: prepare.md, normals from depth: PREPARE_DEPTHS's variants and the normals in one pass,
      * a 2x2 quad of slice texels per invocation sharing one block of depths. */
-    PASS(PREPARE) = PREPARE_ROW("prepare", 0u),
+    PASS(PREPARE) = PREPARE_ROW("prepare", 0u, W_LEVELS(DEPTHS_IMAGE, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS)), 6),
     /* The GPU forms (cacao_shader_forms): the rows above, other shapes. The blur: every n in
      * shared memory, 4x3 texels per thread (CACAO_BLUR_GPU_OUT_X, _Y); apply: 2x2 pixels per invocation,
      * each read through the sampler. Generate's GPU form runs its Q3 base pass one texel per
@@ -252,10 +263,11 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                        .quad = {[CACAO_OUTPUT_SMART] = 2, [CACAO_OUTPUT_NON_SMART] = 2, [CACAO_OUTPUT_HALF] = 2}},
     /* prepare: each direction between two neighbouring depths normalised once for the two
      * normals that use it, and the tile classes of its texels (no classify pass: its dispatch and
-     * barrier cost a GPU more than its work, docs/gpu.md); generate: the tap's atlas level in
-     * integers. */
-    PASS(PREPARE_GPU) = PREPARE_ROW("prepare_gpu", ALL),
-    PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu", V(CACAO_GENERATE_Q3) | V(CACAO_GENERATE_Q3_BASE), CACAO_LIST_NONE,
+     * barrier cost a GPU more than its work, docs/gpu.md), its mips as the depths' mip chain
+     * (levels 1..3 through their own slots); generate: the taps sampled from that chain. */
+    PASS(PREPARE_GPU) = PREPARE_ROW("prepare_gpu", ALL, W(DEPTHS_IMAGE, DEPTHS, V(CACAO_DEPTHS_MIPS)) COMMA
+                                    W_CHAIN(V(CACAO_DEPTHS_MIPS)), 9),
+    PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu", , 11, CACAO_LIST_NONE,
                                       CACAO_LIST_NONE, CACAOI_GRID_SLICE, W),
     /* The value of the tiles no pass computes: AO 1 over the unneeded tiles into the slices' AO
      * and the blur's output (CACAO's CPU forms, a step rebinding SSAO_IMAGE) and into the caller's
@@ -291,6 +303,8 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
 #undef R
 #undef W
 #undef W_LEVELS
+#undef W_CHAIN
+#undef COMMA
 #undef W_NATIVE
 #undef ALL
 #undef V

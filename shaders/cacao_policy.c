@@ -180,7 +180,9 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     const bool listed_normals = c->normals_from_input && !c->gpu_forms && !c->reuse &&
                                 c->quality >= CACAO_KEY_QUALITY_MEDIUM;
     if (c->normals_from_input) {
-        push(out, &n, CACAO_PASS_PREPARE_DEPTHS, depths, ds, 0, 0);
+        /* the GPU forms' generate samples a mip chain, the CPU forms' loads from the atlas */
+        const unsigned chain = c->gpu_forms && depths == CACAO_DEPTHS_MIPS ? CACAO_DEPTHS_MIPS_CHAIN : depths;
+        push(out, &n, CACAO_PASS_PREPARE_DEPTHS, chain, ds, 0, 0);
         if (!listed_normals) push(out, &n, CACAO_PASS_PREPARE_NORMALS, 0, ds, 0, 0);
     } else {
         push(out, &n, cacaoi_form_pass(CACAO_PASS_PREPARE, c->gpu_forms), depths, ds, 0, 0); /* depths and normals in one pass */

@@ -56,10 +56,14 @@
 #define CACAO_PASS_COUNT 23
 
 /* Depth-prepare variants (spec: prepare.md). HALF = slices 0 and 3 only (LOWEST), FULL = four
- * slices, MIPS = four slices plus mips 1..3 (HIGH and HIGHEST; MEDIUM never reads mips). */
+ * slices, MIPS = four slices plus mips 1..3 (HIGH and HIGHEST; MEDIUM never reads mips) in the
+ * atlas (the CPU forms); MIPS_CHAIN = the same levels as the image's mip levels (the GPU forms,
+ * whose generate samples them with the sampler's level and texel choice; PREPARE_GPU's MIPS
+ * variant writes the chain too). */
 #define CACAO_DEPTHS_HALF 0
 #define CACAO_DEPTHS_FULL 1
 #define CACAO_DEPTHS_MIPS 2
+#define CACAO_DEPTHS_MIPS_CHAIN 3
 
 /* Generate variants: shader quality index q (Q0..Q3, spec: generate.md) plus the Q3 base pass. */
 #define CACAO_GENERATE_Q0 0
@@ -256,7 +260,10 @@
 #define CACAO_BINDING_OUTPUT 17          /* caller's output, image2D, written without format */
 #define CACAO_BINDING_DEPTH_HISTORY 18   /* reuse: the depth the last frame read, image2D rgba32f, 2x2 pixels a texel */
 #define CACAO_BINDING_NORMALS_HISTORY 19 /* reuse: the input normals it read, image2D rgba32f (read and written) */
-#define CACAO_BINDING_COUNT 20
+#define CACAO_BINDING_DEPTHS_MIP1 20     /* the GPU forms' depth mip chain: level 1 of the depths, image2DArray r16f */
+#define CACAO_BINDING_DEPTHS_MIP2 21     /* level 2 */
+#define CACAO_BINDING_DEPTHS_MIP3 22     /* level 3 */
+#define CACAO_BINDING_COUNT 23
 
 /* ---- Workgroup sizes (x, y); z is always 1 ---- */
 #define CACAO_WG_PREPARE_X 8

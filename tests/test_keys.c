@@ -98,7 +98,7 @@ static void test_subset(void) {
      * prepare_normals; from depth: prepare, both in one pass), blur 1..8 fp32. The
      * horizon-slice estimators have no quality axis (quality is their budget, a constant) and run
      * native in fp32: all their keys belong to any subset with native resolution. */
-    const char *expected[] = {"prepare_depths.full.native", "prepare_depths.mips.native",
+    const char *expected[] = {"prepare_depths.full.native", "prepare_depths.mips.native", "prepare_depths.mips_chain.native",
                               "prepare_normals.native", "prepare_normals.list.native", "prepare.full.native", "prepare.mips.native",
                               "generate.q1", "generate.q2", "blur.1.fp32", "blur.2.fp32",
                               "blur.3.fp32", "blur.4.fp32", "blur.5.fp32", "blur.6.fp32",

@@ -80,10 +80,13 @@ static void test_rows(void) {
                 CHECK(buffer_slot == is_buffer(b->resource));
                 if (cacaoi_slots[b->slot].sampler == CACAOI_SAMPLER_LINEAR) CHECK(cacaoi_resources[b->resource].filtered);
                 if (kind == CACAOI_DESCRIPTOR_SAMPLED_IMAGE) CHECK(!b->write); /* sampled = read */
-                /* only the depths hold levels (an atlas), written by prepare's MIPS variant */
+                /* only the depths hold levels (an atlas, or the GPU forms' chain, whose levels 1..3
+                 * have their own slots), written by the prepares' mips variants */
+                const bool chain_slot = b->slot >= CACAO_BINDING_DEPTHS_MIP1 && b->slot <= CACAO_BINDING_DEPTHS_MIP3;
                 if (b->levels > 1)
                     CHECK(b->resource == CACAO_RES_DEPTHS && b->levels <= CACAO_DEPTH_MIP_COUNT && b->write &&
-                          b->slot == CACAO_BINDING_DEPTHS_IMAGE);
+                          (b->slot == CACAO_BINDING_DEPTHS_IMAGE || chain_slot));
+                if (chain_slot) CHECK(b->levels == CACAO_DEPTH_MIP_COUNT && b->resource == CACAO_RES_DEPTHS && b->write);
             }
             CHECK(seen[CACAO_BINDING_CONSTANTS] == 1); /* every pass reads the constant block */
             unsigned bound = 0;

@@ -335,7 +335,47 @@ static void test_small_mip_chain(void) {
         CHECK(p.steps[Q].binding_count == 4 && b->binding == CACAO_BINDING_DEPTHS_IMAGE && b->write &&
               b->resource == CACAO_RES_DEPTHS);
         CHECK(p.steps[Q].bindings[3].binding == CACAO_BINDING_NORMALS_IMAGE && p.steps[Q].bindings[3].write);
+        CHECK(depths->image_levels == 1); /* the CPU forms: one Vulkan level */
+        /* The GPU forms: the same levels as the image's mip levels, level 0 the slice; bytes the
+         * sum of the levels, each max(1, side >> level); prepare_gpu.mips binds levels 1..3 each
+         * through its own slot, the depths (level 0) through the storage slot. */
+        cacao_plan g = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .generate_normals = true,
+                                              .shader_forms = CACAO_SHADER_FORMS_GPU},
+                             cases[c].w, cases[c].h);
+        const cacao_plan_image *chain = find_image(&g, CACAO_RES_DEPTHS);
+        CHECK(chain && chain->mips == cases[c].mips && chain->image_levels == cases[c].mips);
+        CHECK(chain->width == cases[c].slice_w && chain->height == cases[c].slice_h);
+        uint64_t texels = 0;
+        for (uint32_t l = 0; l < cases[c].mips; ++l) {
+            const uint32_t lw = cases[c].slice_w >> l, lh = cases[c].slice_h >> l;
+            texels += (uint64_t)(lw ? lw : 1) * (lh ? lh : 1);
+        }
+        CHECK(chain->bytes == texels * 4 * 2);
+        const cacao_plan_step *prep = NULL;
+        for (uint32_t i = 0; i < g.step_count; ++i)
+            if (!strcmp(g.steps[i].key_name, "prepare_gpu.mips.native")) prep = &g.steps[i];
+        CHECK(prep != NULL);
+        if (prep) {
+            unsigned levels = 0, level0 = 0;
+            for (uint32_t i = 0; i < prep->binding_count; ++i) {
+                const cacao_plan_binding *pb = &prep->bindings[i];
+                if (pb->binding >= CACAO_BINDING_DEPTHS_MIP1 && pb->binding <= CACAO_BINDING_DEPTHS_MIP3)
+                    levels += pb->resource == CACAO_RES_DEPTHS && pb->write;
+                level0 += pb->binding == CACAO_BINDING_DEPTHS_IMAGE && pb->write;
+            }
+            CHECK(levels == 3 && level0 == 1);
+        }
     }
+    /* with the caller's normals the GPU forms' depth prepare writes the chain too */
+    cacao_plan given = build((cacao_settings){.quality = CACAO_QUALITY_HIGHEST, .shader_forms = CACAO_SHADER_FORMS_GPU},
+                             1920, 1080);
+    bool chain_prepare = false;
+    for (uint32_t i = 0; i < given.step_count; ++i)
+        chain_prepare |= !strcmp(given.steps[i].key_name, "prepare_depths.mips_chain.native");
+    CHECK(chain_prepare);
+    const cacao_plan_image *d = find_image(&given, CACAO_RES_DEPTHS);
+    CHECK(d->width == 960 && d->height == 540 && d->image_levels == 4 &&
+          d->bytes == (uint64_t)(960 * 540 + 480 * 270 + 240 * 135 + 120 * 67) * 4 * 2);
 }
 
 static void test_invalid(void) {

@@ -266,10 +266,12 @@ CACAO_API const char *cacao_resource_name(cacao_resource resource);
 typedef struct cacao_plan_image {
     cacao_resource resource;
     VkFormat format;
-    uint32_t width, height, layers; /* of the Vulkan image, which has one mip level */
-    uint32_t mips;              /* depth mip levels it holds: more than 1 only for the depths at HIGH+,
-                                   level 0 (the slice) with the others stacked to its right */
-    uint64_t bytes;             /* tightly packed size, all layers */
+    uint32_t width, height, layers; /* of the Vulkan image (its level 0) */
+    uint32_t mips;              /* depth mip levels it holds: more than 1 only for the depths at HIGH+:
+                                   in the CPU forms an atlas, level 0 (the slice) with the others
+                                   stacked to its right; in the GPU forms the image's mip levels */
+    uint64_t bytes;             /* tightly packed size, all layers and levels */
+    uint32_t image_levels;      /* mip levels of the Vulkan image: 1, or mips for a mip chain */
 } cacao_plan_image;
 
 #define CACAO_PLAN_MAX_STEPS 18     /* steps of any configuration (the longest has 18) */

@@ -297,6 +297,9 @@ static void release_images_and_buffers(cacao_context *ctx) {
     for (unsigned r = 0; r < CACAO_RES_COUNT; ++r) {
         cacao_intermediate *im = &ctx->images[r];
         if (im->view) ctx->vk.DestroyImageView(d, im->view, ctx->alloc);
+        if (im->sampled_view) ctx->vk.DestroyImageView(d, im->sampled_view, ctx->alloc);
+        for (unsigned l = 0; l < CACAO_DEPTH_MIP_COUNT; ++l)
+            if (im->level_views[l]) ctx->vk.DestroyImageView(d, im->level_views[l], ctx->alloc);
         if (im->image) ctx->vk.DestroyImage(d, im->image, ctx->alloc);
         memset(im, 0, sizeof *im);
         if (ctx->buffers[r]) ctx->vk.DestroyBuffer(d, ctx->buffers[r], ctx->alloc);
@@ -376,7 +379,7 @@ static cacao_result create_image(cacao_context *ctx, const cacao_plan_image *pi)
         .imageType = VK_IMAGE_TYPE_2D,
         .format = pi->format,
         .extent = {pi->width, pi->height, 1},
-        .mipLevels = 1, /* the depth mips, where there are, are an atlas (cacao_shared.h) */
+        .mipLevels = pi->image_levels > 1 ? pi->image_levels : 1, /* the GPU forms' depth chain; else an atlas */
         .arrayLayers = pi->layers,
         .samples = VK_SAMPLE_COUNT_1_BIT,
         .tiling = VK_IMAGE_TILING_OPTIMAL,
@@ -395,22 +398,35 @@ static cacao_result create_image(cacao_context *ctx, const cacao_plan_image *pi)
     return CACAO_SUCCESS;
 }
 
-/* The view of an image once it has memory: all layers of its one level, for sampling and storage
- * (CACAO's deinterleaved intermediates are arrays of slices; the rest are plain 2D images). */
-static cacao_result create_view(cacao_context *ctx, const cacao_plan_image *pi) {
-    cacao_intermediate *im = &ctx->images[pi->resource];
+/* A view of levels first .. first + count - 1, all layers (CACAO's deinterleaved intermediates are
+ * arrays of slices; the rest are plain 2D images). */
+static cacao_result create_level_view(cacao_context *ctx, const cacao_plan_image *pi, uint32_t first, uint32_t count,
+                                      VkImageView *out) {
     const cacaoi_resource_row *row = &cacaoi_resources[pi->resource];
     const VkImageViewCreateInfo view = {
         .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
-        .image = im->image,
+        .image = ctx->images[pi->resource].image,
         .viewType = row->layered ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D,
         .format = pi->format,
-        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, pi->layers},
+        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, first, count, 0, pi->layers},
     };
-    VkResult vr = ctx->vk.CreateImageView(ctx->device, &view, ctx->alloc, &im->view);
+    VkResult vr = ctx->vk.CreateImageView(ctx->device, &view, ctx->alloc, out);
     if (vr == VK_SUCCESS) return CACAO_SUCCESS;
-    im->view = VK_NULL_HANDLE;
+    *out = VK_NULL_HANDLE;
     return vk_fail(ctx, vr, "vkCreateImageView (%s)", row->name);
+}
+
+/* The views of an image once it has memory: level 0 for sampling and storage; with mip levels (the
+ * GPU forms' depth chain) all levels for sampling and each level above 0 for storage (the slots of
+ * levels the chain lacks get its last level, which the prepare never writes there). */
+static cacao_result create_view(cacao_context *ctx, const cacao_plan_image *pi) {
+    cacao_intermediate *im = &ctx->images[pi->resource];
+    cacao_result r = create_level_view(ctx, pi, 0, 1, &im->view);
+    const uint32_t levels = pi->image_levels > 1 ? pi->image_levels : 1;
+    if (levels == 1) return r;
+    if (r == CACAO_SUCCESS) r = create_level_view(ctx, pi, 0, levels, &im->sampled_view);
+    for (uint32_t l = 1; r == CACAO_SUCCESS && l < levels; ++l) r = create_level_view(ctx, pi, l, 1, &im->level_views[l]);
+    return r;
 }
 
 /* A buffer of the plan, with its resource row's usage (and transfers: the frame's updates and

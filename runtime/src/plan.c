@@ -118,9 +118,10 @@ static void dispatch_size(const cacao_plan *p, const cacao_key *key, uint32_t ou
 }
 
 /* An intermediate sized by its row's rule. With more than one mip level bound (the depths at
- * HIGH+), the levels of the chain the slice has (CACAO_DEPTH_MIP_LEVELS) in one atlas image:
- * level 0 with levels 1.. stacked to its right (cacao_shared.h). */
-static void add_image(cacao_plan *p, cacao_resource res, uint32_t levels_bound) {
+ * HIGH+), the levels of the chain the slice has (CACAO_DEPTH_MIP_LEVELS): in one atlas image, level
+ * 0 with levels 1.. stacked to its right (cacao_shared.h), or with `chain` (the GPU forms, whose
+ * passes bind the levels' own slots) as the image's mip levels. */
+static void add_image(cacao_plan *p, cacao_resource res, uint32_t levels_bound, bool chain) {
     const cacaoi_resource_row *row = &cacaoi_resources[res];
     uint32_t w = p->width, h = p->height, layers = 1;
     if (row->size == CACAOI_SIZE_SLICE) w = p->slice_width, h = p->slice_height;
@@ -128,15 +129,21 @@ static void add_image(cacao_plan *p, cacao_resource res, uint32_t levels_bound) 
     if (row->size == CACAOI_SIZE_HALF) w = div_up(p->width, 2), h = div_up(p->height, 2);
     if (row->size == CACAOI_SIZE_HALF_X3) w = 3 * div_up(p->width, 2), h = div_up(p->height, 2);
     if (row->layered) layers = p->slice_count;
-    const uint32_t chain = CACAO_DEPTH_MIP_LEVELS(w > h ? w : h);
-    const uint32_t mips = levels_bound < chain ? levels_bound : chain;
-    if (mips > 1) {
+    const uint32_t levels = CACAO_DEPTH_MIP_LEVELS(w > h ? w : h);
+    const uint32_t mips = levels_bound < levels ? levels_bound : levels;
+    uint64_t texels = (uint64_t)w * h;
+    if (mips > 1 && chain) {
+        for (uint32_t l = 1; l < mips; ++l)
+            texels += (uint64_t)CACAO_DEPTH_LEVEL_EXTENT(w, l) * CACAO_DEPTH_LEVEL_EXTENT(h, l);
+    } else if (mips > 1) {
         const uint32_t chain_h = CACAO_DEPTH_ATLAS_Y(h, mips);
         w += CACAO_DEPTH_LEVEL_EXTENT(w, 1);
         h = h > chain_h ? h : chain_h;
+        texels = (uint64_t)w * h;
     }
-    const uint64_t bytes = (uint64_t)w * h * layers * row->texel_bytes;
-    p->images[p->image_count++] = (cacao_plan_image){res, row->format, w, h, layers, mips, bytes};
+    const uint64_t bytes = texels * layers * row->texel_bytes;
+    p->images[p->image_count++] =
+        (cacao_plan_image){res, row->format, w, h, layers, mips, bytes, mips > 1 && chain ? mips : 1};
     p->total_bytes += bytes;
 }
 
@@ -191,6 +198,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
     cacaoi_pass_binding bindings[CACAOI_SEQUENCE_MAX][CACAO_PLAN_MAX_BINDINGS];
     size_t binding_count[CACAOI_SEQUENCE_MAX];
     uint32_t mips[CACAO_RES_COUNT] = {0}; /* levels bound per resource, 0 = untouched */
+    bool chain[CACAO_RES_COUNT] = {false}; /* its levels bound through their own slots: a mip chain */
     for (size_t i = 0; i < count; ++i) {
         binding_count[i] = cacaoi_step_bindings(&steps[i], bindings[i]);
         if (binding_count[i] > CACAO_PLAN_MAX_BINDINGS) { /* a wrong pass table, not a user error */
@@ -202,6 +210,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
             const cacaoi_pass_binding *b = &bindings[i][j];
             const uint32_t levels = b->levels > 1 ? b->levels : 1;
             if (mips[b->resource] < levels) mips[b->resource] = levels;
+            if (b->slot >= CACAO_BINDING_DEPTHS_MIP1 && b->slot <= CACAO_BINDING_DEPTHS_MIP3) chain[b->resource] = true;
         }
     }
 
@@ -219,7 +228,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
             plan->buffers[plan->buffer_count++] = (cacao_plan_buffer){res, bytes};
             plan->total_bytes += bytes;
         } else {
-            add_image(plan, res, mips[res]);
+            add_image(plan, res, mips[res], chain[res]);
         }
     }
     plan->uses_load_counter = mips[CACAO_RES_LOAD_COUNTER] != 0;
@@ -331,7 +340,8 @@ void cacao_plan_print(const cacao_plan *p, FILE *out) {
     for (uint32_t i = 0; i < p->image_count; ++i) {
         const cacao_plan_image *im = &p->images[i];
         fprintf(out, "  %-16s %4ux%-4u x%u layers, %u mips%s, %-14s %llu bytes\n", cacaoi_resources[im->resource].name,
-                im->width, im->height, im->layers, im->mips, im->mips > 1 ? " (atlas)" : "",
+                im->width, im->height, im->layers, im->mips,
+                im->image_levels > 1 ? " (mip chain)" : im->mips > 1 ? " (atlas)" : "",
                 cacaoi_resources[im->resource].format_name, (unsigned long long)im->bytes);
     }
     fprintf(out, "total intermediate memory: %llu bytes\n", (unsigned long long)p->total_bytes);

@@ -263,8 +263,20 @@ static void describe(const cacao_context *ctx, const cacao_inputs *in, const cac
         return;
     case CACAO_RES_OUTPUT: info->image = (VkDescriptorImageInfo){0, in->output.view, VK_IMAGE_LAYOUT_GENERAL}; return;
     default: {
+        /* a mip chain: its sampled view holds every level, the storage slots of levels 1..3 their
+         * own level (the last the chain has, for a slot past it) */
         const cacao_intermediate *im = &ctx->images[b->resource];
-        info->image = (VkDescriptorImageInfo){0, im->view, VK_IMAGE_LAYOUT_GENERAL};
+        VkImageView view = im->view;
+        if (b->binding >= CACAO_BINDING_DEPTHS_MIP1 && b->binding <= CACAO_BINDING_DEPTHS_MIP3) {
+            for (unsigned l = 1u + b->binding - CACAO_BINDING_DEPTHS_MIP1; l > 0; --l)
+                if (im->level_views[l]) {
+                    view = im->level_views[l];
+                    break;
+                }
+        } else if (im->sampled_view && cacaoi_slots[b->binding].descriptor == CACAOI_DESCRIPTOR_SAMPLED_IMAGE) {
+            view = im->sampled_view;
+        }
+        info->image = (VkDescriptorImageInfo){0, view, VK_IMAGE_LAYOUT_GENERAL};
         return;
     }
     }

@@ -33,7 +33,11 @@ typedef struct cacaoi_vk {
 
 typedef struct cacao_intermediate {
     VkImage image;
-    VkImageView view; /* all layers of its one level, for sampling and storage */
+    VkImageView view; /* all layers of level 0, for storage (and sampling where that is the only level) */
+    /* An image with mip levels (the GPU forms' depth chain): all levels for sampling, and levels
+     * 1..3 one per view for storage (a storage view holds one level); VK_NULL_HANDLE otherwise. */
+    VkImageView sampled_view;
+    VkImageView level_views[CACAO_DEPTH_MIP_COUNT];
 } cacao_intermediate;
 
 

@@ -32,11 +32,27 @@ layout(set = 0, binding = CACAO_BINDING_DEPTHS) uniform sampler2DArray depths;
 #endif
 
 #ifdef CACAO_BIND_DEPTHS_IMAGE
-/* The slices' depths; with mips (CACAO_DEPTHS_MIPS) the atlas of levels 0..3 (cacao_shared.h).
+/* The slices' depths; with mips (CACAO_DEPTHS_MIPS, the CPU forms) the atlas of levels 0..3
+ * (cacao_shared.h); in the GPU forms level 0 of the mip chain.
  * Generate loads single texels through it: on lavapipe an imageLoad costs less than the sampling
  * function a nearest textureLod calls (docs/speed-notes.md). */
 layout(set = 0, binding = CACAO_BINDING_DEPTHS_IMAGE, CACAO_FORMAT_DEPTHS_IMAGE) uniform CACAO_ACCESS_DEPTHS_IMAGE
     image2DArray depths_image;
+#endif
+
+/* The GPU forms' depth mips 1..3: views of one level each of the depths' mip chain, which the
+ * prepare writes and generate samples through `depths` (the CPU forms: the atlas above). */
+#ifdef CACAO_BIND_DEPTHS_MIP1
+layout(set = 0, binding = CACAO_BINDING_DEPTHS_MIP1, CACAO_FORMAT_DEPTHS_MIP1) uniform CACAO_ACCESS_DEPTHS_MIP1
+    image2DArray depths_mip1;
+#endif
+#ifdef CACAO_BIND_DEPTHS_MIP2
+layout(set = 0, binding = CACAO_BINDING_DEPTHS_MIP2, CACAO_FORMAT_DEPTHS_MIP2) uniform CACAO_ACCESS_DEPTHS_MIP2
+    image2DArray depths_mip2;
+#endif
+#ifdef CACAO_BIND_DEPTHS_MIP3
+layout(set = 0, binding = CACAO_BINDING_DEPTHS_MIP3, CACAO_FORMAT_DEPTHS_MIP3) uniform CACAO_ACCESS_DEPTHS_MIP3
+    image2DArray depths_mip3;
 #endif
 
 #ifdef CACAO_BIND_NORMALS_IMAGE

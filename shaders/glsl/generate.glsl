@@ -58,27 +58,16 @@ vec3 load_normal_or_zero(ivec2 p, ivec2 s, int layer)
     return in_rect(p, s) ? v : vec3(0.0);
 }
 
-/* The depth atlas (cacao_shared.h), per level l = 0..3: (width, height, x, y) of the level in
- * texels, as floats, the last level of the slice's chain, and 1 / the image's size (the atlas at
- * Q2, Q3). Q0, Q1 read level 0 only, which is the slice. Set once per invocation in main (the Q3
+/* The depth atlas (cacao_shared.h; the CPU form), per level l = 0..3: (width, height, x, y) of the
+ * level in texels, as floats, the last level of the slice's chain, and 1 / level 0's size (the
+ * atlas at Q2, Q3 in the CPU form). Q0, Q1 read level 0 only, which is the slice. Set once per invocation in main (the Q3
  * base pass computes 16 texels with them). */
 vec4 g_level[4];
 float g_top_level;
 vec2 g_inv_d;
-#if GEN_GPU
-/* The GPU form's atlas: the slice's size and the rows where levels 2 and 3 start (level l's
- * extent and place follow from them in integers, cacao_shared.h). */
-ivec2 g_s0;
-int g_y2, g_y3;
-#endif
 
 void init_atlas(ivec2 s0)
 {
-#if GEN_GPU
-    g_s0 = s0;
-    g_y2 = CACAO_DEPTH_ATLAS_Y(s0.y, 2);
-    g_y3 = CACAO_DEPTH_ATLAS_Y(s0.y, 3);
-#endif
     for (int l = 0; l < 4; ++l) g_level[l] = vec4(depth_atlas_level(s0, l));
     g_top_level = float(CACAO_DEPTH_MIP_LEVELS(max(s0.x, s0.y)) - 1);
     g_inv_d = 1.0 / vec2(textureSize(depths, 0).xy);
@@ -96,17 +85,18 @@ void accumulate_tap(vec4 s, bool use_pattern_weight, vec2 uvd, vec2 inv_s, int l
      * most the last; the texel is the truncated UV times the level's size, clamped to the level),
      * and the texel is loaded from the atlas. The max maps a -inf LOD (radius 0) and NaN to level 0. */
 #if GEN_GPU
-    /* The same level, extent and place as integers (a GPU compiler selected and converted four
-     * floats per tap): extent max(s0 >> l, 1), place (s0.x, y(l)) above level 0. The mirrored
-     * offset's float is the negated float of the offset (exact). */
+    /* The GPU forms' depths are a mip chain (cacao_shared.h): the sampler picks the level (nearest,
+     * at most the last) and the nearest texel, clamped to the level's edge, from the LOD and the
+     * texel-centre UV. On lavapipe, whose choices the CPU form reproduces, that is the CPU form's
+     * level and texel (test_shader_forms: bit-identical); a GPU may round the LOD or the texel
+     * coordinate otherwise at exact ties. Below HIGH only level 0 exists. The mirrored offset's
+     * float is the negated float of the offset (exact). */
+    vec2 fo = vec2(o);
 #if GEN_Q >= 2
-    int level = int(min(roundEven(max(s.w + mip_offset, 0.0)), g_top_level));
-    ivec2 extent = max(g_s0 >> level, ivec2(1));
-    ivec2 place = ivec2(level == 0 ? 0 : g_s0.x, level == 3 ? g_y3 : level == 2 ? g_y2 : 0);
+    float lod = s.w + mip_offset;
 #else
-    ivec2 extent = g_s0, place = ivec2(0);
+    const float lod = 0.0;
 #endif
-    vec2 extent_f = vec2(extent), fo = vec2(o);
 #else
 #if GEN_Q >= 2
     float level = min(roundEven(max(s.w + mip_offset, 0.0)), g_top_level);
@@ -118,21 +108,7 @@ void accumulate_tap(vec4 s, bool use_pattern_weight, vec2 uvd, vec2 inv_s, int l
     [[unroll]] for (int side = 0; side < 2; ++side) {
 #if GEN_GPU
         vec2 uv = uvd + (side == 0 ? fo : -fo) * inv_s;
-#if GEN_Q < 2
-        /* Level 0 is the whole image here (no atlas below HIGH): the sampler's nearest texel and
-         * clamp to the edge are the texel the integer path picks (uv is at a texel centre). */
-        float z = textureLod(depths, vec3(uv, float(layer)), 0.0).r;
-#else
-        ivec2 t = clamp(ivec2(uv * extent_f), ivec2(0), extent - 1);
-#endif
-#if GEN_Q < 2
-#elif GEN_Q == 3
-        float z = imageLoad(depths_image, ivec3(t + place, layer)).r;
-#else
-        /* The same texel through the sampled view: measured faster on a GPU for Q0..Q2, slower
-         * for Q3 and its base pass (docs/gpu.md, "Measured on a real GPU"). */
-        float z = texelFetch(depths, ivec3(t + place, layer), 0).r;
-#endif
+        float z = textureLod(depths, vec3(uv, float(layer)), lod).r;
 #else
         ivec2 os = side == 0 ? o : -o;
         vec2 uv = uvd + vec2(os) * inv_s;

@@ -11,7 +11,19 @@ layout(local_size_x = CACAO_WG_PREPARE_X, local_size_y = CACAO_WG_PREPARE_Y) in;
  * first mip level comes from registers, and only levels 2 and 3 go through shared memory and
  * barriers, which lavapipe runs slowly (shared loads lane by lane, barriers by switching between
  * the group's invocations; docs/speed-notes.md has the measurement). */
-#if CACAO_VARIANT == CACAO_DEPTHS_MIPS
+/* The mips in the atlas (the CPU forms) or as the image's mip levels (PREP_MIP_CHAIN: the GPU
+ * forms, prepare_depths.mips_chain and prepare_gpu.mips). */
+#if CACAO_VARIANT == CACAO_DEPTHS_MIPS_CHAIN || (CACAO_PASS == CACAO_PASS_PREPARE_GPU && CACAO_VARIANT == CACAO_DEPTHS_MIPS)
+#define PREP_MIP_CHAIN 1
+#else
+#define PREP_MIP_CHAIN 0
+#endif
+#if CACAO_VARIANT == CACAO_DEPTHS_MIPS || CACAO_VARIANT == CACAO_DEPTHS_MIPS_CHAIN
+#define PREP_MIPS 1
+#else
+#define PREP_MIPS 0
+#endif
+#if PREP_MIPS
 /* Per-slice tiles of levels 1 and 2 of this group, fp32 (AMD does not re-quantise between levels).
  * Levels 1..3 of the group's tile are T, T/2 and T/4 texels wide, and the reduction below gives
  * each step's texels to the first threads: written for T = 8. */
@@ -32,14 +44,24 @@ float smart_average(float d0, float d1, float d2, float d3)
     return dot(w, d) / dot(w, vec4(1.0));
 }
 
-/* Texel p of level 1..3 into its place in the atlas (cacao_shared.h); levels beyond the slice's
+/* Texel p of level 1..3 into its place in the atlas (cacao_shared.h), or into its level of the
+ * chain (PREP_MIP_CHAIN); levels beyond the slice's
  * chain (CACAO_DEPTH_MIP_LEVELS) are not stored. */
 void store_mip(int level, ivec2 p, int layer, float z)
 {
     ivec2 s0 = slice_size();
     if (level >= CACAO_DEPTH_MIP_LEVELS(max(s0.x, s0.y))) return;
     ivec4 lv = depth_atlas_level(s0, level);
+#if PREP_MIP_CHAIN
+    /* level l's own view (a chain shorter than 3 levels binds its last level's view to the slots
+     * past it, which the test above never reaches) */
+    if (!in_rect(p, lv.xy)) return;
+    if (level == 1) imageStore(depths_mip1, ivec3(p, layer), vec4(z));
+    else if (level == 2) imageStore(depths_mip2, ivec3(p, layer), vec4(z));
+    else imageStore(depths_mip3, ivec3(p, layer), vec4(z));
+#else
     if (in_rect(p, lv.xy)) imageStore(depths_image, ivec3(lv.zw + p, layer), vec4(z));
+#endif
 }
 
 /* The 2x2 level-l texels 2q .. 2q + 1 of tile[k] (row-major, w wide) reduced to one texel of
@@ -350,7 +372,7 @@ void main()
         }
     }
 #endif
-#if CACAO_VARIANT == CACAO_DEPTHS_MIPS
+#if PREP_MIPS
     reduce_mips(u, z);
 #endif
 #if PREP_CLASSIFIES

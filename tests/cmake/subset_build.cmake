@@ -33,7 +33,7 @@ endforeach()
 # apply, prepare and generate, and of the horizon estimators' passes (a build
 # embeds both forms: the device chooses); the reuse passes (no axis: a setting of any CACAO
 # configuration).
-set(expected prepare_depths.full.native prepare_depths.mips.native prepare_normals.native prepare_normals.list.native
+set(expected prepare_depths.full.native prepare_depths.mips.native prepare_depths.mips_chain.native prepare_normals.native prepare_normals.list.native
     generate.q1 generate.q2 blur.1.fp32 blur.2.fp32 blur.3.fp32
     blur.4.fp32 blur.5.fp32 blur.6.fp32 blur.7.fp32 blur.8.fp32 apply.smart.fp32 apply.smart_list.fp32
     horizon_prepare.depth horizon_prepare.input horizon_prepare.z horizon_main.gtao horizon_main.bitmask horizon_main.gtao_direct
