@@ -234,7 +234,9 @@ against AMD's code so far (an NVIDIA H200: section "Measured on a real GPU", aft
 there cacao takes %(measured)s AMD's time, more than AMD in most configurations, where this estimate
 puts it at about or under AMD's cost; and two of the changes that made it faster there (the Q3 base
 pass one texel per invocation, classify's counting moved) cost a little in this estimate. Read the
-estimate for registers, spills and occupancy, not for speed.
+estimate for registers, spills and occupancy, not for speed. The GPU forms' depth mip chain (section
+"The GPU forms": generate's taps through the sampler) came after the last run on a real GPU: its
+gain here is an estimate only.
 
 Regenerate with `tools/gpu-report.py` (needs a build, `../shared/amd-cacao` and mesa-vulkan-drivers;
 it takes seconds and no GPU). Device and driver: %(driver)s. Size 1920x1080; both sides fp32,
@@ -323,16 +325,26 @@ fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
   code. Measured alternatives: one full-resolution pixel per invocation with the positions in shared
   memory costs about as much per normal (the normal's own arithmetic dominates), and so does one
   slice texel per invocation.
-- `generate_gpu`: the tap's atlas level, extent and place as integers (the CPU form selects among
-  four float vec4s and converts them, 25 instructions of a tap's 110 on navi21); the Q3 base pass
+- `generate_gpu`: the depths and their mips as the image's mip chain (the CPU forms: an atlas,
+  one level holding all four, cacao_shared.h), and each tap one `textureLod` through the nearest
+  sampler at the tap's LOD: the sampler picks the level and the texel, clamped to the level's
+  edge, where the CPU form computes them (the level, the level's extent and place in the atlas, the
+  texel and its clamp: 17 instructions a tap and 10 a sample on navi21, of a tap's 113). Below
+  HIGH there is one level and the tap is a `textureLod` at LOD 0. On lavapipe the sampler's
+  choices are the CPU form's (`test_shader_forms`: bit-identical); a GPU rounds a LOD's tie
+  upwards and a texel coordinate to its sub-texel precision, so near a tie it may take the
+  neighbouring level or texel (as AMD's own sampling does). The prepares of the GPU forms write levels 1..3
+  through storage views of one level each (`prepare_gpu.mips`, `prepare_depths.mips_chain`). On
+  navi21 (ACO's figure per wave): `generate_gpu.q0` 196 -> 167, `q1` 397 -> 350, `q2` 934 -> 676,
+  `q3` 694 -> 522, the Q3 base pass 1,817 -> 1,248; the generate stage at HIGH 60.97 -> 44.13 Mcycles (AMD's
+  57.25), the base pass at HIGHEST 29.65 -> 20.37 (AMD's 22.07). Not timed on a real GPU yet: the
+  H200 found generate's address arithmetic not to be its cost there (section "Tried and not
+  kept, or diagnostic") and Q3's taps slower through the sampled view than through `imageLoad`
+  (section "An earlier change"); this form has not been timed against those. The Q3 base pass
   computes one slice texel (its four layers) per invocation and reduces the importance map's 2x2
-  quads in shared memory (the CPU form: 16 texels per invocation, 2x2 of each layer). The H200
-  timed it faster (HIGHEST's generate stage 233 -> 226 microseconds native, 81 -> 73 downsampled);
-  this estimate puts it 1.3x dearer per texel than the 16-texel GPU form it replaced (navi21,
-  HIGHEST native: base 21.99 -> 29.18 Mcycles, AMD's 22.06), which loses the gather of a quad's
-  four centre depths. The real GPU's timing decided; a GPU of AMD's has not timed either. At Q0..Q2 the GPU form fetches its taps' depths through the sampled view of the atlas
-  (`texelFetch`; the CPU form, Q3 and its base pass load them from the storage image): the same
-  texels, chosen by what a real GPU measured (section "Measured on a real GPU").
+  quads in shared memory (the CPU form: 16 texels per invocation, 2x2 of each layer): the H200
+  timed it faster (HIGHEST's generate stage 233 -> 226 microseconds native, 81 -> 73 downsampled)
+  than the 16-texel GPU form it replaced, which ACO's estimate put 1.3x cheaper per texel.
 - `generate_gpu` and `blur_gpu` run on direct grids and skip by the tile classes themselves: a
   group reads its needed flag (classify marks them) and, when not needed, stores AO 1 and computes
   nothing else; the CPU forms run from compact's lists and fill the rest (docs/tiles.md). On
@@ -607,7 +619,7 @@ def measured_section(runs, results):
                proc['reps'], proc['frames'], proc['warmup_frames'], clocks[0], clocks[1], MEASURED_CODE),
            '', '### Totals: cacao / AMD', '',
            '| configuration | AMD ms (interior) | cacao ms (interior) | cacao/AMD interior | statues | street | '
-           'navi21 estimate (RADV, below) |', '|---|---:|---:|---:|---:|---:|---:|']
+           'navi21 estimate (RADV, below: this report\'s code) |', '|---|---:|---:|---:|---:|---:|---:|']
     ratios = []
     for cfg in AMD_CONFIGS:
         per = [results_of(fin, 'cacao', sc).get(cfg) for sc in SCENES]
@@ -624,7 +636,8 @@ def measured_section(runs, results):
         below = ['%s %s' % (sc.split('_')[0], cfg) for cfg in AMD_CONFIGS for sc in SCENES
                  if (results_of(fin, 'cacao', sc).get(cfg) or {}).get('ratio', 9.0) < 1.0]
         out += ['', '**On this GPU cacao takes %.2f-%.2fx AMD\'s time** over the %d scene x configuration pairs, '
-                'less than AMD\'s in %d of them (%s), where the RADV estimate below (navi21) puts it at %s of '
+                'less than AMD\'s in %d of them (%s), where the RADV estimate below (navi21), of the code this '
+                'report was made from (newer than the timed commit where they differ), puts it at %s of '
                 'AMD\'s cost. The estimate counts issued instructions; what it leaves out (the fixed cost of each '
                 'dispatch and barrier, workgroup launches, memory) decides frames this short.' % (
                     min(ratios), max(ratios), len(ratios), len(below), ', '.join(below) or 'none',
@@ -726,7 +739,8 @@ def measured_section(runs, results):
         out += ['', '### An earlier change, measured: generate\'s taps through the sampled view', '',
                 'The GPU form of generate at Q0..Q2 fetches its taps\' depths through the sampled view of the '
                 'depth atlas (`texelFetch`), where the CPU form, and Q3 and its base pass, load them from the '
-                'storage image (`imageLoad`: lavapipe runs that faster). Same texels, same output. The generate '
+                'storage image (`imageLoad`: lavapipe runs that faster). Same texels, same output (since '
+                'replaced by the mip chain, "The GPU forms" above). The generate '
                 'stage in microseconds, before / after, in an earlier session\'s run (commits %s / %s):' % (C['tf_before'], C['tf_final']), '',
                 '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
         def generate_cell(sc, cfg):

@@ -88,8 +88,8 @@ void accumulate_tap(vec4 s, bool use_pattern_weight, vec2 uvd, vec2 inv_s, int l
     /* The GPU forms' depths are a mip chain (cacao_shared.h): the sampler picks the level (nearest,
      * at most the last) and the nearest texel, clamped to the level's edge, from the LOD and the
      * texel-centre UV. On lavapipe, whose choices the CPU form reproduces, that is the CPU form's
-     * level and texel (test_shader_forms: bit-identical); a GPU may round the LOD or the texel
-     * coordinate otherwise at exact ties. Below HIGH only level 0 exists. The mirrored offset's
+     * level and texel (test_shader_forms: bit-identical); a GPU rounds a LOD's tie upwards, and a
+     * texel coordinate to its sub-texel precision, so near a tie it may pick the neighbour. Below HIGH only level 0 exists. The mirrored offset's
      * float is the negated float of the offset (exact). */
     vec2 fo = vec2(o);
 #if GEN_Q >= 2
