@@ -217,6 +217,38 @@ def issue_comparison(result):
     return lines
 
 
+def targets_section(results):
+    """Issue 31's targets against this estimate: scratch and spills per family, navi21's stages
+    above AMD's and totals above 0.6 (stretch 0.5) of AMD's, over the ten configurations above."""
+    lines = ['## Issue 31\'s targets, against this estimate', '']
+    spills = ['%s %d' % (f, sum(1 for p in r['permutations'] if p['spills'])) for f, r in results.items()]
+    cpu = ['%s %d' % (f, sum(1 for p in r['cpu_forms']['permutations'] if p['spills'])) for f, r in results.items()]
+    lines.append('- No pipeline with scratch or spilled VGPRs, over every embedded permutation a context on a GPU '
+                 'creates (the GPU forms and the passes both forms share): %s (%s). The CPU forms (lavapipe\'s '
+                 'shapes of the blur, apply, prepare and generate, which a context on a GPU never creates; '
+                 '`gpu-compile` checks them on neither family): %s permutations with scratch.' % (
+                     'met' if all(x.endswith(' 0') for x in spills) else '**missed**', ', '.join(spills),
+                     ', '.join(cpu)))
+    if 'navi21' not in results:
+        return lines + ['- navi21: not measured.']
+    configs = by_name(results['navi21'])
+    above, totals = [], []
+    for name in CONFIGS:
+        c = configs[name]
+        cs, ams = c['cacao']['stages'], c['amd']['stages']
+        for st in STAGES:
+            if st in cs and ams.get(st) and cs[st] > ams[st]:
+                above.append('%s %s %.3f' % (name, st, cs[st] / ams[st]))
+        totals.append((name, c['cacao']['total_cycles'] / c['amd']['total_cycles']))
+    lines.append('- navi21, every stage at most AMD\'s equivalent stage (the ten configurations, blur 2, fp32): '
+                 + ('met' if not above else '**missed**: ' + '; '.join(above)) + '.')
+    over = ['%s %.2f' % (n, r) for n, r in totals if r > 0.6]
+    lines.append('- navi21, every total at most 0.6 of AMD\'s: ' + ('met' if not over else '**missed** by %d of %d: %s'
+                 % (len(over), len(totals), ', '.join(over))) + '; at most 0.5 (stretch): %d of %d.' % (
+                     sum(1 for _, r in totals if r <= 0.5), len(totals)))
+    return lines
+
+
 HEADER = """# What AMD's shader compiler says: cacao beside AMD FidelityFX CACAO on AMD GPUs
 
 **A compiler's estimate, not a timing.** Every figure here comes from Mesa's RADV driver compiling
@@ -888,7 +920,7 @@ def main():
                     'measured': '%.2f-%.2fx' % (min(timed), max(timed)) if timed else '(not measured)', 'issue': '\n'.join(issue_comparison(results['navi21']))
                     if 'navi21' in results else '(navi21 not measured)',
                     'overview': '\n'.join(overview(results))}
-    parts = [doc.rstrip('\n')]
+    parts = [doc.rstrip('\n'), ''] + targets_section(results)
     measured = measured_section(runs, results)
     if measured:
         parts += [''] + measured
