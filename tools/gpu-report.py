@@ -377,6 +377,14 @@ fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
   quads in shared memory (the CPU form: 16 texels per invocation, 2x2 of each layer): the H200
   timed it faster (HIGHEST's generate stage 233 -> 226 microseconds native, 81 -> 73 downsampled)
   than the 16-texel GPU form it replaced, which ACO's estimate put 1.3x cheaper per texel.
+- The upsample (one form for both devices): an entry outside the image weighs 0 through its
+  depth term alone (the sentinel depth's difference squares to +inf, exp2(-inf) = 0, the
+  multiplier kept below -FLT_MIN) instead of a select per weight: on navi21 `upsample.smart.fp32`
+  8,375 -> 7,503 cycles per wave, the downsampled totals 0.55-0.63 -> 0.50-0.60 of AMD's. The
+  same output (`tools/output-matrix.sh`, byte for byte).
+- The blur's mirrored load coordinates without branches or selects (`mirror_coord_alu`, equal for
+  every int): `blur_gpu.2.fp32` 551 -> 543 cycles per wave on navi21, the blur stage at blur 2
+  1.01 -> 1.00 of AMD's (0.996).
 - `generate_gpu` and `blur_gpu` run on direct grids and skip by the tile classes themselves: a
   group reads its needed flag (classify marks them) and, when not needed, stores AO 1 and computes
   nothing else; the CPU forms run from compact's lists and fill the rest (docs/tiles.md). On

@@ -1,5 +1,6 @@
 /* constants.c - the constant-buffer math in one place (spec: constants.md sections 4, 5, 8, 8b).
  * Pure: settings + plan sizes + the frame's matrices in, cacao_constants out. */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -372,7 +373,11 @@ void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao
      * spatial Gaussian separates, exp(-(dx^2 + dy^2) / v) = exp(-dx^2 / v) exp(-dy^2 / v), so its
      * 6 distinct axis factors (|d| = 0, 0.5, .., 2.5 texels) come from this block. */
     const double log2e = 1.4426950408889634;
-    c->bilateral_depth_exp2_mul = (float)(-log2e / ((double)s->bilateral_similarity_distance_sigma * k * k));
+    /* below -FLT_MIN, never -0 or a denormal: the upsample weighs an entry outside the image 0 through
+     * exp2(+inf * this) (apply.glsl); against a multiplier as small, a finite depth difference
+     * (|dz| <= CACAO_MAX_VIEW_Z, dz^2 < 2^32) makes an exponent of at most 2^-94: weight 1 either way */
+    c->bilateral_depth_exp2_mul =
+        fminf((float)(-log2e / ((double)s->bilateral_similarity_distance_sigma * k * k)), -FLT_MIN);
     float *axis = &c->bilateral_axis_weight[0].x;
     for (int i = 0; i < 6; ++i) axis[i] = (float)exp(-(0.25 * i * i) / (double)s->bilateral_sigma_squared);
     axis[6] = axis[7] = 0.0f;

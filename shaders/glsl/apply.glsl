@@ -222,7 +222,7 @@ layout(local_size_x = CACAO_WG_UPSAMPLE_X, local_size_y = CACAO_WG_UPSAMPLE_Y) i
 #define UP_TABLE_X (CACAO_UPSAMPLE_SPAN_X + 4) /* the group's half-res positions + 2 apron each side */
 #define UP_TABLE_Y (CACAO_UPSAMPLE_SPAN_Y + 4)
 #define UP_WIN (UP_B + 4)                       /* one thread's window of table entries */
-#define UP_NO_DEPTH -1.0e30 /* marks an entry outside the Q image: weight 0 */
+#define UP_NO_DEPTH -1.0e30 /* marks an entry outside the Q image: weight 0 (step 2) */
 
 shared rfloat up_value[UP_TABLE_X * UP_TABLE_Y];
 shared float up_depth[UP_TABLE_X * UP_TABLE_Y];
@@ -328,12 +328,16 @@ void main()
                 [[unroll]] for (int x = -2; x <= 2; ++x) {
                     rfloat v = win_v[by + 2 + y][bx + 2 + x];
                     float zq = win_z[by + 2 + y][bx + 2 + x];
-                    bool valid = zq > -1.0e29;
                     [[unroll]] for (int o = 0; o < 4; ++o) {
                         /* |dx|, |dy| in half texels: x - (o & 1) / 2 and y - (o >> 1) / 2 */
                         float ws = axis_weight[abs(2 * x - (o & 1))] * axis_weight[abs(2 * y - (o >> 1))];
                         float dz = zf[o] - zq; /* sigma is used as a variance, as AMD does */
-                        float wz = valid ? exp2(dz * dz * depth_exp2_mul) : 0.0;
+                        /* An entry outside the image (UP_NO_DEPTH) weighs exactly 0 with no test: zf
+                         * is a finite view z (at most CACAO_MAX_VIEW_Z), so its difference squares to
+                         * +inf, times the multiplier (negative: constants.c keeps it below -FLT_MIN)
+                         * -inf, whose exp2 is 0. A select per weight cost a GPU compiler's estimate
+                         * 10% of the pass (docs/gpu.md). */
+                        float wz = exp2(dz * dz * depth_exp2_mul);
                         rfloat w = rfloat(ws * wz);
                         tot[o] += v * w;
                         wsum[o] += w;
