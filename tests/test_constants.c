@@ -6,6 +6,7 @@
  * usage: test_constants              the hand-derived values
  *        test_constants SHARED_DIR   AMD's constant buffers (exit 77 = skipped when SHARED_DIR is absent) */
 #include <cjson/cJSON.h>
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -296,7 +297,36 @@ static void test_projection_refusals(void) {
     CHECK(cacaoi_check_projection(&in, err, sizeof err) == CACAO_ERROR_INVALID_ARGUMENT && strstr(err, "P(3,3)"));
 }
 
+/* The upsample weighs an entry outside the image 0 through exp2(+inf * multiplier) (apply.glsl):
+ * the multiplier must stay a negative normal float at any similarity sigma the settings accept,
+ * and otherwise grow towards 0 as sigma grows (-log2(e) / (sigma k^2), k the view scale). */
+static void test_bilateral_multiplier(void) {
+    float p[16];
+    cacao_perspective(65.0, 16.0 / 9.0, 0.05, 100.0, false, p);
+    const float sigmas[] = {1e-30f, 0.01f, 1.0f, 1e20f, 1e30f};
+    float last = 0.0f;
+    for (size_t i = 0; i < sizeof sigmas / sizeof sigmas[0]; ++i) {
+        const cacao_settings s = {.quality = CACAO_QUALITY_HIGH, .downsample = true,
+                                  .bilateral_similarity_distance_sigma = sigmas[i]};
+        const cacao_constants c = fill(&s, 960, 540, p, true);
+        const float m = c.bilateral_depth_exp2_mul;
+        CHECK(isfinite(m) && m <= -FLT_MIN); /* never -0 or a denormal: +inf * m = -inf */
+        CHECK(isinf(exp2f(INFINITY * m)) == 0 && exp2f(INFINITY * m) == 0.0f);
+        if (i > 0) CHECK(m >= last); /* a wider sigma weighs depth differences less, down to the clamp */
+        if (i > 0 && i < 4) CHECK(m > last);
+        last = m;
+    }
+    /* a world scaled down (near 1e-12, far 1e-9: view scale 2^26, view_scale in constants.c) at the
+     * widest sigma: without the clamp the multiplier would be -0 */
+    float tiny[16];
+    cacao_perspective(65.0, 16.0 / 9.0, 1e-12, 1e-9, false, tiny);
+    const cacao_settings wide = {.quality = CACAO_QUALITY_HIGH, .downsample = true,
+                                 .bilateral_similarity_distance_sigma = 1e30f};
+    CHECK(fill(&wide, 960, 540, tiny, true).bilateral_depth_exp2_mul == -FLT_MIN);
+}
+
 int main(int argc, char **argv) {
+    test_bilateral_multiplier();
     test_projection_conventions();
     test_projection_refusals();
     if (argc < 2) {
