@@ -98,6 +98,16 @@ float obscurance(vec3 n, vec3 delta, float falloff, float horizon)
     return max0(cos_a - horizon) * max0(1.0 + len2 * falloff);
 }
 
+/* The same for a GPU compiler: the falloff term is at most 1 (len2 >= 0, falloff <= 0), so its max0
+ * is a saturate, which a GPU folds into the multiply-add (NaN gives 0 either way); the angle term
+ * keeps its max0 (a normal a little longer than 1 takes it above 1). Equal for every input. */
+float obscurance_gpu(vec3 n, vec3 delta, float falloff, float horizon)
+{
+    float len2 = dot(delta, delta);
+    float cos_a = dot(n, delta) / sqrt(len2);
+    return max0(cos_a - horizon) * sat(1.0 + len2 * falloff);
+}
+
 /* 2 bits per direction, LRTB -> one UNORM8 value (spec: generate.md step 10b). */
 float pack_edges(vec4 e)
 {
