@@ -42,17 +42,13 @@ layout(set = 0, binding = CACAO_BINDING_DEPTHS_IMAGE, CACAO_FORMAT_DEPTHS_IMAGE)
 
 /* The GPU forms' depth mips 1..3: views of one level each of the depths' mip chain, which the
  * prepare writes and generate samples through `depths` (the CPU forms: the atlas above). */
-#ifdef CACAO_BIND_DEPTHS_MIP1
-layout(set = 0, binding = CACAO_BINDING_DEPTHS_MIP1, CACAO_FORMAT_DEPTHS_MIP1) uniform CACAO_ACCESS_DEPTHS_MIP1
-    image2DArray depths_mip1;
-#endif
-#ifdef CACAO_BIND_DEPTHS_MIP2
-layout(set = 0, binding = CACAO_BINDING_DEPTHS_MIP2, CACAO_FORMAT_DEPTHS_MIP2) uniform CACAO_ACCESS_DEPTHS_MIP2
-    image2DArray depths_mip2;
-#endif
-#ifdef CACAO_BIND_DEPTHS_MIP3
-layout(set = 0, binding = CACAO_BINDING_DEPTHS_MIP3, CACAO_FORMAT_DEPTHS_MIP3) uniform CACAO_ACCESS_DEPTHS_MIP3
-    image2DArray depths_mip3;
+#ifdef CACAO_BIND_DEPTHS_MIP1 /* the pass rows bind the three together (W_CHAIN, cacao_passes.c) */
+#define DEPTHS_MIP_IMAGE(l)                                                                        \
+    layout(set = 0, binding = CACAO_BINDING_DEPTHS_MIP##l, CACAO_FORMAT_DEPTHS_MIP##l)               \
+        uniform CACAO_ACCESS_DEPTHS_MIP##l image2DArray depths_mip##l
+DEPTHS_MIP_IMAGE(1);
+DEPTHS_MIP_IMAGE(2);
+DEPTHS_MIP_IMAGE(3);
 #endif
 
 #ifdef CACAO_BIND_NORMALS_IMAGE
