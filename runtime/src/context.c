@@ -143,6 +143,9 @@ static cacao_result create_layouts(cacao_context *ctx) {
     if (vr == VK_SUCCESS) vr = ctx->vk.CreateSampler(ctx->device, &linear_info, ctx->alloc, &ctx->linear_sampler);
     if (vr != VK_SUCCESS) return vk_fail(ctx, vr, "vkCreateSampler");
 
+    /* one push-descriptor set of every slot: its descriptors may not exceed maxPushDescriptors, which
+     * every device offering push descriptors sets to at least 32 */
+    _Static_assert(CACAO_BINDING_COUNT <= 32, "more slots than a push-descriptor set is sure to hold");
     VkDescriptorSetLayoutBinding bindings[CACAO_BINDING_COUNT];
     for (unsigned b = 0; b < CACAO_BINDING_COUNT; ++b) {
         VkDescriptorType type = cacaoi_binding_type(b);
