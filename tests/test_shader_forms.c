@@ -13,8 +13,9 @@
  *     form; the settings' own shader_forms wins over the desc's;
  *   - the horizon estimators: direct grids with no classify, compact, clear or fill (GPU forms)
  *     where the CPU forms run lists, the output bit-identical.
- * The prepare's and generate's intermediates (depths, mips, normals, AO and edges, the importance
- * map and load counter) feed every later pass, so an output identical at every quality, from
+ * The prepare's and generate's intermediates (depths, mips: the GPU forms' a mip chain their
+ * generate samples, the CPU forms' an atlas; normals, AO and edges, the importance map and load
+ * counter) feed every later pass, so an output identical at every quality, from
  * depth and from given normals, checks them; the GPU prepare runs only with normals from depth. */
 #include <string.h>
 
@@ -72,6 +73,11 @@ static void compare_forms(vkdev *dev, uint32_t w, uint32_t h, unsigned *runs, do
                               !plan_has(&pg, "apply.") && !plan_has(&pg, "blur.") && !plan_has(&pg, "prepare.") &&
                               !plan_has(&pg, "generate.") && plan_has(&pg, "generate_gpu."));
                         if (!normals) CHECK(plan_has(&pg, "prepare_gpu.") && plan_has(&pc, "prepare."));
+                        /* the caller's normals at HIGH: the GPU forms' depth prepare writes the mip
+                         * chain their generate samples, the CPU forms' the atlas */
+                        if (normals)
+                            CHECK(plan_has(&pg, "prepare_depths.mips_chain.") && plan_has(&pc, "prepare_depths.mips.") &&
+                                  !plan_has(&pc, "prepare_depths.mips_chain."));
                         if (blurs[b] > 0) CHECK(plan_has(&pg, "blur_gpu"));
                         double sum = 0.0, max = 0.0;
                         for (size_t i = 0; i < n; ++i) {
