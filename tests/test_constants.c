@@ -325,8 +325,27 @@ static void test_bilateral_multiplier(void) {
     CHECK(fill(&wide, 960, 540, tiny, true).bilateral_depth_exp2_mul == -FLT_MIN);
 }
 
+/* Reuse's fixed margin (constants.c fill_reuse_constants): the GPU forms' mip chain adds a level-3
+ * texel (8 slice texels: a GPU's sampler may take the neighbouring texel near an edge) to the CPU
+ * forms' margin at HIGH; below HIGH no mips are read and the forms agree. */
+static void test_reuse_margin(void) {
+    float p[16];
+    cacao_perspective(65.0, 16.0 / 9.0, 0.05, 100.0, false, p);
+    for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGH; ++q) {
+        cacao_settings cpu = {.quality = (cacao_quality)q, .reuse_unchanged = true, .blur_pass_count = 2,
+                              .shader_forms = CACAO_SHADER_FORMS_CPU};
+        cacao_settings gpu = cpu;
+        gpu.shader_forms = CACAO_SHADER_FORMS_GPU;
+        const int mc = fill(&cpu, 960, 540, p, true).reuse_margin, mg = fill(&gpu, 960, 540, p, true).reuse_margin;
+        /* mips (8 at HIGH), rounding 1, edges 2, blur 2, apply 2, spare 1 */
+        CHECK(mc == (q == CACAO_QUALITY_HIGH ? 8 : 0) + 8);
+        CHECK(mg == mc + (q == CACAO_QUALITY_HIGH ? 8 : 0));
+    }
+}
+
 int main(int argc, char **argv) {
     test_bilateral_multiplier();
+    test_reuse_margin();
     test_projection_conventions();
     test_projection_refusals();
     if (argc < 2) {

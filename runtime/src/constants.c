@@ -285,7 +285,8 @@ static void fill_tile_constants(const cacao_plan *plan, const projection_view *v
  * depth can move the output, in slice texels. A tap lies at most reuse_tap_reach times the lookup
  * radius from its texel (the longest pattern entry times the largest per-slice scale; the radius
  * in texels is bounded in the shader by the tile's least view z); besides the taps: the depth
- * mips' texel footprint (8 texels at level 3, HIGH and HIGHEST), the tap's rounding (1), depth and normal edges and
+ * mips' texel footprint (8 texels at level 3, HIGH and HIGHEST; 8 more for the GPU forms' mip chain,
+ * below), the tap's rounding (1), depth and normal edges and
  * normals from depth (2), the blur's passes, the apply's or upsample's footprint (2) and one
  * texel to spare. cacao_record sets reuse (1 or 2) and gate_count per frame. Orthographic (no
  * perspective scale of xy with z): near_k only enters the near limit, which is 1 there. */
@@ -309,7 +310,13 @@ static void fill_reuse_constants(const cacao_plan *plan, cacao_constants *c) {
     c->reuse_tap_reach = longest * scale * 1.01f; /* 1%: the R16F z the taps see is rounded */
     const int blur = plan->settings.blur_pass_count == CACAO_BLUR_NONE ? 0 : plan->settings.blur_pass_count;
     const bool mips = plan->settings.quality >= CACAO_QUALITY_HIGH; /* Q2 and Q3 read the depth mips */
-    c->reuse_margin = (mips ? 8 : 0) + 1 + 2 + blur + 2 + 1;
+    /* The GPU forms sample a mip chain: a GPU's sampler rounds a tap's coordinate to its sub-texel
+     * precision, so near a texel's edge it may take the neighbouring texel of the level, up to 8
+     * slice texels further at level 3 (the CPU forms choose as lavapipe's sampler does, exactly). */
+    bool chain = false;
+    for (uint32_t i = 0; i < plan->image_count; ++i)
+        chain |= plan->images[i].resource == CACAO_RES_DEPTHS && plan->images[i].image_levels > 1;
+    c->reuse_margin = (mips ? 8 : 0) + (chain ? 8 : 0) + 1 + 2 + blur + 2 + 1;
     c->reuse_all_or_nothing = plan->settings.quality == CACAO_QUALITY_HIGHEST ? 1 : 0;
     /* the near limit scales the radius by sat(|p| near_limit_rec) 0.8 + 0.2, and |p| <= z near_k,
      * near_k the length of (ndc_to_view xy, 1) at the image's farthest corner */
