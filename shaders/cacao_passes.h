@@ -112,6 +112,12 @@ typedef struct cacaoi_pass_binding {
 #define CACAOI_PASS_MAX_BINDINGS 12
 #define CACAOI_MAX_VARIANTS 7
 
+/* The level (1..3) of the depths' mip chain whose view a slot binds (the GPU forms' prepare writes
+ * each level through its own slot), 0 for any other slot. */
+static inline unsigned cacaoi_depth_mip_slot_level(unsigned slot) {
+    return slot >= CACAO_BINDING_DEPTHS_MIP1 && slot <= CACAO_BINDING_DEPTHS_MIP3 ? slot - CACAO_BINDING_DEPTHS_MIP1 + 1 : 0;
+}
+
 typedef struct cacaoi_pass_row {
     const char *name;                                /* key names: "generate" */
     const char *variant_names[CACAOI_MAX_VARIANTS];  /* NULL for a pass with one unnamed variant */

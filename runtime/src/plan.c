@@ -210,7 +210,7 @@ cacao_result cacao_plan_build(const cacao_settings *settings, uint32_t width, ui
             const cacaoi_pass_binding *b = &bindings[i][j];
             const uint32_t levels = b->levels > 1 ? b->levels : 1;
             if (mips[b->resource] < levels) mips[b->resource] = levels;
-            if (b->slot >= CACAO_BINDING_DEPTHS_MIP1 && b->slot <= CACAO_BINDING_DEPTHS_MIP3) chain[b->resource] = true;
+            if (cacaoi_depth_mip_slot_level(b->slot)) chain[b->resource] = true;
         }
     }
 

@@ -267,15 +267,11 @@ static void describe(const cacao_context *ctx, const cacao_inputs *in, const cac
          * own level (the last the chain has, for a slot past it) */
         const cacao_intermediate *im = &ctx->images[b->resource];
         VkImageView view = im->view;
-        if (b->binding >= CACAO_BINDING_DEPTHS_MIP1 && b->binding <= CACAO_BINDING_DEPTHS_MIP3) {
-            for (unsigned l = 1u + b->binding - CACAO_BINDING_DEPTHS_MIP1; l > 0; --l)
-                if (im->level_views[l]) {
-                    view = im->level_views[l];
-                    break;
-                }
-        } else if (im->sampled_view && cacaoi_slots[b->binding].descriptor == CACAOI_DESCRIPTOR_SAMPLED_IMAGE) {
+        unsigned level = cacaoi_depth_mip_slot_level(b->binding);
+        while (level > 0 && !im->level_views[level]) --level;
+        if (level > 0) view = im->level_views[level];
+        else if (im->sampled_view && cacaoi_slots[b->binding].descriptor == CACAOI_DESCRIPTOR_SAMPLED_IMAGE)
             view = im->sampled_view;
-        }
         info->image = (VkDescriptorImageInfo){0, view, VK_IMAGE_LAYOUT_GENERAL};
         return;
     }

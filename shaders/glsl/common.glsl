@@ -90,22 +90,19 @@ vec3 normal_from_neighbours(vec3 l, vec3 r, vec3 u, vec3 b, vec4 e)
     return normalize(n);
 }
 
-/* Per-sample obscurance (spec: generate.md "Obs"). max0 keeps D3D's NaN rule for a zero delta. */
+/* Per-sample obscurance (spec: generate.md "Obs"). max0 keeps D3D's NaN rule for a zero delta.
+ * The falloff term is at most 1 (len2 >= 0, falloff <= 0), so in generate's GPU form its max0 is a
+ * saturate, which a GPU folds into the multiply-add (NaN gives 0 either way); the angle term keeps
+ * its max0 (a normal a little longer than 1 takes it above 1). Equal for every input. */
 float obscurance(vec3 n, vec3 delta, float falloff, float horizon)
 {
     float len2 = dot(delta, delta);
     float cos_a = dot(n, delta) / sqrt(len2);
-    return max0(cos_a - horizon) * max0(1.0 + len2 * falloff);
-}
-
-/* The same for a GPU compiler: the falloff term is at most 1 (len2 >= 0, falloff <= 0), so its max0
- * is a saturate, which a GPU folds into the multiply-add (NaN gives 0 either way); the angle term
- * keeps its max0 (a normal a little longer than 1 takes it above 1). Equal for every input. */
-float obscurance_gpu(vec3 n, vec3 delta, float falloff, float horizon)
-{
-    float len2 = dot(delta, delta);
-    float cos_a = dot(n, delta) / sqrt(len2);
+#if CACAO_PASS == CACAO_PASS_GENERATE_GPU
     return max0(cos_a - horizon) * sat(1.0 + len2 * falloff);
+#else
+    return max0(cos_a - horizon) * max0(1.0 + len2 * falloff);
+#endif
 }
 
 /* 2 bits per direction, LRTB -> one UNORM8 value (spec: generate.md step 10b). */

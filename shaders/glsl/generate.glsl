@@ -9,10 +9,8 @@ layout(local_size_x = CACAO_WG_GENERATE_X, local_size_y = CACAO_WG_GENERATE_Y) i
 
 #if CACAO_PASS == CACAO_PASS_GENERATE_GPU
 #define GEN_GPU 1
-#define GEN_OBSCURANCE obscurance_gpu
 #else
 #define GEN_GPU 0
-#define GEN_OBSCURANCE obscurance
 #endif
 
 #if CACAO_VARIANT == CACAO_GENERATE_Q3_BASE
@@ -118,7 +116,7 @@ void accumulate_tap(vec4 s, bool use_pattern_weight, vec2 uvd, vec2 inv_s, int l
         float z = imageLoad(depths_image, ivec3(t + ivec2(lv.zw), layer)).r;
 #endif
         vec3 delta = vec3((CB.depth_uv_to_view_mul * uv + CB.depth_uv_to_view_add) * view_xy_scale(z), z) - pc;
-        float ob = GEN_OBSCURANCE(n, delta, falloff, CB.effect_horizon_angle_threshold);
+        float ob = obscurance(n, delta, falloff, CB.effect_horizon_angle_threshold);
         float w = 1.0;
 #if GEN_Q >= 1
         /* haloing reduction, with the global radius ([quirk] HALO-GLOBAL-RADIUS). The GPU form drops
@@ -227,8 +225,8 @@ float generate_texel(ivec2 xy, int layer)
         float f4 = CACAO_DETAIL_FALLOFF_MUL * falloff;
         float h = CB.effect_horizon_angle_threshold;
         if (!faded) {
-            vec4 ob = vec4(GEN_OBSCURANCE(n, dl, f4, h), GEN_OBSCURANCE(n, dr, f4, h), GEN_OBSCURANCE(n, dt, f4, h),
-                           GEN_OBSCURANCE(n, db, f4, h));
+            vec4 ob = vec4(obscurance(n, dl, f4, h), obscurance(n, dr, f4, h), obscurance(n, dt, f4, h),
+                           obscurance(n, db, f4, h));
             obsc_sum = CB.detail_ao_strength * dot(edges, ob);
         }
     }
