@@ -188,11 +188,7 @@ void main()
 #endif
     [[unroll]] for (int y = 0; y < BY; ++y) {
         [[unroll]] for (int x = 0; x < BX; ++x) {
-#if CACAO_PASS == CACAO_PASS_BLUR_GPU
-            ivec2 c = mirror_coord_alu(tile_origin - BLUR_N + b0 + ivec2(x, y), s);
-#else
             ivec2 c = mirror_coord(tile_origin - BLUR_N + b0 + ivec2(x, y), s);
-#endif
             vec2 ae = texelFetch(ssao, ivec3(c, layer), 0).rg;
             v[y][x] = blur_store_value(ae.r);
             packed[y][x] = ae.g;

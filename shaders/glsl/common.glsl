@@ -139,19 +139,11 @@ ivec4 depth_atlas_level(ivec2 s0, int l)
 /* Texel q = 0..3 of the 2x2 quad 2u .. 2u + 1 that one invocation of a quad pass computes. */
 ivec2 quad_texel(ivec2 u, int q) { return 2 * u + ivec2(q & 1, q >> 1); }
 
-/* Mirror addressing (-1 -> 0, -2 -> 1, n -> n-1, ...), clamped for padding wider than n. */
-int mirror_coord(int c, int n)
-{
-    if (c < 0) c = -c - 1;
-    if (c >= n) c = 2 * n - c - 1;
-    return clamp(c, 0, n - 1);
-}
-ivec2 mirror_coord(ivec2 c, ivec2 n) { return ivec2(mirror_coord(c.x, n.x), mirror_coord(c.y, n.y)); }
-/* The same, without branches or selects (the GPU blur's loads: 5 instructions a coordinate on
- * navi21 instead of 9): c ^ (c >> 31) is -c - 1 for a negative c and c otherwise; the min takes
- * the reflection at n exactly where c >= n; the clamp is the one above. Equal for every int whose
- * 2n - 1 - c does not overflow. */
-ivec2 mirror_coord_alu(ivec2 c, ivec2 n)
+/* Mirror addressing (-1 -> 0, -2 -> 1, n -> n-1, ...), clamped for padding wider than n, without
+ * branches or selects (5 instructions a coordinate on navi21 instead of 9): c ^ (c >> 31) is
+ * -c - 1 for a negative c and c otherwise; the min takes the reflection at n exactly where that is
+ * >= n; then the clamp. (For every int whose 2n - 1 - c does not overflow.) */
+ivec2 mirror_coord(ivec2 c, ivec2 n)
 {
     ivec2 a = c ^ (c >> 31);
     return clamp(min(a, 2 * n - 1 - a), ivec2(0), n - 1);
