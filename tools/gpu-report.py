@@ -367,7 +367,8 @@ fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
   upwards and a texel coordinate to its sub-texel precision, so near a tie it may take the
   neighbouring level or texel (as AMD's own sampling does). The prepares of the GPU forms write levels 1..3
   through storage views of one level each (`prepare_gpu.mips`, `prepare_depths.mips_chain`). On
-  navi21 (ACO's figure per wave): `generate_gpu.q0` 196 -> 167, `q1` 397 -> 350, `q2` 934 -> 676,
+  navi21 (ACO's figure per wave, `cacao-inspect gpu --all --device RADV` built at c51cb89 and at
+  d9cc280): `generate_gpu.q0` 196 -> 167, `q1` 397 -> 350, `q2` 934 -> 676,
   `q3` 694 -> 522, the Q3 base pass 1,817 -> 1,248; the generate stage at HIGH 60.97 -> 44.13 Mcycles (AMD's
   57.25), the base pass at HIGHEST 29.65 -> 20.37 (AMD's 22.07). Not timed on a real GPU yet: the
   H200 found generate's address arithmetic not to be its cost there (section "Tried and not
@@ -381,7 +382,7 @@ fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
   select each on a GPU): the falloff term is at most 1, so its max0 is a saturate, which folds
   into the multiply-add; the halo's max0 goes, since a positive depth difference takes the
   saturated sum to 1 anyway. Equal for every input (`test_shader_forms`: bit-identical). On navi21
-  `q2` 676 -> 617 cycles per wave, `q3` 522 -> 482, the Q3 base pass 1,248 -> 1,128.
+  (the same command at d9cc280 and dd555a9) `q2` 676 -> 617 cycles per wave, `q3` 522 -> 482, the Q3 base pass 1,248 -> 1,128.
 - The upsample (one form for both devices): an entry outside the image weighs 0 through its
   depth term alone (the sentinel depth's difference squares to +inf, exp2(-inf) = 0, the
   multiplier kept below -FLT_MIN) instead of a select per weight: on navi21 `upsample.smart.fp32`
