@@ -385,11 +385,11 @@ fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
   (the same command at d9cc280 and dd555a9) `q2` 676 -> 617 cycles per wave, `q3` 522 -> 482, the Q3 base pass 1,248 -> 1,128.
 - The upsample (one form for both devices): an entry outside the image weighs 0 through its
   depth term alone (the sentinel depth's difference squares to +inf, exp2(-inf) = 0, the
-  multiplier kept below -FLT_MIN) instead of a select per weight: on navi21 `upsample.smart.fp32`
+  multiplier kept below -FLT_MIN) instead of a select per weight: on navi21 (at 53b8eed and 0e6873b) `upsample.smart.fp32`
   8,375 -> 7,503 cycles per wave, the downsampled totals 0.55-0.63 -> 0.50-0.60 of AMD's. The
   same output (`tools/output-matrix.sh`, byte for byte).
 - The blur's mirrored load coordinates without branches or selects (`mirror_coord`, the same
-  value for every int; both forms, lavapipe's blur as fast as before): `blur_gpu.2.fp32` 551 -> 543
+  value for every int; both forms, lavapipe's blur as fast as before): at 9ec59b5 and 53b8eed `blur_gpu.2.fp32` 551 -> 543
   cycles per wave on navi21, the blur stage at blur 2 1.01 -> 1.00 of AMD's (0.996).
 - `generate_gpu` and `blur_gpu` run on direct grids and skip by the tile classes themselves: a
   group reads its needed flag (classify marks them) and, when not needed, stores AO 1 and computes
