@@ -99,7 +99,8 @@ if 'final' in runs:
     lines = report.measured_section(runs, {})
     text = '\n'.join(lines)
     for heading in ('## Measured on a real GPU', '### Totals: cacao / AMD', '### Per stage',
-                    '### The changes, measured in the same run', '### Tried and not kept',
+                    '### The depth mip chain and the changes with it, measured in the same run',
+                    '### Earlier changes, measured in an earlier run', '### Tried and not kept',
                     '### The shader forms on this GPU',
                     '### The horizon-slice estimators', '### What the driver reports'):
         check(heading in text, 'report lacks %r' % heading)
@@ -107,6 +108,10 @@ if 'final' in runs:
     check(len(ratios) == 30, '30 scene x configuration pairs in the final run, not %d' % len(ratios))
     check('takes %.2f-%.2fx AMD' % (min(ratios), max(ratios)) in text, 'the totals sentence is the runs\' range')
     check('SM clock of ? ' not in text, 'the SM clock was read')
+    if 'chain_before' in runs:
+        b = report.results_of(runs['chain_before'], 'cacao', report.SCENES[0])['HIGH_native']['ratio']
+        f = report.results_of(runs['final'], 'cacao', report.SCENES[0])['HIGH_native']['ratio']
+        check('| HIGH_native | %.2f / %.2f |' % (b, f) in text, 'the before / after table holds the runs\' ratios')
 else:
     print('no committed runs under %s: report part skipped' % measured_dir)
 

@@ -49,14 +49,17 @@ ISSUE_31 = {'lowest_native': 0.78, 'low_native': 0.60, 'medium_native': 0.50, 'h
 
 
 # The runs on a real GPU (tools/device-sidebyside.py --merge writes one file per run), by role:
-# 'final' is the code as it stands, and in the same run 'before' the previous main and 'lists' the
-# GPU forms with tile lists (an older main), 'diag' a diagnostic build (generate's taps all from
+# 'final' is the code as it stands (the GPU forms' depth mip chain), and in the same run
+# 'chain_before' the main before it; 'prev_final' an earlier session's final run, and in that run
+# 'before' its previous main and 'lists' the GPU forms with tile lists (an older main), 'diag' a
+# diagnostic build (generate's taps all from
 # level 0: wrong output, a timing only); 'upsample'/'upsample_before' and 'counting'/
 # 'counting_before' two earlier runs of this session's experiments, each against its own baseline;
 # 'horizon' a later run of the horizon estimators against AMD HIGH, after their GPU forms' fills;
 # 'tf_final'/'tf_before' an earlier session's run of generate's taps through the sampled view,
 # 'forms'/'forms_before' and 'atomics'/'atomics_before' that session's other runs.
-MEASURED = {'final': 'h200-final.json', 'before': 'h200-before.json', 'lists': 'h200-lists.json',
+MEASURED = {'final': 'h200-mipchain.json', 'chain_before': 'h200-mipchain-before.json',
+            'prev_final': 'h200-final.json', 'before': 'h200-before.json', 'lists': 'h200-lists.json',
             'diag': 'h200-diag-level0.json', 'horizon': 'h200-horizon.json',
             'upsample': 'h200-run-upsample.json', 'upsample_before': 'h200-run-upsample-before.json',
             'counting': 'h200-run-counting.json', 'counting_before': 'h200-run-counting-before.json',
@@ -66,7 +69,7 @@ MEASURED = {'final': 'h200-final.json', 'before': 'h200-before.json', 'lists': '
             'fused': 'h200-run-fused.json', 'fused_before': 'h200-run-fused-before.json',
             'horizon_direct': 'h200-horizon-direct.json', 'horizon_direct_before': 'h200-horizon-direct-before.json'}
 # The commit each role's build was (said with the tables: a run measures its code).
-MEASURED_COMMITS = {'final': '349c7a2', 'before': 'abd0c77', 'lists': '0c7a571', 'horizon': '1065bc3',
+MEASURED_COMMITS = {'final': '77d676c', 'chain_before': 'c51cb89', 'prev_final': '349c7a2', 'before': 'abd0c77', 'lists': '0c7a571', 'horizon': '1065bc3',
                     'tf_before': '6588704', 'tf_final': '8ba0da9', 'fused': '35f1533', 'fused_before': '16e6be8',
                     'horizon_direct': 'd643d71', 'horizon_direct_before': '16e6be8',
                     'horizon_direct_since': '269c67e'}
@@ -75,9 +78,9 @@ MEASURED_COMMITS = {'final': '349c7a2', 'before': 'abd0c77', 'lists': '0c7a571',
 FUSED_STEPS = 'h200-fused-steps.txt'
 C = MEASURED_COMMITS
 MEASURED_CODE = ('The final run is of commit %s; in the same run, interleaved with it, its "before" is '
-                 'commit %s (the previous main: generate and the blur skip unneeded groups in the shader, '
-                 'classify counting with its marks) and "lists" commit %s (the GPU forms over tile lists: '
-                 'classify, compact, two fills, indirect dispatches).') % (C['final'], C['before'], C['lists'])
+                 'commit %s (the previous main: the GPU forms\' depths an atlas, as the CPU forms\' are, '
+                 'generate\'s taps through `texelFetch` below HIGH and `imageLoad` at HIGHEST).') % (
+                     C['final'], C['chain_before'])
 SCENES = ['interior_fzkhaus', 'statues_scanned', 'street_track']
 AMD_CONFIGS = ['%s_%s' % (q.upper(), r) for r in ('native', 'downsampled') for q in QUALITIES]
 MEASURED_STAGES = ['prepare', 'other', 'base', 'importance', 'generate', 'blur', 'apply', 'upsample']
@@ -263,12 +266,14 @@ SIMDs at the tail of a small dispatch).
 
 **Where the estimate and a real GPU disagree, the real GPU wins.** One real GPU has timed cacao
 against AMD's code so far (an NVIDIA H200: section "Measured on a real GPU", after the overview):
-there cacao takes %(measured)s AMD's time, more than AMD in most configurations, where this estimate
-puts it at about or under AMD's cost; and two of the changes that made it faster there (the Q3 base
-pass one texel per invocation, classify's counting moved) cost a little in this estimate. Read the
-estimate for registers, spills and occupancy, not for speed. The GPU forms' depth mip chain (section
-"The GPU forms": generate's taps through the sampler) came after the last run on a real GPU: its
-gain here is an estimate only.
+there cacao takes %(measured)s AMD's time, more than AMD in %(above)s of the %(pairs)s scene x
+configuration pairs, where this estimate puts it under AMD's cost in every one; two of the changes
+that made it faster there (the Q3 base pass one texel per invocation, classify's counting moved)
+cost a little in this estimate, and one that the estimate favours (Q0's taps through the sampler)
+costs that GPU a little. Read the estimate for registers, spills and occupancy, not for speed. The
+GPU forms' depth mip chain (section "The GPU forms": generate's taps through the sampler) gained on
+the real GPU what the estimate said it would (section "The depth mip chain and the changes with it,
+measured in the same run").
 
 Regenerate with `tools/gpu-report.py` (needs a build, `../shared/amd-cacao` and mesa-vulkan-drivers;
 it takes seconds and no GPU). Device and driver: %(driver)s. Size 1920x1080; both sides fp32,
@@ -370,10 +375,11 @@ fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
   navi21 (ACO's figure per wave, `cacao-inspect gpu --all --device RADV` built at c51cb89 and at
   d9cc280): `generate_gpu.q0` 196 -> 167, `q1` 397 -> 350, `q2` 934 -> 676,
   `q3` 694 -> 522, the Q3 base pass 1,817 -> 1,248; the generate stage at HIGH 60.97 -> 44.13 Mcycles (AMD's
-  57.25), the base pass at HIGHEST 29.65 -> 20.37 (AMD's 22.07). Not timed on a real GPU yet: the
-  H200 found generate's address arithmetic not to be its cost there (section "Tried and not
-  kept, or diagnostic") and Q3's taps slower through the sampled view than through `imageLoad`
-  (section "An earlier change"); this form has not been timed against those. The Q3 base pass
+  57.25), the base pass at HIGHEST 29.65 -> 20.37 (AMD's 22.07). The H200 timed it (section
+  "The depth mip chain and the changes with it, measured in the same run"): generate at HIGH and
+  HIGHEST about a fifth shorter, where earlier runs had found the atlas's address arithmetic not
+  to be generate's cost there and Q3's taps slower through `texelFetch` of the sampled view than
+  through `imageLoad`; Q0 a little longer. The Q3 base pass
   computes one slice texel (its four layers) per invocation and reduces the importance map's 2x2
   quads in shared memory (the CPU form: 16 texels per invocation, 2x2 of each layer): the H200
   timed it faster (HIGHEST's generate stage 233 -> 226 microseconds native, 81 -> 73 downsampled)
@@ -641,6 +647,72 @@ def classify_shapes():
     return out
 
 
+def step_range(before, after, step, cfgs):
+    """'b -> a' microseconds (ranges over the scenes and cfgs) of one pass of cacao_steps, '-' without it."""
+    b = [(results_of(before, 'cacao', sc).get(c) or {}).get('cacao_steps', {}).get(step) for sc in SCENES for c in cfgs]
+    a = [(results_of(after, 'cacao', sc).get(c) or {}).get('cacao_steps', {}).get(step) for sc in SCENES for c in cfgs]
+    return '%s -> %s' % (us_range(b), us_range(a))
+
+
+def chain_section(fin, before):
+    """The final run against its "before" (the GPU forms' depth mip chain and the changes with it)."""
+    out = ['', '### The depth mip chain and the changes with it, measured in the same run', '',
+           'cacao/AMD, "before" (commit %s) / final (commit %s), each build interleaved with AMD in one run, scene '
+           'by scene (`%s`, `%s`). Between them: the GPU forms\' depths as a mip chain, read by one `textureLod` a '
+           'tap (Q0 and Q1 at LOD 0, where they used `texelFetch`; Q2 and Q3 at the tap\'s level, where they '
+           'computed the atlas\'s level, extent and texel and used `texelFetch` (Q2) or `imageLoad` (Q3)); '
+           'generate\'s obscurance with two max0 fewer; the blur\'s branch-free mirror; the upsample without a '
+           'select per weight ("The GPU forms" above).' % (C['chain_before'], C['final'], MEASURED['chain_before'],
+                                                           MEASURED['final']), '',
+           '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
+    def cell(sc, cfg):
+        b, f = results_of(before, 'cacao', sc).get(cfg), results_of(fin, 'cacao', sc).get(cfg)
+        return '%.2f / %.2f' % (b['ratio'], f['ratio']) if b and f else '-'
+    out += scene_rows(cell)
+    pairs = [(cfg, results_of(before, 'cacao', sc).get(cfg), results_of(fin, 'cacao', sc).get(cfg))
+             for sc in SCENES for cfg in AMD_CONFIGS]
+    pairs = [(cfg, b, f) for cfg, b, f in pairs if b and f]
+    if not pairs:
+        return out
+    saved = lambda sel: [1000.0 * (b['cacao']['total_ms'] - f['cacao']['total_ms']) for cfg, b, f in pairs if sel(cfg)]
+    hi = saved(lambda c: c.startswith('HIGH'))
+    ds = saved(lambda c: c.endswith('downsampled') and not c.startswith('HIGH'))
+    q0 = [-v for v in saved(lambda c: c in ('LOWEST_native', 'LOW_native'))]
+    rng = lambda v: '%.1f to %.1f' % (min(v), max(v))
+    native = [c for c in AMD_CONFIGS if c.endswith('native')]
+    down = [c for c in AMD_CONFIGS if c.endswith('downsampled')]
+    out += ['',
+            'Per pass (cacao_steps of the same runs, microseconds over the three scenes, before -> after):', '',
+            '- **Q2 and Q3 through the mip chain: the gain the estimate predicted, measured.** `generate_gpu.q2` '
+            '%s native, %s downsampled; `generate_gpu.q3` %s native, %s downsampled; the Q3 base pass %s native. '
+            'The frames at HIGH and HIGHEST are %s microseconds shorter. The doubt the earlier runs left (Q3\'s '
+            'taps were slower through `texelFetch` of the sampled view than through `imageLoad`, section "An '
+            'earlier change") does not hold for the sampler at the tap\'s level: on this GPU the sampler\'s '
+            'level and texel choice replaces the address arithmetic at no cost.' % (
+                step_range(before, fin, 'generate_gpu.q2', ['HIGH_native']),
+                step_range(before, fin, 'generate_gpu.q2', ['HIGH_downsampled']),
+                step_range(before, fin, 'generate_gpu.q3', ['HIGHEST_native']),
+                step_range(before, fin, 'generate_gpu.q3', ['HIGHEST_downsampled']),
+                step_range(before, fin, 'generate_gpu.q3base', ['HIGHEST_native']), rng(hi)),
+            '- **The upsample without a select per weight**: `upsample.half.fp32` %s, `upsample.nonsmart.fp32` %s, '
+            '`upsample.smart.fp32` %s; the downsampled frames below HIGH are %s microseconds shorter.' % (
+                step_range(before, fin, 'upsample.half.fp32', down),
+                step_range(before, fin, 'upsample.nonsmart.fp32', down),
+                step_range(before, fin, 'upsample.smart.fp32', down), rng(ds)),
+            '- **Q0 through the sampler at LOD 0 costs this GPU a little**: `generate_gpu.q0` %s at LOWEST native, '
+            '%s at LOW native (`texelFetch` -> `textureLod`; those frames %s microseconds longer), while Q1 gained (`generate_gpu.q1` %s at MEDIUM native). On navi21 the estimate of q0 went '
+            'from 196 to 167 cycles per wave with the same change. Kept: the loss is a few microseconds of a frame '
+            'on this GPU (the CPU form\'s `imageLoad` of the atlas is the fastest of the three here: "The shader '
+            'forms on this GPU" below), the estimated gain on AMD\'s GPUs larger; a real AMD GPU would settle it.' % (
+                step_range(before, fin, 'generate_gpu.q0', ['LOWEST_native']),
+                step_range(before, fin, 'generate_gpu.q0', ['LOW_native']), rng(q0),
+                step_range(before, fin, 'generate_gpu.q1', ['MEDIUM_native'])),
+            '- The blur (`blur_gpu.2.fp32` %s native) and the prepare (`prepare_gpu.full.native` %s) did not move '
+            'beyond the noise.' % (step_range(before, fin, 'blur_gpu.2.fp32', native),
+                                   step_range(before, fin, 'prepare_gpu.full.native', native))]
+    return out
+
+
 def measured_section(runs, results):
     """The real GPU's timings as markdown lines (none without the 'final' run)."""
     if 'final' not in runs:
@@ -705,14 +777,17 @@ def measured_section(runs, results):
                 'takes %s-%s microseconds.' % ('; '.join('%s %.2f-%.2f' % (st, min(v), max(v)) for st, v in ratios.items()),
                                                us(min(tiles)), us(max(tiles)))]
     # the changes measured in the final run
-    if 'before' in runs:
-        bef, lists = runs['before'], runs.get('lists', {})
-        out += ['', '### The changes, measured in the same run', '',
+    if 'chain_before' in runs:
+        out += chain_section(fin, runs['chain_before'])
+    # an earlier session's final run and its changes
+    if 'before' in runs and 'prev_final' in runs:
+        bef, lists, pfin = runs['before'], runs.get('lists', {}), runs['prev_final']
+        out += ['', '### Earlier changes, measured in an earlier run (commit %s)' % C['prev_final'], '',
                 'cacao/AMD of the three builds, interleaved with AMD in one run: "lists" (%s) / "before" '
-                '(%s) / final (%s).' % (C['lists'], C['before'], C['final']), '',
+                '(%s) / that session\'s final (%s).' % (C['lists'], C['before'], C['prev_final']), '',
                 '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
         out += scene_rows(lambda sc, cfg: ' / '.join(
-            '%.2f' % r['ratio'] if r else '-' for r in (results_of(x, 'cacao', sc).get(cfg) for x in (lists, bef, fin))))
+            '%.2f' % r['ratio'] if r else '-' for r in (results_of(x, 'cacao', sc).get(cfg) for x in (lists, bef, pfin))))
         def stage_values(parts, stage, cfgs=AMD_CONFIGS):
             return [stage_of(parts, sc, c, stage) for sc in SCENES for c in cfgs]
         native = [c for c in AMD_CONFIGS if c.endswith('native')]
@@ -726,22 +801,22 @@ def measured_section(runs, results):
                 '- **`apply_gpu` with 2x2 pixels per invocation** (each through the sampler, as before): apply %s '
                 '-> %s microseconds over the native configurations (AMD\'s: %s). A quarter of the workgroups; '
                 'the same reads per pixel. On navi21 the RADV estimate of the stage falls too (below).' % (
-                    us_range(stage_values(bef, 'apply', native)), us_range(stage_values(fin, 'apply', native)),
-                    us_range([(results_of(fin, 'cacao', sc).get(c) or {}).get('amd', {}).get('stages', {}).get('apply')
+                    us_range(stage_values(bef, 'apply', native)), us_range(stage_values(pfin, 'apply', native)),
+                    us_range([(results_of(pfin, 'cacao', sc).get(c) or {}).get('amd', {}).get('stages', {}).get('apply')
                               for sc in SCENES for c in native])),
                 '- **The Q3 base pass one slice texel per invocation** (the importance map reduced in shared '
                 'memory; the CPU form computes 16 texels per invocation): HIGHEST\'s generate stage (base pass '
                 'and Q3) %s -> %s native, %s -> %s downsampled (interior_fzkhaus).' % (
                     us(stage_of(bef, SCENES[0], 'HIGHEST_native', 'generate')),
-                    us(stage_of(fin, SCENES[0], 'HIGHEST_native', 'generate')),
+                    us(stage_of(pfin, SCENES[0], 'HIGHEST_native', 'generate')),
                     us(stage_of(bef, SCENES[0], 'HIGHEST_downsampled', 'generate')),
-                    us(stage_of(fin, SCENES[0], 'HIGHEST_downsampled', 'generate'))),
+                    us(stage_of(pfin, SCENES[0], 'HIGHEST_downsampled', 'generate'))),
                 '- **classify\'s marks as atomics nothing waits for**, the needed groups counted by generate and '
                 'the blur as they run them: tiles stage %s -> %s microseconds; generate pays about a microsecond '
                 'for the count (interior_fzkhaus LOWEST native: %s -> %s).' % (
-                    us_range(stage_values(bef, 'other')), us_range(stage_values(fin, 'other')),
+                    us_range(stage_values(bef, 'other')), us_range(stage_values(pfin, 'other')),
                     us(stage_of(bef, SCENES[0], 'LOWEST_native', 'generate')),
-                    us(stage_of(fin, SCENES[0], 'LOWEST_native', 'generate')))]
+                    us(stage_of(pfin, SCENES[0], 'LOWEST_native', 'generate')))]
     if 'fused' in runs and 'fused_before' in runs:
         out += fused_section(runs['fused'], runs['fused_before'])
     # experiments
@@ -756,16 +831,17 @@ def measured_section(runs, results):
                        'of 2x2 positions, 110-127 registers on this GPU) (`%s`): upsample stage after / before '
                        '%.3f-%.3f over %d pairs. Not kept: the registers are not what it waits on.' % (
                            MEASURED['upsample'], q[0], q[-1], len(q)))
-    if 'diag' in runs:
-        pairs = [(stage_of(fin, SCENES[0], c, 'generate'), stage_of(runs['diag'], SCENES[0], c, 'generate'))
+    if 'diag' in runs and 'prev_final' in runs:
+        pairs = [(stage_of(runs['prev_final'], SCENES[0], c, 'generate'), stage_of(runs['diag'], SCENES[0], c, 'generate'))
                  for c in AMD_CONFIGS]
         pairs = [(c, p) for c, p in zip(AMD_CONFIGS, pairs) if p[0] and p[1]]
         if pairs:
             exp.append('- Where generate\'s time goes (it is 1.0-1.9x AMD\'s at HIGH and HIGHEST, where the RADV '
                        'estimate puts it below AMD\'s): a diagnostic build that reads every tap at level 0 of the '
                        'depths, without the atlas level, extent and place arithmetic (`%s`, same run): %s '
-                       'microseconds, final / diagnostic. The per-tap address arithmetic is not the cost.' % (
-                           MEASURED['diag'], '; '.join('%s %s / %s' % (c, us(p[0]), us(p[1])) for c, p in pairs)))
+                       'microseconds, commit %s / diagnostic. The per-tap address arithmetic (of the atlas) is not the cost.' % (
+                           MEASURED['diag'], '; '.join('%s %s / %s' % (c, us(p[0]), us(p[1])) for c, p in pairs),
+                           C['prev_final']))
     if 'atomics' in runs and 'atomics_before' in runs:
         ratios_a = []
         for cfg, b in results_of(runs['atomics_before'], 'cacao', SCENES[0]).items():
@@ -821,10 +897,12 @@ def measured_section(runs, results):
                                                us(c['cacao']['stages'].get(s)))
             out.append('| %s | %.2f | %.2f | %s | %s | %s |' % (cfg, g['ratio'], c['ratio'], cell('blur'),
                                                                cell(fin_stage), cell('generate')))
-        out += ['', 'The GPU forms are the faster ones here. One exception: the non-smart apply (LOW) of the CPU '
-                'form, 2x2 pixels filtered by hand from one gather per layer, is faster on this GPU than the GPU '
-                'form\'s 2x2 pixels through the sampler, where the RADV estimate puts the CPU form at several '
-                'times the GPU form\'s cost on AMD\'s GPUs; the GPU form keeps the sampler. The CPU forms\' '
+        out += ['', 'The GPU forms are the faster ones here, with two exceptions at LOWEST and LOW native. The '
+                'non-smart apply (LOW) of the CPU form, 2x2 pixels filtered by hand from one gather per layer, is '
+                'faster on this GPU than the GPU form\'s 2x2 pixels through the sampler, where the RADV estimate '
+                'puts the CPU form at several times the GPU form\'s cost on AMD\'s GPUs; the GPU form keeps the '
+                'sampler. And generate at Q0 is faster through the CPU form\'s `imageLoad` of the atlas than '
+                'through the GPU form\'s `textureLod` (the section before). The CPU forms\' '
                 'tiles stage is classify, compact and fills over lists. The upsample has one form.']
     # the horizon estimators (the later run after their fix, else the final run's)
     hor = horizon_run(runs)
@@ -889,7 +967,7 @@ def measured_section(runs, results):
                 '`fill.horizon_all`; since then they need no fill, above); the CPU forms keep the clears, which '
                 'lavapipe runs faster (docs/tiles.md). Per-pass `--timings` '
                 '(`docs/gpu-measured/h200-horizon-steps.txt`: median ms, min, max; "final" %s, "fixed" '
-                '%s, "old" %s):' % (C['horizon'], C['horizon_direct_since'], C['final'], C['horizon'], C['lists']), '',
+                '%s, "old" %s):' % (C['horizon'], C['horizon_direct_since'], C['prev_final'], C['horizon'], C['lists']), '',
                 '```'] + body + ['```']
     # the driver's statistics
     text = text_part(fin, 'stats.cacao')
@@ -930,7 +1008,7 @@ def main():
     first = next(iter(results.values()))
     runs = load_measured(a.measured)
     timed = [r['ratio'] for sc in SCENES for r in results_of(runs.get('final', {}), 'cacao', sc).values()]
-    doc = HEADER % {'driver': first['driver'],
+    doc = HEADER % {'driver': first['driver'], 'above': sum(1 for r in timed if r > 1.0), 'pairs': len(timed),
                     'measured': '%.2f-%.2fx' % (min(timed), max(timed)) if timed else '(not measured)', 'issue': '\n'.join(issue_comparison(results['navi21']))
                     if 'navi21' in results else '(navi21 not measured)',
                     'overview': '\n'.join(overview(results))}
