@@ -3,7 +3,7 @@
 
 #include "cacao_table.h"
 
-extern const cacao_module cacaoi_generated_modules[130];
+extern const cacao_module cacaoi_generated_modules[132];
 
 static const cacao_permutation permutations[] = {
     {{0, 0, 0, 0, 0}, "prepare_depths.half.native", 0, {8, 8, 1}, 1316, 0, {1, 0, 0, 3, 0, 0, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
@@ -137,9 +137,11 @@ static const cacao_permutation permutations[] = {
     {{22, 1, 0, 0, 0}, "horizon_denoise_gpu.final", 127, {8, 8, 1}, 1316, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 4, 0, 4, 0, 0, 0, 0, 0}},
     {{22, 2, 0, 0, 0}, "horizon_denoise_gpu.upsample", 128, {8, 8, 1}, 1316, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 4, 4, 0, 0, 0, 0, 0, 0}},
     {{22, 3, 0, 0, 0}, "horizon_denoise_gpu.upsample_final", 129, {8, 8, 1}, 1316, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 4, 0, 4, 0, 0, 0, 0, 0}},
+    {{23, 0, 0, 0, 0}, "classify_gpu.native", 130, {8, 8, 1}, 1316, 0, {1, 0, 2, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
+    {{23, 0, 1, 0, 0}, "classify_gpu.downsampled", 131, {8, 8, 1}, 1316, 0, {1, 0, 2, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
 };
 
 const cacao_table cacaoi_embedded_table = {
-    permutations, 131, cacaoi_generated_modules, 130, "main",
+    permutations, 133, cacaoi_generated_modules, 132, "main",
     "glslang 12.0.0", "SPIRV-Tools v2023.1", "all",
 };

@@ -242,6 +242,12 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                       {CONSTANTS, R(DEPTHS, DEPTHS, V(CACAO_CLASSIFY_SLICES)),
                        R(SRC_DEPTH, DEPTH_INPUT, V(CACAO_CLASSIFY_HORIZON) | V(CACAO_CLASSIFY_QUIET)), W(TILES, TILES, ALL),
                        W(OUTPUT, OUTPUT, V(CACAO_CLASSIFY_QUIET))}},
+    /* CACAO's GPU forms where the prepare does not classify: a workgroup per tile, an invocation
+     * per slice texel (its layers), from the caller's depth; it shares no resource the prepare
+     * writes, so no barrier separates them and a GPU may run both at once (a classify pass after
+     * the prepare cost an H200 a dispatch and a barrier, 7-12 microseconds a frame: docs/gpu.md) */
+    PASS(CLASSIFY_GPU) = {"classify_gpu", {NULL}, 1, true, false, false, {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE, 3,
+                          {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), W(TILES, TILES, ALL)}},
     /* it also stores the AO 1 of the output's unneeded tiles where a list step writes the others
      * (docs/tiles.md "What runs") */
     PASS(COMPACT) = {"compact", {NULL, "horizon"}, 2, false, false, false, {CACAO_WG_COMPACT, 1}, CACAOI_GRID_COMPACT, 3,

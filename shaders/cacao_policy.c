@@ -179,6 +179,10 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
      * list cost a frame with nothing to skip more than 1%) */
     const bool listed_normals = c->normals_from_input && !c->gpu_forms && !c->reuse &&
                                 c->quality >= CACAO_KEY_QUALITY_MEDIUM;
+    /* The GPU forms where the prepare does not classify: the classes from the caller's depth, first
+     * (no barrier between it and the prepare: they read the same depth and write different
+     * resources) */
+    if (c->gpu_forms && !cacaoi_prepare_classifies(c)) push(out, &n, CACAO_PASS_CLASSIFY_GPU, 0, ds, 0, 0);
     if (c->normals_from_input) {
         /* the GPU forms' generate samples a mip chain, the CPU forms' loads from the atlas */
         const unsigned chain = c->gpu_forms && depths == CACAO_DEPTHS_MIPS ? CACAO_DEPTHS_MIPS_CHAIN : depths;
@@ -187,7 +191,7 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     } else {
         push(out, &n, cacaoi_form_pass(CACAO_PASS_PREPARE, c->gpu_forms), depths, ds, 0, 0); /* depths and normals in one pass */
     }
-    if (!cacaoi_prepare_classifies(c)) push(out, &n, CACAO_PASS_CLASSIFY, CACAO_CLASSIFY_SLICES, 0, 0, 0);
+    if (!c->gpu_forms) push(out, &n, CACAO_PASS_CLASSIFY, CACAO_CLASSIFY_SLICES, 0, 0, 0);
     /* The CPU forms run generate and the blur over lists of the groups that need them (compact);
      * the GPU forms run every group and store the AO 1 of a group they skip themselves: no lists,
      * no fills (docs/tiles.md). */

@@ -53,7 +53,11 @@
 #define CACAO_PASS_HORIZON_PREPARE_GPU 20
 #define CACAO_PASS_HORIZON_MAIN_GPU 21
 #define CACAO_PASS_HORIZON_DENOISE_GPU 22
-#define CACAO_PASS_COUNT 23
+/* CACAO's GPU forms where the prepare does not classify (downsampled, or the caller's normals): the
+ * tile classes from the caller's depth, the texels and view z the prepare stores, dispatched before
+ * the prepare with no barrier between them (docs/tiles.md). */
+#define CACAO_PASS_CLASSIFY_GPU 23
+#define CACAO_PASS_COUNT 24
 
 /* Depth-prepare variants (spec: prepare.md). HALF = slices 0 and 3 only (LOWEST), FULL = four
  * slices, MIPS = four slices plus mips 1..3 (HIGH and HIGHEST; MEDIUM never reads mips) in the

@@ -116,6 +116,9 @@ static void test_subset(void) {
                               "blur_gpu.5.fp32", "blur_gpu.6.fp32", "blur_gpu.7.fp32", "blur_gpu.8.fp32",
                               "apply_gpu.smart.fp32", "prepare_gpu.full.native", "prepare_gpu.mips.native",
                               "generate_gpu.q1", "generate_gpu.q2",
+                              /* the GPU forms' classification from the caller's depth, where the
+                               * prepare does not classify (the caller's normals; downsampled) */
+                              "classify_gpu.native",
                               /* the horizon estimators' GPU forms: direct grids, no classify,
                                * compact or fill (native: the upsample serves downsampled only) */
                               "horizon_prepare_gpu.depth", "horizon_prepare_gpu.input", "horizon_main_gpu.gtao",

@@ -218,11 +218,18 @@ static void check_config(const cacao_settings *s) {
                                         st->key[0] == CACAO_PASS_HORIZON_PREPARE_GPU;
         if (prepare_classifies)
             CHECK(config.gpu_forms && (st->key[0] == CACAO_PASS_HORIZON_PREPARE_GPU || cacaoi_prepare_classifies(&config)));
+        /* classify_gpu: CACAO's GPU forms where the prepare does not classify, first of the
+         * frame's passes after reuse's, with no barrier before the prepare after it */
+        if (st->key[0] == CACAO_PASS_CLASSIFY_GPU) {
+            CHECK(config.gpu_forms && config.estimator == CACAO_KEY_ESTIMATOR_CACAO && !cacaoi_prepare_classifies(&config));
+            CHECK(i + 1 < plan.step_count && !plan.steps[i + 1].barrier_before);
+        }
         if (cacaoi_skips_by_class(st->key[0], st->key[1]))
             CHECK(st->list == CACAO_LIST_NONE && config.gpu_forms);
         for (uint32_t j = 0; j < st->binding_count; ++j)
             if (st->bindings[j].resource == CACAO_RES_TILES)
-                CHECK(st->list != CACAO_LIST_NONE || st->key[0] == CACAO_PASS_CLASSIFY || st->key[0] == CACAO_PASS_COMPACT ||
+                CHECK(st->list != CACAO_LIST_NONE || st->key[0] == CACAO_PASS_CLASSIFY ||
+                      st->key[0] == CACAO_PASS_CLASSIFY_GPU || st->key[0] == CACAO_PASS_COMPACT ||
                       cacaoi_skips_by_class(st->key[0], st->key[1]) || prepare_classifies ||
                       (cacaoi_reads_classes(st->key[0], st->key[1]) && !st->bindings[j].write));
         if (st->clear) { /* a transfer: it only writes cacao's own images, each with a clear value; no module */

@@ -91,7 +91,9 @@ static bool writes_tiles(const cacao_plan_step *st) {
  * skip by the flags the classification marks, in the shader; no compact, no lists, no fills (a
  * group that is not needed stores the 1 itself), at every quality and blur count. Native with
  * normals from depth, the prepare classifies (it writes the tile buffer) and no classify pass
- * runs; downsampled, and with the caller's normals, the classify pass does. */
+ * runs; downsampled, and with the caller's normals, classify_gpu does, from the caller's depth,
+ * first: no barrier separates it from the prepare after it (neither reads what the other writes),
+ * and the prepare's barrier also serves its classes. */
 static void test_gpu_forms_skip_in_shader(void) {
     for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
         for (uint32_t blur = 0; blur <= 8; blur += 4)
@@ -105,7 +107,14 @@ static void test_gpu_forms_skip_in_shader(void) {
                     const cacao_plan_step *st = &p.steps[i];
                     CHECK(st->list == CACAO_LIST_NONE && !st->clear && strcmp(st->key_name, "compact") != 0 &&
                           strcmp(st->key_name, "fill") != 0);
-                    const bool is_classify = strcmp(st->key_name, "classify") == 0;
+                    const bool is_classify = strncmp(st->key_name, "classify_gpu.", 13) == 0;
+                    CHECK(strncmp(st->key_name, "classify", 8) != 0 || is_classify); /* not the CPU forms' */
+                    if (is_classify) { /* the first step, the prepare next without a barrier */
+                        CHECK(i == 0 && i + 1 < p.step_count && strncmp(p.steps[i + 1].key_name, "prepare", 7) == 0 &&
+                              !p.steps[i + 1].barrier_before);
+                        CHECK(strcmp(st->key_name, form == 1 ? "classify_gpu.downsampled" : "classify_gpu.native") == 0);
+                        CHECK(st->dispatch[0] == p.tiles_x && st->dispatch[1] == p.tiles_y && st->dispatch[2] == 1);
+                    }
                     const bool prepare_classifies = strncmp(st->key_name, "prepare_gpu.", 12) == 0 && writes_tiles(st);
                     CHECK(!prepare_classifies || form == 0);
                     classify_pass |= is_classify;

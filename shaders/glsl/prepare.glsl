@@ -227,8 +227,9 @@ void prep_rows(ivec2 u, int gj, vec2 inv, ivec2 src_size, float z0, inout vec3 p
  * classify pass's rules), which spares the frame the classify pass's dispatch and barrier (an H200
  * ran CACAO HIGH at 960x540 in 74 instead of 80 microseconds: docs/gpu.md). A group's 8x8
  * invocations of 2x2 texels cover 2x2 tiles; an invocation's quad lies in one of them. The
- * downsampled keys run the classify pass: with the classification, gfx11 spilled two registers of
- * their unrolled block, however it was placed. */
+ * downsampled keys leave it to classify_gpu (tiles.glsl), dispatched before them with no barrier
+ * between: with the classification, gfx11 spilled two registers of their unrolled block, however
+ * it was placed. */
 #define PREP_CLASSIFIES (CACAO_PASS == CACAO_PASS_PREPARE_GPU && CACAO_DOWNSAMPLED == 0)
 #if PREP_CLASSIFIES
 #if CACAO_TILE != 8 || CACAO_WG_PREPARE_X != 8 || CACAO_WG_PREPARE_Y != 8
@@ -249,8 +250,7 @@ void classify_texel(float z) { g_zmin = min(g_zmin, isnan(z) ? uintBitsToFloat(0
  * within 2^-10 of a threshold), never the other way. */
 void classify_group()
 {
-    float low = isinf(g_zmin) ? g_zmin : g_zmin - abs(g_zmin) * (1.01 / 1024.0);
-    uint flags = g_zmin > 0.0 && isinf(g_zmin) ? 0u : slice_z_flags(low); /* +inf: no texel */
+    uint flags = g_zmin > 0.0 && isinf(g_zmin) ? 0u : slice_z_flags(quiet_floor(g_zmin)); /* +inf: no texel */
     classify_group_begin(2);
     classify_group_flag(2, ivec2(gl_LocalInvocationID.xy) / 4, flags);
     classify_group_end(2 * ivec2(gl_WorkGroupID.xy), 2);

@@ -32,7 +32,8 @@ bool group_of(out ivec2 g)
 /* The passes that classify tiles: classify, the GPU form of the fused prepare, which classifies
  * the texels it stores, native, and the GPU form of the horizon estimators' prepare. */
 #define CACAO_CLASSIFIES (CACAO_PASS == CACAO_PASS_CLASSIFY || CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU || \
-                          (CACAO_PASS == CACAO_PASS_PREPARE_GPU && CACAO_DOWNSAMPLED == 0))
+                          (CACAO_PASS == CACAO_PASS_PREPARE_GPU && CACAO_DOWNSAMPLED == 0) || \
+                          CACAO_PASS == CACAO_PASS_CLASSIFY_GPU)
 /* The classes of the horizon estimators' pixels, from the caller's depth */
 #define CACAO_CLASSIFIES_DEPTH ((CACAO_PASS == CACAO_PASS_CLASSIFY && CACAO_VARIANT == CACAO_CLASSIFY_HORIZON) || \
                                 CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU)
@@ -180,7 +181,8 @@ int group_work(ivec2 g)
 #define FLAG_NOT_BACKGROUND 2u
 #define FLAGS_ALL (FLAG_NOT_QUIET | FLAG_NOT_BACKGROUND)
 
-#if CACAO_PASS == CACAO_PASS_PREPARE_GPU || (CACAO_PASS == CACAO_PASS_CLASSIFY && CACAO_VARIANT == CACAO_CLASSIFY_SLICES)
+#if CACAO_PASS == CACAO_PASS_PREPARE_GPU || CACAO_PASS == CACAO_PASS_CLASSIFY_GPU || \
+    (CACAO_PASS == CACAO_PASS_CLASSIFY && CACAO_VARIANT == CACAO_CLASSIFY_SLICES)
 /* CACAO's stored view z (deinterleaved, R16F): background at or past background_z; quiet by fade
  * with the margin of CB.quiet_margin, so that generate finds it faded too. */
 uint slice_z_flags(float z)
@@ -189,6 +191,13 @@ uint slice_z_flags(float z)
     bool faded = (z * CB.depth_precision_offset_mod) * CB.effect_fade_out_mul + CB.effect_fade_out_add < -CB.quiet_margin;
     return (background ? 0u : FLAG_NOT_BACKGROUND) | (background || faded ? 0u : FLAG_NOT_QUIET);
 }
+
+/* The GPU forms classify the view z they compute, before the R16F store: a z the store keeps,
+ * whichever way it rounds, is at least z less 2^-10 of it (a half's step; 1% more for the ulps by
+ * which two passes' arithmetic may differ), and being quiet is monotonic in z (background at or
+ * past background_z; faded where the fade argument is below -margin, mul negative), so the flags
+ * of that floor are a superset of the stored texel's. An infinite z is its own floor. */
+float quiet_floor(float z) { return isinf(z) ? z : z - abs(z) * (1.01 / 1024.0); }
 #endif
 
 #if CACAO_CLASSIFIES_DEPTH
@@ -391,6 +400,39 @@ void main()
 }
 #endif
 #endif /* CLASSIFY */
+
+/* ---- classify_gpu ---- */
+#if CACAO_PASS == CACAO_PASS_CLASSIFY_GPU
+/* CACAO's GPU forms where the prepare does not classify (downsampled, or the caller's normals): a
+ * workgroup per tile, an invocation per slice texel. Each texel's view z is the one the prepare
+ * computes from the caller's depth (the same pixel, clamp and view_z; LOWEST's integer loads give
+ * raw 0 past the image); its flags are those of that z less 2^-10 of it and 1% (quiet_floor), a
+ * superset of the flags of the R16F value the prepare stores, whichever way the store rounds and
+ * by however many ulps two passes' view_z differ: a tile may be called active that classify would
+ * call quiet (a texel within 2^-10 of a threshold), never the other way. It reads nothing the
+ * prepare writes, so it runs before the prepare with no barrier between them. */
+layout(local_size_x = CACAO_TILE, local_size_y = CACAO_TILE) in;
+
+void main()
+{
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    uint flags = 0u;
+    if (in_rect(t, slice_size())) {
+        ivec2 src_size = textureSize(src_depth, 0);
+        int step = CB.slice_count == 2 ? 3 : 1; /* LOWEST keeps slices 0 and 3 */
+        /* unrolled: a GPU compiler then knows the trip count (ACO weighs a loop it cannot count as 8) */
+        [[unroll]] for (int layer = 0; layer < 4; ++layer) {
+            if (layer >= CB.slice_count) break;
+            ivec2 p = full_res_pixel(t, layer * step);
+            float z = CB.slice_count == 2 && !in_rect(p, src_size) ? view_z(0.0) : view_z(load_src_depth_clamped(p));
+            flags |= slice_z_flags(quiet_floor(z));
+        }
+    }
+    classify_group_begin(1);
+    classify_group_flag(1, ivec2(0), flags);
+    classify_group_end(ivec2(gl_WorkGroupID.xy), 1);
+}
+#endif
 
 /* ---- compact ---- */
 #if CACAO_PASS == CACAO_PASS_COMPACT
