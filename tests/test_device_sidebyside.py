@@ -101,6 +101,7 @@ if 'final' in runs:
     for heading in ('## Measured on a real GPU', '### Totals: cacao / AMD', '### Per stage',
                     '### The depth mip chain and the changes with it, measured in the same run',
                     '### Earlier changes, measured in an earlier run', '### Tried and not kept',
+                    '### The classes from the caller\'s depth, measured',
                     '### The shader forms on this GPU',
                     '### The horizon-slice estimators', '### What the driver reports'):
         check(heading in text, 'report lacks %r' % heading)

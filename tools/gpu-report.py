@@ -50,7 +50,8 @@ ISSUE_31 = {'lowest_native': 0.78, 'low_native': 0.60, 'medium_native': 0.50, 'h
 
 # The runs on a real GPU (tools/device-sidebyside.py --merge writes one file per run), by role:
 # 'final' is the code as it stands (the GPU forms' depth mip chain), and in the same run
-# 'chain_before' the main before it; 'prev_final' an earlier session's final run, and in that run
+# 'chain_before' the main before it; 'classify_gpu'/'classify_gpu_before' a later run of the
+# classification from the caller's depth against its parent (the cacao part only); 'prev_final' an earlier session's final run, and in that run
 # 'before' its previous main and 'lists' the GPU forms with tile lists (an older main), 'diag' a
 # diagnostic build (generate's taps all from
 # level 0: wrong output, a timing only); 'upsample'/'upsample_before' and 'counting'/
@@ -59,7 +60,8 @@ ISSUE_31 = {'lowest_native': 0.78, 'low_native': 0.60, 'medium_native': 0.50, 'h
 # 'tf_final'/'tf_before' an earlier session's run of generate's taps through the sampled view,
 # 'forms'/'forms_before' and 'atomics'/'atomics_before' that session's other runs.
 MEASURED = {'final': 'h200-mipchain.json', 'chain_before': 'h200-mipchain-before.json',
-            'prev_final': 'h200-final.json', 'before': 'h200-before.json', 'lists': 'h200-lists.json',
+            'prev_final': 'h200-final.json', 'before': 'h200-before.json',
+            'classify_gpu': 'h200-classify-gpu.json', 'classify_gpu_before': 'h200-classify-gpu-before.json', 'lists': 'h200-lists.json',
             'diag': 'h200-diag-level0.json', 'horizon': 'h200-horizon.json',
             'upsample': 'h200-run-upsample.json', 'upsample_before': 'h200-run-upsample-before.json',
             'counting': 'h200-run-counting.json', 'counting_before': 'h200-run-counting-before.json',
@@ -69,7 +71,8 @@ MEASURED = {'final': 'h200-mipchain.json', 'chain_before': 'h200-mipchain-before
             'fused': 'h200-run-fused.json', 'fused_before': 'h200-run-fused-before.json',
             'horizon_direct': 'h200-horizon-direct.json', 'horizon_direct_before': 'h200-horizon-direct-before.json'}
 # The commit each role's build was (said with the tables: a run measures its code).
-MEASURED_COMMITS = {'final': '77d676c', 'chain_before': 'c51cb89', 'prev_final': '349c7a2', 'before': 'abd0c77', 'lists': '0c7a571', 'horizon': '1065bc3',
+MEASURED_COMMITS = {'final': '77d676c', 'chain_before': 'c51cb89', 'prev_final': '349c7a2',
+                    'classify_gpu': 'f745aa5', 'classify_gpu_before': '77b5614', 'before': 'abd0c77', 'lists': '0c7a571', 'horizon': '1065bc3',
                     'tf_before': '6588704', 'tf_final': '8ba0da9', 'fused': '35f1533', 'fused_before': '16e6be8',
                     'horizon_direct': 'd643d71', 'horizon_direct_before': '16e6be8',
                     'horizon_direct_since': '269c67e'}
@@ -569,7 +572,7 @@ def fused_section(fused, before):
            'pass still runs: with the classification in it, gfx11 spilled two registers of the downsampled '
            'prepare wherever it was placed (a register through its unrolled block, shared memory, the depths read '
            'again before or after the block). cacao/AMD, before / after, interleaved with AMD in one run of both '
-           'builds (`%s`, `%s`; the same procedure as above):' % (
+           'builds (`%s`, `%s`; the same procedure as above; since then `classify_gpu` classifies there, below):' % (
                us_range([stage_of(before, sc, c, 'other') for sc in SCENES for c in AMD_CONFIGS if c.endswith('native')]),
                MEASURED['fused_before'], MEASURED['fused']),
            '', '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
@@ -713,6 +716,50 @@ def chain_section(fin, before):
     return out
 
 
+def classify_gpu_section(after, before):
+    """The classes from the caller's depth (classify_gpu) against the classify pass after the prepare."""
+    out = ['', '### The classes from the caller\'s depth, measured (commit %s against %s)' % (
+               C['classify_gpu'], C['classify_gpu_before']), '',
+           'Where the GPU forms\' prepare does not classify (downsampled, and with the caller\'s normals), '
+           '`classify_gpu` computes the tile classes from the caller\'s depth, before the prepare and with no '
+           'barrier between them, in place of the classify pass over the stored depths after the prepare (a '
+           'barrier, a dispatch, a barrier; docs/tiles.md). A later run than the final one, of both builds, each '
+           'interleaved with AMD, scene by scene (`%s`, `%s`; the cacao part only). cacao/AMD, before / after:' % (
+               MEASURED['classify_gpu_before'], MEASURED['classify_gpu']), '',
+           '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
+    def cell(sc, cfg):
+        b, f = results_of(before, 'cacao', sc).get(cfg), results_of(after, 'cacao', sc).get(cfg)
+        return '%.2f / %.2f' % (b['ratio'], f['ratio']) if b and f else '-'
+    out += scene_rows(cell)
+    saved = {}
+    for sc in SCENES:
+        for cfg in AMD_CONFIGS:
+            b, f = results_of(before, 'cacao', sc).get(cfg), results_of(after, 'cacao', sc).get(cfg)
+            if b and f and cfg.endswith('downsampled'):
+                saved.setdefault(sc, []).append(1000.0 * (b['cacao']['total_ms'] - f['cacao']['total_ms']))
+    nat = [1000.0 * (b['cacao']['total_ms'] - f['cacao']['total_ms'])
+           for sc in SCENES for cfg in AMD_CONFIGS if cfg.endswith('native')
+           for b, f in [(results_of(before, 'cacao', sc).get(cfg), results_of(after, 'cacao', sc).get(cfg))] if b and f]
+    if saved:
+        down = [c for c in AMD_CONFIGS if c.endswith('downsampled')]
+        out += ['', 'Downsampled frames shorter by %s microseconds (per scene); the native ones, which run no '
+                'classification pass either way (the prepare classifies), changed by %.1f to %.1f (the noise). Per pass '
+                '(cacao_steps, microseconds over the three scenes, before -> after): the classification %s -> %s; '
+                'the prepare %s -> %s (its timestamp is taken when it ends: it began while `classify_gpu` ran). What the '
+                'frame saves is a barrier and the overlap. Less on interior_fzkhaus: there the classify pass was the '
+                'shortest (it stops a tile\'s scan at its first active texel, and nearly every tile is active), '
+                'shorter than `classify_gpu`, which reads every texel.' % (
+                    '; '.join('%s %.1f to %.1f' % (sc, min(v), max(v)) for sc, v in saved.items()),
+                    -max(nat) if nat else 0.0, -min(nat) if nat else 0.0,
+                    step_range(before, before, 'classify', down).split(' -> ')[0],
+                    step_range(after, after, 'classify_gpu.downsampled', down).split(' -> ')[0],
+                    us_range([(results_of(before, 'cacao', sc).get(c) or {}).get('cacao', {}).get('stages', {}).get('prepare')
+                              for sc in SCENES for c in down]),
+                    us_range([(results_of(after, 'cacao', sc).get(c) or {}).get('cacao', {}).get('stages', {}).get('prepare')
+                              for sc in SCENES for c in down]))]
+    return out
+
+
 def measured_section(runs, results):
     """The real GPU's timings as markdown lines (none without the 'final' run)."""
     if 'final' not in runs:
@@ -779,6 +826,8 @@ def measured_section(runs, results):
     # the changes measured in the final run
     if 'chain_before' in runs:
         out += chain_section(fin, runs['chain_before'])
+    if 'classify_gpu' in runs and 'classify_gpu_before' in runs:
+        out += classify_gpu_section(runs['classify_gpu'], runs['classify_gpu_before'])
     # an earlier session's final run and its changes
     if 'before' in runs and 'prev_final' in runs:
         bef, lists, pfin = runs['before'], runs.get('lists', {}), runs['prev_final']
