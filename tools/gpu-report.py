@@ -51,7 +51,9 @@ ISSUE_31 = {'lowest_native': 0.78, 'low_native': 0.60, 'medium_native': 0.50, 'h
 # The runs on a real GPU (tools/device-sidebyside.py --merge writes one file per run), by role:
 # 'final' is the code as it stands (the GPU forms' depth mip chain), and in the same run
 # 'chain_before' the main before it; 'classify_gpu'/'classify_gpu_before' a later run of the
-# classification from the caller's depth against its parent (the cacao part only); 'prev_final' an earlier session's final run, and in that run
+# classification from the caller's depth against its parent (the cacao part only);
+# 'classify_fused'/'classify_nofuse' a run of commit f745aa5 against a build of it whose native
+# prepare did not classify (classify_gpu before it instead: tried, not kept); 'prev_final' an earlier session's final run, and in that run
 # 'before' its previous main and 'lists' the GPU forms with tile lists (an older main), 'diag' a
 # diagnostic build (generate's taps all from
 # level 0: wrong output, a timing only); 'upsample'/'upsample_before' and 'counting'/
@@ -61,7 +63,8 @@ ISSUE_31 = {'lowest_native': 0.78, 'low_native': 0.60, 'medium_native': 0.50, 'h
 # 'forms'/'forms_before' and 'atomics'/'atomics_before' that session's other runs.
 MEASURED = {'final': 'h200-mipchain.json', 'chain_before': 'h200-mipchain-before.json',
             'prev_final': 'h200-final.json', 'before': 'h200-before.json',
-            'classify_gpu': 'h200-classify-gpu.json', 'classify_gpu_before': 'h200-classify-gpu-before.json', 'lists': 'h200-lists.json',
+            'classify_gpu': 'h200-classify-gpu.json', 'classify_gpu_before': 'h200-classify-gpu-before.json',
+            'classify_fused': 'h200-classify-fused.json', 'classify_nofuse': 'h200-classify-nofuse.json', 'lists': 'h200-lists.json',
             'diag': 'h200-diag-level0.json', 'horizon': 'h200-horizon.json',
             'upsample': 'h200-run-upsample.json', 'upsample_before': 'h200-run-upsample-before.json',
             'counting': 'h200-run-counting.json', 'counting_before': 'h200-run-counting-before.json',
@@ -902,6 +905,25 @@ def measured_section(runs, results):
                        '(`%s`): the tiles stage after / before %.2f-%.2f; not kept. What paid this session was '
                        'the chain of atomics each active tile waited on (above).' % (
                            MEASURED['atomics'], min(ratios_a), max(ratios_a)))
+    if 'classify_fused' in runs and 'classify_nofuse' in runs:
+        native = [c for c in AMD_CONFIGS if c.endswith('native')]
+        longer, cls, prep = [], [], []
+        for sc in SCENES:
+            for c in native:
+                f = results_of(runs['classify_fused'], 'cacao', sc).get(c)
+                n = results_of(runs['classify_nofuse'], 'cacao', sc).get(c)
+                if f and n:
+                    longer.append(1000.0 * (n['cacao']['total_ms'] - f['cacao']['total_ms']))
+                    cls.append(n.get('cacao_steps', {}).get('classify_gpu.native'))
+                    prep.append((f['cacao']['stages'].get('prepare'), n['cacao']['stages'].get('prepare')))
+        if longer:
+            exp.append('- `classify_gpu` for the native frames too, the prepare not classifying (a build of commit '
+                       'f745aa5 so changed, against f745aa5 in one run: `%s`, `%s`): native frames %.1f-%.1f '
+                       'microseconds longer. `classify_gpu` took %s microseconds there (four times the tiles of a '
+                       'downsampled frame), the prepare %s -> %s: the classification inside the prepare costs it less '
+                       'than a pass of its own, barrier or not. Not kept.' % (
+                           MEASURED['classify_fused'], MEASURED['classify_nofuse'], min(longer), max(longer),
+                           us_range(cls), us_range([p[0] for p in prep]), us_range([p[1] for p in prep])))
     exp += classify_shapes()
     if exp:
         out += ['', '### Tried and not kept, or diagnostic', ''] + exp
