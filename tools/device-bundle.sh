@@ -86,7 +86,8 @@ cat >"$out/run.sh" <<'EOF'
 #!/bin/bash
 # Made by tools/device-bundle.sh. From the repository's root on the GPU machine:
 #   bash BUNDLE/run.sh [PARTS] [SCENES] [REPS]   results: $OUT (or ./device-out)/measured*.json
-# FRAMES (default 30) sets the frames per process.
+# FRAMES (default 30) sets the frames per process; CONFIGS (a comma list of AMD's configurations,
+# default all ten) limits the cacao and cpuforms parts.
 here=$(cd "$(dirname "$0")" && pwd)
 parts=${1:-stats,cacao,estimators,cpuforms}
 scenes=${2:-$(ls "$here/shared/scenes" | paste -sd, -)}
@@ -105,7 +106,8 @@ cat "$R/devices.txt"
 # the first GPU (DEVICE=NAME picks another, e.g. llvmpipe to try the bundle without a GPU)
 device=${DEVICE:-$(sed -n 's/^[0-9]*: \(.*\) (\(discrete\|integrated\|virtual\) GPU).*/\1/p' "$R/devices.txt" | head -1)}
 [ -n "$device" ] || { echo "no GPU among the Vulkan devices (ICD: ${VK_DRIVER_FILES:-none})"; exit 3; }
-D=(python3 tools/device-sidebyside.py --device "$device" --shared "$here/shared" --reps "$reps" --frames "${FRAMES:-30}" --scenes "$scenes")
+D=(python3 tools/device-sidebyside.py --device "$device" --shared "$here/shared" --reps "$reps" --frames "${FRAMES:-30}" --scenes "$scenes"
+   ${CONFIGS:+--configs "$CONFIGS"})
 builds=$(ls "$here/builds" 2>/dev/null || true)
 has() { echo ",$parts," | grep -q ",$1,"; }
 for b in $builds; do mkdir -p "$R-$b"; cp "$R/machine.txt" "$R/devices.txt" "$R-$b/"; done

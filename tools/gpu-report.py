@@ -53,7 +53,9 @@ ISSUE_31 = {'lowest_native': 0.78, 'low_native': 0.60, 'medium_native': 0.50, 'h
 # 'chain_before' the main before it; 'classify_gpu'/'classify_gpu_before' a later run of the
 # classification from the caller's depth against its parent (the cacao part only);
 # 'classify_fused'/'classify_nofuse' a run of commit f745aa5 against a build of it whose native
-# prepare did not classify (classify_gpu before it instead: tried, not kept); 'prev_final' an earlier session's final run, and in that run
+# prepare did not classify (classify_gpu before it instead: tried, not kept); 'classify_quad'/
+# 'classify_quad_before' a build of classify_gpu with 2x2 texels per invocation against f745aa5's
+# (downsampled configurations only: tried, not kept); 'prev_final' an earlier session's final run, and in that run
 # 'before' its previous main and 'lists' the GPU forms with tile lists (an older main), 'diag' a
 # diagnostic build (generate's taps all from
 # level 0: wrong output, a timing only); 'upsample'/'upsample_before' and 'counting'/
@@ -64,7 +66,8 @@ ISSUE_31 = {'lowest_native': 0.78, 'low_native': 0.60, 'medium_native': 0.50, 'h
 MEASURED = {'final': 'h200-mipchain.json', 'chain_before': 'h200-mipchain-before.json',
             'prev_final': 'h200-final.json', 'before': 'h200-before.json',
             'classify_gpu': 'h200-classify-gpu.json', 'classify_gpu_before': 'h200-classify-gpu-before.json',
-            'classify_fused': 'h200-classify-fused.json', 'classify_nofuse': 'h200-classify-nofuse.json', 'lists': 'h200-lists.json',
+            'classify_fused': 'h200-classify-fused.json', 'classify_nofuse': 'h200-classify-nofuse.json',
+            'classify_quad': 'h200-classify-quad.json', 'classify_quad_before': 'h200-classify-quad-before.json', 'lists': 'h200-lists.json',
             'diag': 'h200-diag-level0.json', 'horizon': 'h200-horizon.json',
             'upsample': 'h200-run-upsample.json', 'upsample_before': 'h200-run-upsample-before.json',
             'counting': 'h200-run-counting.json', 'counting_before': 'h200-run-counting-before.json',
@@ -924,6 +927,23 @@ def measured_section(runs, results):
                        'than a pass of its own, barrier or not. Not kept.' % (
                            MEASURED['classify_fused'], MEASURED['classify_nofuse'], min(longer), max(longer),
                            us_range(cls), us_range([p[0] for p in prep]), us_range([p[1] for p in prep])))
+    if 'classify_quad' in runs and 'classify_quad_before' in runs:
+        diff, steps = [], []
+        for sc in SCENES:
+            for c in AMD_CONFIGS:
+                b = results_of(runs['classify_quad_before'], 'cacao', sc).get(c)
+                q = results_of(runs['classify_quad'], 'cacao', sc).get(c)
+                if b and q:
+                    diff.append(1000.0 * (b['cacao']['total_ms'] - q['cacao']['total_ms']))
+                    steps.append((b['cacao_steps'].get('classify_gpu.downsampled'), q['cacao_steps'].get('classify_gpu.downsampled')))
+        if diff:
+            exp.append('- `classify_gpu` with 2x2 slice texels per invocation, a workgroup per 2x2 tiles (the shape of '
+                       'the prepare\'s own classification), against one texel per invocation and a workgroup per tile '
+                       '(`%s`, `%s`; a build of commit f745aa5 so changed, the downsampled configurations in one run): '
+                       'the frames changed by %.1f to %.1f microseconds (shorter: positive), `classify_gpu` took %s '
+                       'then %s microseconds. At a downsampled frame\'s 2040 tiles its time is not its work. Not kept.' % (
+                           MEASURED['classify_quad_before'], MEASURED['classify_quad'], min(diff), max(diff),
+                           us_range([x[0] for x in steps]), us_range([x[1] for x in steps])))
     exp += classify_shapes()
     if exp:
         out += ['', '### Tried and not kept, or diagnostic', ''] + exp
