@@ -416,6 +416,13 @@ fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
   the doubling above counts them twice. On the H200 the tiles stage went from 16.8-36.7 to
   10.5-14.7 microseconds (section "Measured on a real GPU"). Since then classify's marks do not
   count (generate and the blur count the groups they run): 0.94 -> 0.91 Mcycles for classify here.
+- The tile classes: native with normals from depth, the prepare (`prepare_gpu`) classifies the
+  texels it stores; elsewhere (downsampled, the caller's normals) `classify_gpu` classifies from
+  the caller's depth, first in the frame, with no barrier before the prepare (the CPU forms'
+  classify pass reads the stored depths after the prepare, behind a barrier). On navi21 the
+  estimate of the classification at HIGH downsampled went from 0.28 to 0.31 Mcycles (commits
+  77b5614 and f745aa5); the barrier it saves is not in the estimate. The H200 timed it (section
+  "The classes from the caller's depth, measured").
 
 ## Against issue 31's measurement
 
