@@ -663,6 +663,12 @@ def classify_shapes():
     return out
 
 
+def result_pairs(before, after, cfgs=AMD_CONFIGS):
+    """(before, after) cacao results of every scene of SCENES and configuration of cfgs both runs have."""
+    pairs = [(results_of(before, 'cacao', sc).get(c), results_of(after, 'cacao', sc).get(c)) for sc in SCENES for c in cfgs]
+    return [(b, a) for b, a in pairs if b and a]
+
+
 def step_range(before, after, step, cfgs):
     """'b -> a' microseconds (ranges over the scenes and cfgs) of one pass of cacao_steps, '-' without it."""
     b = [(results_of(before, 'cacao', sc).get(c) or {}).get('cacao_steps', {}).get(step) for sc in SCENES for c in cfgs]
@@ -916,16 +922,11 @@ def measured_section(runs, results):
                        'the chain of atomics each active tile waited on (above).' % (
                            MEASURED['atomics'], min(ratios_a), max(ratios_a)))
     if 'classify_fused' in runs and 'classify_nofuse' in runs:
-        native = [c for c in AMD_CONFIGS if c.endswith('native')]
-        longer, cls, prep = [], [], []
-        for sc in SCENES:
-            for c in native:
-                f = results_of(runs['classify_fused'], 'cacao', sc).get(c)
-                n = results_of(runs['classify_nofuse'], 'cacao', sc).get(c)
-                if f and n:
-                    longer.append(1000.0 * (n['cacao']['total_ms'] - f['cacao']['total_ms']))
-                    cls.append(n.get('cacao_steps', {}).get('classify_gpu.native'))
-                    prep.append((f['cacao']['stages'].get('prepare'), n['cacao']['stages'].get('prepare')))
+        pairs = result_pairs(runs['classify_fused'], runs['classify_nofuse'],
+                             [c for c in AMD_CONFIGS if c.endswith('native')])
+        longer = [1000.0 * (n['cacao']['total_ms'] - f['cacao']['total_ms']) for f, n in pairs]
+        cls = [n.get('cacao_steps', {}).get('classify_gpu.native') for f, n in pairs]
+        prep = [(f['cacao']['stages'].get('prepare'), n['cacao']['stages'].get('prepare')) for f, n in pairs]
         if longer:
             exp.append('- `classify_gpu` for the native frames too, the prepare not classifying (a build of commit '
                        'f745aa5 so changed, against f745aa5 in one run: `%s`, `%s`): native frames %.1f-%.1f '
@@ -935,14 +936,10 @@ def measured_section(runs, results):
                            MEASURED['classify_fused'], MEASURED['classify_nofuse'], min(longer), max(longer),
                            us_range(cls), us_range([p[0] for p in prep]), us_range([p[1] for p in prep])))
     if 'classify_quad' in runs and 'classify_quad_before' in runs:
-        diff, steps = [], []
-        for sc in SCENES:
-            for c in AMD_CONFIGS:
-                b = results_of(runs['classify_quad_before'], 'cacao', sc).get(c)
-                q = results_of(runs['classify_quad'], 'cacao', sc).get(c)
-                if b and q:
-                    diff.append(1000.0 * (b['cacao']['total_ms'] - q['cacao']['total_ms']))
-                    steps.append((b['cacao_steps'].get('classify_gpu.downsampled'), q['cacao_steps'].get('classify_gpu.downsampled')))
+        pairs = result_pairs(runs['classify_quad_before'], runs['classify_quad'])
+        diff = [1000.0 * (b['cacao']['total_ms'] - q['cacao']['total_ms']) for b, q in pairs]
+        steps = [(b['cacao_steps'].get('classify_gpu.downsampled'), q['cacao_steps'].get('classify_gpu.downsampled'))
+                 for b, q in pairs]
         if diff:
             exp.append('- `classify_gpu` with 2x2 slice texels per invocation, a workgroup per 2x2 tiles (the shape of '
                        'the prepare\'s own classification), against one texel per invocation and a workgroup per tile '
