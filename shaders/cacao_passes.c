@@ -114,10 +114,10 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
 /* The fused prepare (normals from depth) and its GPU form's row; the GPU form's native keys also
  * classify the tiles (tiles_variants: ALL; the CPU form, and the GPU form downsampled, run the
  * classify pass). */
-#define PREPARE_ROW(name, tiles_variants, mips_binding, count)                                    \
-    {name, {"half", "full", "mips"}, 3, true, false, false, WG(PREPARE), CACAOI_GRID_SLICE, count,      \
+#define PREPARE_ROW(name, tiles_variants, grid, mips_binding, count)                              \
+    {name, {"half", "full", "mips"}, 3, true, false, false, WG(PREPARE), grid, count,      \
      {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), W(DEPTHS_IMAGE, DEPTHS, V(CACAO_DEPTHS_HALF) | V(CACAO_DEPTHS_FULL)), \
-      mips_binding, W(NORMALS_IMAGE, NORMALS, ALL), W_NATIVE(TILES, TILES, tiles_variants)},          \
+      mips_binding, W(NORMALS_IMAGE, NORMALS, ALL), W(TILES, TILES, tiles_variants)},          \
      .quad = {[CACAO_DEPTHS_HALF] = 2, [CACAO_DEPTHS_FULL] = 2, [CACAO_DEPTHS_MIPS] = 2}}
 
 /* The horizon estimators' rows, for the CPU forms (tiles: R, over lists) and the GPU forms
@@ -242,19 +242,21 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                       {CONSTANTS, R(DEPTHS, DEPTHS, V(CACAO_CLASSIFY_SLICES)),
                        R(SRC_DEPTH, DEPTH_INPUT, V(CACAO_CLASSIFY_HORIZON) | V(CACAO_CLASSIFY_QUIET)), W(TILES, TILES, ALL),
                        W(OUTPUT, OUTPUT, V(CACAO_CLASSIFY_QUIET))}},
-    /* CACAO's GPU forms where the prepare does not classify: a workgroup per tile, an invocation
-     * per slice texel (its layers), from the caller's depth; it shares no resource the prepare
-     * writes, so no barrier separates them and a GPU may run both at once (a classify pass after
-     * the prepare cost an H200 a dispatch and a barrier, 7-12 microseconds a frame: docs/gpu.md) */
-    PASS(CLASSIFY_GPU) = {"classify_gpu", {NULL}, 1, true, false, false, {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE, 3,
-                          {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), W(TILES, TILES, ALL)}},
+    /* CACAO's GPU forms with the caller's normals (no prepare classifies): a workgroup per 2x2
+     * tiles, an invocation per 2x2 slice texels (their layers), from the caller's depth; it shares
+     * no resource the prepare writes, so no barrier separates them and a GPU may run both at once
+     * (a classify pass after the prepare cost an H200 a dispatch and a barrier, 7-12 microseconds a
+     * frame: docs/gpu.md) */
+    PASS(CLASSIFY_GPU) = {"classify_gpu", {NULL}, 1, true, false, false, {CACAO_WG_CLASSIFY, CACAO_WG_CLASSIFY},
+                          CACAOI_GRID_SLICE, 3, {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), W(TILES, TILES, ALL)},
+                          .quad = {2}},
     /* it also stores the AO 1 of the output's unneeded tiles where a list step writes the others
      * (docs/tiles.md "What runs") */
     PASS(COMPACT) = {"compact", {NULL, "horizon"}, 2, false, false, false, {CACAO_WG_COMPACT, 1}, CACAOI_GRID_COMPACT, 3,
                      {CONSTANTS, W(TILES, TILES, ALL), W(OUTPUT, OUTPUT, ALL)}},
     /* spec: prepare.md, normals from depth: PREPARE_DEPTHS's variants and the normals in one pass,
      * a 2x2 quad of slice texels per invocation sharing one block of depths. */
-    PASS(PREPARE) = PREPARE_ROW("prepare", 0u, W_LEVELS(DEPTHS_IMAGE, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS)), 6),
+    PASS(PREPARE) = PREPARE_ROW("prepare", 0u, CACAOI_GRID_SLICE, W_LEVELS(DEPTHS_IMAGE, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS)), 6),
     /* The GPU forms (cacao_shader_forms): the rows above, other shapes. The blur: every n in
      * shared memory, 4x3 texels per thread (CACAO_BLUR_GPU_OUT_X, _Y); apply: 2x2 pixels per invocation,
      * each read through the sampler. Generate's GPU form runs its Q3 base pass one texel per
@@ -268,10 +270,11 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                        3, {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL)},
                        .quad = {[CACAO_OUTPUT_SMART] = 2, [CACAO_OUTPUT_NON_SMART] = 2, [CACAO_OUTPUT_HALF] = 2}},
     /* prepare: each direction between two neighbouring depths normalised once for the two
-     * normals that use it, and the tile classes of its texels (no classify pass: its dispatch and
+     * normals that use it, and the tile classes (native: of the texels it stores; downsampled: in
+     * groups of its own, z 0, from the caller's depth) (no classify pass: its dispatch and
      * barrier cost a GPU more than its work, docs/gpu.md), its mips as the depths' mip chain
      * (levels 1..3 through their own slots); generate: the taps sampled from that chain. */
-    PASS(PREPARE_GPU) = PREPARE_ROW("prepare_gpu", ALL, W(DEPTHS_IMAGE, DEPTHS, V(CACAO_DEPTHS_MIPS)) COMMA
+    PASS(PREPARE_GPU) = PREPARE_ROW("prepare_gpu", ALL, CACAOI_GRID_SLICE_CLASSIFY, W(DEPTHS_IMAGE, DEPTHS, V(CACAO_DEPTHS_MIPS)) COMMA
                                     W_CHAIN(V(CACAO_DEPTHS_MIPS)), 9),
     PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu", , 11, CACAO_LIST_NONE,
                                       CACAO_LIST_NONE, CACAOI_GRID_SLICE, W),

@@ -94,6 +94,8 @@ extern const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT];
 #define CACAOI_GRID_TILES 8        /* one invocation per tile */
 #define CACAOI_GRID_HALF 9         /* half the output size (rounded up) / workgroup */
 #define CACAOI_GRID_TILE_ROWS 10   /* one invocation per row of tiles (x only) */
+#define CACAOI_GRID_SLICE_CLASSIFY 11 /* as SLICE; downsampled z 2: groups z 0 classify the tiles
+                                         (prepare_gpu downsampled), z 1 prepare */
 
 #define CACAOI_ALL_VARIANTS 0xffu
 #define CACAOI_VARIANT(v) (1u << (v))

@@ -149,7 +149,7 @@ static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI
 }
 
 bool cacaoi_prepare_classifies(const cacao_key_config *c) {
-    return c->estimator == CACAO_KEY_ESTIMATOR_CACAO && c->gpu_forms && !c->normals_from_input && !c->downsampled;
+    return c->estimator == CACAO_KEY_ESTIMATOR_CACAO && c->gpu_forms && !c->normals_from_input;
 }
 
 size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENCE_MAX]) {
@@ -179,9 +179,9 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
      * list cost a frame with nothing to skip more than 1%) */
     const bool listed_normals = c->normals_from_input && !c->gpu_forms && !c->reuse &&
                                 c->quality >= CACAO_KEY_QUALITY_MEDIUM;
-    /* The GPU forms where the prepare does not classify: the classes from the caller's depth, first
-     * (no barrier between it and the prepare: they read the same depth and write different
-     * resources) */
+    /* The GPU forms where no prepare classifies (the caller's normals): the classes from the caller's
+     * depth, first (no barrier between it and the prepare: they read the same depth and write
+     * different resources) */
     if (c->gpu_forms && !cacaoi_prepare_classifies(c)) push(out, &n, CACAO_PASS_CLASSIFY_GPU, 0, ds, 0, 0);
     if (c->normals_from_input) {
         /* the GPU forms' generate samples a mip chain, the CPU forms' loads from the atlas */

@@ -101,7 +101,8 @@ typedef struct cacaoi_step {
 size_t cacaoi_sequence(const cacao_key_config *config, cacaoi_step out[CACAOI_SEQUENCE_MAX]);
 
 /* The frame's prepare classifies the tiles, and no classify pass runs: CACAO's GPU forms with
- * normals from depth, native (prepare_gpu's native keys; docs/tiles.md). */
+ * normals from depth (prepare_gpu: native, the texels it stores; downsampled, groups of its own
+ * from the caller's depth; docs/tiles.md). */
 bool cacaoi_prepare_classifies(const cacao_key_config *config);
 
 /* The bindings a step makes: its row's bindings for its variant, with the step's overrides.

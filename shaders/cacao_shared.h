@@ -53,9 +53,9 @@
 #define CACAO_PASS_HORIZON_PREPARE_GPU 20
 #define CACAO_PASS_HORIZON_MAIN_GPU 21
 #define CACAO_PASS_HORIZON_DENOISE_GPU 22
-/* CACAO's GPU forms where the prepare does not classify (downsampled, or the caller's normals): the
- * tile classes from the caller's depth, the texels and view z the prepare stores, dispatched before
- * the prepare with no barrier between them (docs/tiles.md). */
+/* CACAO's GPU forms with the caller's normals, where no prepare classifies: the tile classes from
+ * the caller's depth, the texels and view z the prepare stores, dispatched before the prepare with
+ * no barrier between them (docs/tiles.md). */
 #define CACAO_PASS_CLASSIFY_GPU 23
 #define CACAO_PASS_COUNT 24
 

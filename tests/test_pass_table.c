@@ -39,12 +39,15 @@ static void test_rows(void) {
          * groups are tiles), or smart apply's listed variant (compact lists its groups, blocks of
          * 2x2 tiles: 4x4 pixels per invocation); a variant's own grid: only variants the row has, a direct one (a list's groups
          * are its entries), a grid rule that exists */
-        CHECK(row->grid != CACAOI_GRID_ROW && row->grid <= CACAOI_GRID_TILES);
+        CHECK(row->grid != CACAOI_GRID_ROW && (row->grid <= CACAOI_GRID_TILES || row->grid == CACAOI_GRID_SLICE_CLASSIFY));
+        /* the slice grid with the classification's groups (z 0 downsampled): the GPU form of the
+         * fused prepare only, whose groups of 2x2 texels cover 2x2 tiles */
+        CHECK((row->grid == CACAOI_GRID_SLICE_CLASSIFY) == (p == CACAO_PASS_PREPARE_GPU));
         for (unsigned v = 0; v < CACAOI_MAX_VARIANTS; ++v) {
             const uint8_t grid = row->grids[v] != CACAOI_GRID_ROW ? row->grids[v] : row->grid;
             CHECK(row->quad[v] <= 4 && (v < row->variants || row->quad[v] == 0));
             if (row->quad[v] > 1)
-                CHECK((grid == CACAOI_GRID_SLICE || grid == CACAOI_GRID_OUTPUT) &&
+                CHECK((grid == CACAOI_GRID_SLICE || grid == CACAOI_GRID_SLICE_CLASSIFY || grid == CACAOI_GRID_OUTPUT) &&
                       (row->lists[v] == CACAO_LIST_NONE ||
                        (p == CACAO_PASS_APPLY && v == CACAO_APPLY_SMART_LIST && row->lists[v] == CACAO_LIST_PREPARE &&
                         row->quad[v] == row->quad[CACAO_OUTPUT_SMART])));
@@ -212,10 +215,9 @@ static void check_config(const cacao_settings *s) {
         CHECK(st->clear == cacaoi_fill_is_clear(steps[i].key.pass, steps[i].key.variant));
         /* a step reading the tile buffer is a list dispatch, classify or compact, a GPU form that
          * skips by the classes itself (it then writes its count there), a GPU form of a prepare
-         * that classifies (then no classify pass runs): the fused prepare native, the horizon
+         * that classifies (then no classify pass runs): the fused prepare, the horizon
          * estimators'; or a GPU form that reads the classes only */
-        const bool prepare_classifies = (st->key[0] == CACAO_PASS_PREPARE_GPU && !st->key[2]) ||
-                                        st->key[0] == CACAO_PASS_HORIZON_PREPARE_GPU;
+        const bool prepare_classifies = st->key[0] == CACAO_PASS_PREPARE_GPU || st->key[0] == CACAO_PASS_HORIZON_PREPARE_GPU;
         if (prepare_classifies)
             CHECK(config.gpu_forms && (st->key[0] == CACAO_PASS_HORIZON_PREPARE_GPU || cacaoi_prepare_classifies(&config)));
         /* classify_gpu: CACAO's GPU forms where the prepare does not classify, first of the

@@ -91,7 +91,8 @@ static bool writes_tiles(const cacao_plan_step *st) {
  * skip by the flags the classification marks, in the shader; no compact, no lists, no fills (a
  * group that is not needed stores the 1 itself), at every quality and blur count. Native with
  * normals from depth, the prepare classifies (it writes the tile buffer) and no classify pass
- * runs; downsampled, and with the caller's normals, classify_gpu does, from the caller's depth,
+ * runs: native the texels it stores, downsampled in groups of its own (the dispatch's z 0, the
+ * prepare's groups z 1); with the caller's normals classify_gpu does, from the caller's depth,
  * first: no barrier separates it from the prepare after it (neither reads what the other writes),
  * and the prepare's barrier also serves its classes. */
 static void test_gpu_forms_skip_in_shader(void) {
@@ -112,11 +113,15 @@ static void test_gpu_forms_skip_in_shader(void) {
                     if (is_classify) { /* the first step, the prepare next without a barrier */
                         CHECK(i == 0 && i + 1 < p.step_count && strncmp(p.steps[i + 1].key_name, "prepare", 7) == 0 &&
                               !p.steps[i + 1].barrier_before);
-                        CHECK(strcmp(st->key_name, form == 1 ? "classify_gpu.downsampled" : "classify_gpu.native") == 0);
-                        CHECK(st->dispatch[0] == p.tiles_x && st->dispatch[1] == p.tiles_y && st->dispatch[2] == 1);
+                        CHECK(form == 2 && strcmp(st->key_name, "classify_gpu.native") == 0);
+                        /* a group per 2x2 tiles */
+                        CHECK(st->dispatch[0] == (p.tiles_x + 1) / 2 && st->dispatch[1] == (p.tiles_y + 1) / 2 &&
+                              st->dispatch[2] == 1);
                     }
                     const bool prepare_classifies = strncmp(st->key_name, "prepare_gpu.", 12) == 0 && writes_tiles(st);
-                    CHECK(!prepare_classifies || form == 0);
+                    CHECK(!prepare_classifies || form != 2);
+                    if (strncmp(st->key_name, "prepare_gpu.", 12) == 0)
+                        CHECK(prepare_classifies && st->dispatch[2] == (form == 1 ? 2u : 1u));
                     classify_pass |= is_classify;
                     classified |= is_classify || prepare_classifies;
                     const bool skips = strncmp(st->key_name, "blur_gpu.", 9) == 0 ||
@@ -130,7 +135,7 @@ static void test_gpu_forms_skip_in_shader(void) {
                     generate |= skips && st->key_name[0] == 'g';
                 }
                 CHECK(classified && generate && p.uses_tiles);
-                CHECK(classify_pass == (form != 0));
+                CHECK(classify_pass == (form == 2));
             }
 }
 

@@ -227,9 +227,8 @@ void prep_rows(ivec2 u, int gj, vec2 inv, ivec2 src_size, float z0, inout vec3 p
  * classify pass's rules), which spares the frame the classify pass's dispatch and barrier (an H200
  * ran CACAO HIGH at 960x540 in 74 instead of 80 microseconds: docs/gpu.md). A group's 8x8
  * invocations of 2x2 texels cover 2x2 tiles; an invocation's quad lies in one of them. The
- * downsampled keys leave it to classify_gpu (tiles.glsl), dispatched before them with no barrier
- * between: with the classification, gfx11 spilled two registers of their unrolled block, however
- * it was placed. */
+ * downsampled keys classify in groups of their own (main): with the classification in the
+ * prepare's code, gfx11 spilled two registers of their unrolled block, however it was placed. */
 #define PREP_CLASSIFIES (CACAO_PASS == CACAO_PASS_PREPARE_GPU && CACAO_DOWNSAMPLED == 0)
 #if PREP_CLASSIFIES
 #if CACAO_TILE != 8 || CACAO_WG_PREPARE_X != 8 || CACAO_WG_PREPARE_Y != 8
@@ -265,9 +264,19 @@ void classify_group()
  * normals from one block of full-res depths. Each texel's normals need a 4x4 block of full-res
  * depths without its corners, whose inner 2x2 are the texel's four slice depths; the quad's blocks
  * overlap in one 6x6 block (without its corners): 32 reads instead of 4 x 12, and the depths
- * come with it (docs/speed-notes.md). No early return: the mips reduction has barriers. */
+ * come with it (docs/speed-notes.md). No early return: the mips reduction has barriers (but the
+ * GPU form's classification groups downsampled, a whole group each). */
 void main()
 {
+#if CACAO_PASS == CACAO_PASS_PREPARE_GPU && CACAO_DOWNSAMPLED == 1
+    /* groups z 0 classify the tiles from the caller's depth (tiles.glsl), groups z 1 prepare: one
+     * dispatch (a pass of its own cost an H200 its dispatch, docs/gpu.md), and the prepare's code
+     * holds no classification (in it, gfx11 spilled) */
+    if (gl_WorkGroupID.z == 0u) {
+        classify_from_depth(ivec2(gl_WorkGroupID.xy));
+        return;
+    }
+#endif
     ivec2 u = ivec2(gl_GlobalInvocationID.xy);
     ivec2 s = slice_size();
     ivec2 src_size = textureSize(src_depth, 0);

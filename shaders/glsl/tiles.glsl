@@ -32,8 +32,7 @@ bool group_of(out ivec2 g)
 /* The passes that classify tiles: classify, the GPU form of the fused prepare, which classifies
  * the texels it stores, native, and the GPU form of the horizon estimators' prepare. */
 #define CACAO_CLASSIFIES (CACAO_PASS == CACAO_PASS_CLASSIFY || CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU || \
-                          (CACAO_PASS == CACAO_PASS_PREPARE_GPU && CACAO_DOWNSAMPLED == 0) || \
-                          CACAO_PASS == CACAO_PASS_CLASSIFY_GPU)
+                          CACAO_PASS == CACAO_PASS_PREPARE_GPU || CACAO_PASS == CACAO_PASS_CLASSIFY_GPU)
 /* The classes of the horizon estimators' pixels, from the caller's depth */
 #define CACAO_CLASSIFIES_DEPTH ((CACAO_PASS == CACAO_PASS_CLASSIFY && CACAO_VARIANT == CACAO_CLASSIFY_HORIZON) || \
                                 CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU)
@@ -401,26 +400,29 @@ void main()
 #endif
 #endif /* CLASSIFY */
 
-/* ---- classify_gpu ---- */
-#if CACAO_PASS == CACAO_PASS_CLASSIFY_GPU
-/* CACAO's GPU forms where the prepare does not classify (downsampled, or the caller's normals): a
- * workgroup per tile, an invocation per slice texel. Each texel's view z is the one the prepare
- * computes from the caller's depth (the same pixel, clamp and view_z; LOWEST's integer loads give
- * raw 0 past the image); its flags are those of that z less 2^-10 of it and 1% (quiet_floor), a
- * superset of the flags of the R16F value the prepare stores, whichever way the store rounds and
- * by however many ulps two passes' view_z differ: a tile may be called active that classify would
- * call quiet (a texel within 2^-10 of a threshold), never the other way. It reads nothing the
- * prepare writes, so it runs before the prepare with no barrier between them. */
-layout(local_size_x = CACAO_TILE, local_size_y = CACAO_TILE) in;
-
-void main()
+/* ---- classify_gpu, and prepare_gpu's classification groups downsampled ---- */
+#if CACAO_PASS == CACAO_PASS_CLASSIFY_GPU || (CACAO_PASS == CACAO_PASS_PREPARE_GPU && CACAO_DOWNSAMPLED == 1)
+#if CACAO_TILE != 8 || CACAO_WG_CLASSIFY != 8 || CACAO_WG_PREPARE_X != 8 || CACAO_WG_PREPARE_Y != 8
+#error "classify_from_depth classifies the 2x2 tiles of an 8x8 group of 2x2 texels: rewrite it for other sizes"
+#endif
+/* The GPU forms where the prepare's own texels are not classified (downsampled: extra groups of
+ * prepare_gpu's dispatch; the caller's normals: classify_gpu): the tile classes from the caller's
+ * depth, an invocation per 2x2 slice texels, a workgroup per 2x2 tiles. Each texel's view z is the
+ * one the prepare computes from the caller's depth (the same pixel, clamp and view_z; LOWEST's
+ * integer loads give raw 0 past the image); its flags are those of quiet_floor of it, a superset
+ * of the flags of the R16F value the prepare stores: a tile may be called active that classify
+ * would call quiet (a texel within 2^-10 of a threshold), never the other way. It reads nothing
+ * the prepare writes. Every invocation of the group calls it (barriers). */
+void classify_from_depth(ivec2 group)
 {
-    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 u = group * 8 + ivec2(gl_LocalInvocationID.xy); /* the quad of slice texels 2u .. 2u + 1 */
+    ivec2 s = slice_size(), src_size = textureSize(src_depth, 0);
+    int step = CB.slice_count == 2 ? 3 : 1; /* LOWEST keeps slices 0 and 3 */
     uint flags = 0u;
-    if (in_rect(t, slice_size())) {
-        ivec2 src_size = textureSize(src_depth, 0);
-        int step = CB.slice_count == 2 ? 3 : 1; /* LOWEST keeps slices 0 and 3 */
-        /* unrolled: a GPU compiler then knows the trip count (ACO weighs a loop it cannot count as 8) */
+    /* unrolled: a GPU compiler then knows the trip counts (ACO weighs a loop it cannot count as 8) */
+    [[unroll]] for (int q = 0; q < 4; ++q) {
+        ivec2 t = quad_texel(u, q);
+        if (!in_rect(t, s)) continue;
         [[unroll]] for (int layer = 0; layer < 4; ++layer) {
             if (layer >= CB.slice_count) break;
             ivec2 p = full_res_pixel(t, layer * step);
@@ -428,10 +430,15 @@ void main()
             flags |= slice_z_flags(quiet_floor(z));
         }
     }
-    classify_group_begin(1);
-    classify_group_flag(1, ivec2(0), flags);
-    classify_group_end(ivec2(gl_WorkGroupID.xy), 1);
+    classify_group_begin(2);
+    classify_group_flag(2, ivec2(gl_LocalInvocationID.xy) / 4, flags);
+    classify_group_end(2 * group, 2);
 }
+#endif
+
+#if CACAO_PASS == CACAO_PASS_CLASSIFY_GPU
+layout(local_size_x = CACAO_WG_CLASSIFY, local_size_y = CACAO_WG_CLASSIFY) in;
+void main() { classify_from_depth(ivec2(gl_WorkGroupID.xy)); }
 #endif
 
 /* ---- compact ---- */
