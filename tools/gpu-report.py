@@ -55,7 +55,9 @@ ISSUE_31 = {'lowest_native': 0.78, 'low_native': 0.60, 'medium_native': 0.50, 'h
 # 'classify_fused'/'classify_nofuse' a run of commit f745aa5 against a build of it whose native
 # prepare did not classify (classify_gpu before it instead: tried, not kept); 'classify_quad'/
 # 'classify_quad_before' a build of classify_gpu with 2x2 texels per invocation against f745aa5's
-# (downsampled configurations only: tried, not kept); 'prev_final' an earlier session's final run, and in that run
+# (downsampled configurations only: tried, not kept); 'classify_groups'/'classify_groups_before'
+# the downsampled prepare classifying in groups of its own against classify_gpu before it
+# (downsampled configurations only); 'prev_final' an earlier session's final run, and in that run
 # 'before' its previous main and 'lists' the GPU forms with tile lists (an older main), 'diag' a
 # diagnostic build (generate's taps all from
 # level 0: wrong output, a timing only); 'upsample'/'upsample_before' and 'counting'/
@@ -67,7 +69,8 @@ MEASURED = {'final': 'h200-mipchain.json', 'chain_before': 'h200-mipchain-before
             'prev_final': 'h200-final.json', 'before': 'h200-before.json',
             'classify_gpu': 'h200-classify-gpu.json', 'classify_gpu_before': 'h200-classify-gpu-before.json',
             'classify_fused': 'h200-classify-fused.json', 'classify_nofuse': 'h200-classify-nofuse.json',
-            'classify_quad': 'h200-classify-quad.json', 'classify_quad_before': 'h200-classify-quad-before.json', 'lists': 'h200-lists.json',
+            'classify_quad': 'h200-classify-quad.json', 'classify_quad_before': 'h200-classify-quad-before.json',
+            'classify_groups': 'h200-classify-groups.json', 'classify_groups_before': 'h200-classify-groups-before.json', 'lists': 'h200-lists.json',
             'diag': 'h200-diag-level0.json', 'horizon': 'h200-horizon.json',
             'upsample': 'h200-run-upsample.json', 'upsample_before': 'h200-run-upsample-before.json',
             'counting': 'h200-run-counting.json', 'counting_before': 'h200-run-counting-before.json',
@@ -78,7 +81,8 @@ MEASURED = {'final': 'h200-mipchain.json', 'chain_before': 'h200-mipchain-before
             'horizon_direct': 'h200-horizon-direct.json', 'horizon_direct_before': 'h200-horizon-direct-before.json'}
 # The commit each role's build was (said with the tables: a run measures its code).
 MEASURED_COMMITS = {'final': '77d676c', 'chain_before': 'c51cb89', 'prev_final': '349c7a2',
-                    'classify_gpu': 'f745aa5', 'classify_gpu_before': '77b5614', 'before': 'abd0c77', 'lists': '0c7a571', 'horizon': '1065bc3',
+                    'classify_gpu': 'f745aa5', 'classify_gpu_before': '77b5614',
+                    'classify_groups': 'fb04f36', 'classify_groups_before': '6f4ae34', 'before': 'abd0c77', 'lists': '0c7a571', 'horizon': '1065bc3',
                     'tf_before': '6588704', 'tf_final': '8ba0da9', 'fused': '35f1533', 'fused_before': '16e6be8',
                     'horizon_direct': 'd643d71', 'horizon_direct_before': '16e6be8',
                     'horizon_direct_since': '269c67e'}
@@ -416,13 +420,13 @@ fp32 (`test_shader_forms`), in shapes that cost a GPU compiler less.
   the doubling above counts them twice. On the H200 the tiles stage went from 16.8-36.7 to
   10.5-14.7 microseconds (section "Measured on a real GPU"). Since then classify's marks do not
   count (generate and the blur count the groups they run): 0.94 -> 0.91 Mcycles for classify here.
-- The tile classes: native with normals from depth, the prepare (`prepare_gpu`) classifies the
-  texels it stores; elsewhere (downsampled, the caller's normals) `classify_gpu` classifies from
-  the caller's depth, first in the frame, with no barrier before the prepare (the CPU forms'
-  classify pass reads the stored depths after the prepare, behind a barrier). On navi21 the
-  estimate of the classification at HIGH downsampled went from 0.28 to 0.31 Mcycles (commits
-  77b5614 and f745aa5); the barrier it saves is not in the estimate. The H200 timed it (section
-  "The classes from the caller's depth, measured").
+- The tile classes: with normals from depth the prepare (`prepare_gpu`) classifies, native the
+  texels it stores, downsampled in groups of its own (its dispatch's z 0) from the caller's
+  depth; with the caller's normals `classify_gpu` classifies from the caller's depth, first in the
+  frame, with no barrier before the prepare (the CPU forms' classify pass reads the stored depths
+  after the prepare, behind a barrier). The estimate does not see the dispatch and the barrier
+  they save; the H200 timed both (sections "The classification in the prepare's own groups" and
+  "The classes from the caller's depth").
 
 ## Against issue 31's measurement
 
@@ -548,9 +552,17 @@ def stage_of(parts, scene, cfg, stage):
     return r['cacao']['stages'].get(stage) if r else None
 
 
-def scene_rows(cell):
-    """One table row per configuration of AMD_CONFIGS: cell(scene, config) per scene of SCENES."""
-    return ['| %s | %s |' % (cfg, ' | '.join(cell(sc, cfg) for sc in SCENES)) for cfg in AMD_CONFIGS]
+def scene_rows(cell, cfgs=AMD_CONFIGS):
+    """One table row per configuration of cfgs: cell(scene, config) per scene of SCENES."""
+    return ['| %s | %s |' % (cfg, ' | '.join(cell(sc, cfg) for sc in SCENES)) for cfg in cfgs]
+
+
+def ratio_rows(before, after, cfgs=AMD_CONFIGS):
+    """Table of cacao/AMD 'before / after' of two runs' cacao parts, per configuration and scene."""
+    def cell(sc, cfg):
+        b, a = results_of(before, 'cacao', sc).get(cfg), results_of(after, 'cacao', sc).get(cfg)
+        return '%.2f / %.2f' % (b['ratio'], a['ratio']) if b and a else '-'
+    return ['| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)] + scene_rows(cell, cfgs)
 
 
 def us_range(values):
@@ -587,12 +599,8 @@ def fused_section(fused, before):
            'again before or after the block). cacao/AMD, before / after, interleaved with AMD in one run of both '
            'builds (`%s`, `%s`; the same procedure as above; since then `classify_gpu` classifies there, below):' % (
                us_range([stage_of(before, sc, c, 'other') for sc in SCENES for c in AMD_CONFIGS if c.endswith('native')]),
-               MEASURED['fused_before'], MEASURED['fused']),
-           '', '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
-    def cell(sc, cfg):
-        b, f = results_of(before, 'cacao', sc).get(cfg), results_of(fused, 'cacao', sc).get(cfg)
-        return '%.2f / %.2f' % (b['ratio'], f['ratio']) if b and f else '-'
-    out += scene_rows(cell)
+               MEASURED['fused_before'], MEASURED['fused']), '']
+    out += ratio_rows(before, fused)
     native = [c for c in AMD_CONFIGS if c.endswith('native')]
     pairs = [(results_of(before, 'cacao', sc).get(c), results_of(fused, 'cacao', sc).get(c)) for sc in SCENES for c in native]
     saved = [1000.0 * (b['cacao']['total_ms'] - f['cacao']['total_ms']) for b, f in pairs if b and f]
@@ -685,12 +693,8 @@ def chain_section(fin, before):
            'computed the atlas\'s level, extent and texel and used `texelFetch` (Q2) or `imageLoad` (Q3)); '
            'generate\'s obscurance with two max0 fewer; the blur\'s branch-free mirror; the upsample without a '
            'select per weight ("The GPU forms" above).' % (C['chain_before'], C['final'], MEASURED['chain_before'],
-                                                           MEASURED['final']), '',
-           '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
-    def cell(sc, cfg):
-        b, f = results_of(before, 'cacao', sc).get(cfg), results_of(fin, 'cacao', sc).get(cfg)
-        return '%.2f / %.2f' % (b['ratio'], f['ratio']) if b and f else '-'
-    out += scene_rows(cell)
+                                                           MEASURED['final']), '']
+    out += ratio_rows(before, fin)
     pairs = [(cfg, results_of(before, 'cacao', sc).get(cfg), results_of(fin, 'cacao', sc).get(cfg))
              for sc in SCENES for cfg in AMD_CONFIGS]
     pairs = [(cfg, b, f) for cfg, b, f in pairs if b and f]
@@ -735,6 +739,34 @@ def chain_section(fin, before):
     return out
 
 
+def classify_groups_section(after, before):
+    """The downsampled prepare classifying in groups of its own, against classify_gpu before it."""
+    down = [c for c in AMD_CONFIGS if c.endswith('downsampled')]
+    pairs = result_pairs(before, after, down)
+    saved = [1000.0 * (b['cacao']['total_ms'] - a['cacao']['total_ms']) for b, a in pairs]
+    out = ['', '### The classification in the prepare\'s own groups, downsampled, measured (commit %s against %s)' % (
+               C['classify_groups'], C['classify_groups_before']), '',
+           'Downsampled with normals from depth, `prepare_gpu`\'s dispatch has twice the groups: those at z 0 '
+           'compute the tile classes from the caller\'s depth (the function `classify_gpu` runs, 2x2 slice texels '
+           'an invocation, a group per 2x2 tiles: the same footprint as a prepare group), those at z 1 prepare. One '
+           'dispatch instead of two (`classify_gpu`, then the prepare, with no barrier between), and the '
+           'prepare\'s code holds no classification (in it, gfx11 spilled two registers). The two builds, each '
+           'interleaved with AMD, scene by scene, the downsampled configurations (`%s`, `%s`). cacao/AMD, before / '
+           'after:' % (MEASURED['classify_groups_before'], MEASURED['classify_groups']), '']
+    out += ratio_rows(before, after, down)
+    if saved:
+        out += ['', 'The frames are %.1f-%.1f microseconds shorter; the prepare step, its classification groups '
+                'included, takes %s microseconds where `classify_gpu` and the prepare took %s and %s: the second '
+                'dispatch was what cost. Since then cacao takes %.2f-%.2f of AMD\'s time downsampled on this GPU '
+                '(this run).' % (
+                    min(saved), max(saved),
+                    us_range([a['cacao']['stages'].get('prepare') for b, a in pairs]),
+                    us_range([b['cacao_steps'].get('classify_gpu.downsampled') for b, a in pairs]),
+                    us_range([b['cacao']['stages'].get('prepare') for b, a in pairs]),
+                    min(a['ratio'] for b, a in pairs), max(a['ratio'] for b, a in pairs))]
+    return out
+
+
 def classify_gpu_section(after, before):
     """The classes from the caller's depth (classify_gpu) against the classify pass after the prepare."""
     out = ['', '### The classes from the caller\'s depth, measured (commit %s against %s)' % (
@@ -744,12 +776,8 @@ def classify_gpu_section(after, before):
            'barrier between them, in place of the classify pass over the stored depths after the prepare (a '
            'barrier, a dispatch, a barrier; docs/tiles.md). A later run than the final one, of both builds, each '
            'interleaved with AMD, scene by scene (`%s`, `%s`; the cacao part only). cacao/AMD, before / after:' % (
-               MEASURED['classify_gpu_before'], MEASURED['classify_gpu']), '',
-           '| configuration | ' + ' | '.join(SCENES) + ' |', '|---|' + '---:|' * len(SCENES)]
-    def cell(sc, cfg):
-        b, f = results_of(before, 'cacao', sc).get(cfg), results_of(after, 'cacao', sc).get(cfg)
-        return '%.2f / %.2f' % (b['ratio'], f['ratio']) if b and f else '-'
-    out += scene_rows(cell)
+               MEASURED['classify_gpu_before'], MEASURED['classify_gpu']), '']
+    out += ratio_rows(before, after)
     saved = {}
     for sc in SCENES:
         for cfg in AMD_CONFIGS:
@@ -845,6 +873,8 @@ def measured_section(runs, results):
     # the changes measured in the final run
     if 'chain_before' in runs:
         out += chain_section(fin, runs['chain_before'])
+    if 'classify_groups' in runs and 'classify_groups_before' in runs:
+        out += classify_groups_section(runs['classify_groups'], runs['classify_groups_before'])
     if 'classify_gpu' in runs and 'classify_gpu_before' in runs:
         out += classify_gpu_section(runs['classify_gpu'], runs['classify_gpu_before'])
     # an earlier session's final run and its changes
