@@ -102,6 +102,7 @@ if 'final' in runs:
                     '### The depth mip chain and the changes with it, measured in the same run',
                     '### Earlier changes, measured in an earlier run', '### Tried and not kept',
                     '### The classes from the caller\'s depth, measured',
+                    '### The classification in the prepare\'s own groups, downsampled, measured',
                     '### The shader forms on this GPU',
                     '### The horizon-slice estimators', '### What the driver reports'):
         check(heading in text, 'report lacks %r' % heading)
