@@ -319,7 +319,11 @@ branch the same way on their group's needed flag (docs/tiles.md): doubled too, w
 doubles what the branch does not cover (the blur's stores, after it), an overestimate. Estimates made before this correction (this report's
 earlier versions, issue 31's table) counted cacao's generate and blur at half their weight. The
 per-permutation tables below print ACO's figure as it reports it. The tile fill and clear steps
-are left out (the fill dispatches nothing with every tile active; a clear runs no shader).
+are left out (the fill dispatches nothing with every tile active; a clear runs no shader). The GPU
+form of the fused prepare downsampled classifies the tiles in groups of its own (its dispatch's z
+0); ACO's figure holds both sides of that workgroup-uniform branch, and the estimate moves the
+classification's share, weighed as `classify_gpu.downsampled` (the same function) over the same
+groups, to the classify/compact stage, where it was while it had a dispatch of its own.
 
 AMD's steps per configuration follow AMD's own code (`FFX_CACAO_VkDraw` in `ffx_cacao_impl.cpp`,
 `FFX_CACAO_UpdateBufferSizeInfo` in `ffx_cacao.cpp`, `ffx_cacao_defines.h`, the numthreads of

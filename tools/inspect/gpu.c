@@ -393,6 +393,7 @@ static void sum_stages(gpu_estimate *e) {
 static bool estimate_cacao(const gpu_session *s, gpu_config_cost *cc) {
     gpu_estimate *e = &cc->cacao;
     e->step_count = cc->plan.step_count;
+    uint32_t extra = 0; /* the classification groups of a downsampled prepare_gpu: a step of their own */
     for (uint32_t i = 0; i < cc->plan.step_count; ++i) {
         const cacao_plan_step *step = &cc->plan.steps[i];
         gpu_step_estimate *st = &e->steps[i];
@@ -435,7 +436,31 @@ static bool estimate_cacao(const gpu_session *s, gpu_config_cost *cc) {
         if (stage == GPU_STAGE_HORIZON_MAIN && st->inverse_throughput > 0)
             st->inverse_throughput *= (double)(cc->plan.settings.horizon_slices * cc->plan.settings.horizon_steps) / 32.0;
         st->cycles = gpu_step_cost(st->groups, 1, st->threads, st->inverse_throughput);
+        /* The GPU form of the fused prepare downsampled classifies the tiles in groups of its own
+         * (its dispatch's z 0: classify_from_depth, the function classify_gpu runs). ACO weighs
+         * the shader's two workgroup-uniform sides, so the step's figure holds both; the
+         * classification's share is weighed as classify_gpu.downsampled's pipeline over the same
+         * groups and counted in the classify stage, where the classification was before it shared
+         * the prepare's dispatch (and where AMD has nothing). */
+        const cacao_key cls_key = {CACAO_PASS_CLASSIFY_GPU, 0, 1, 0, 0};
+        const cacao_permutation *cls = cacaoi_table_find(table, &cls_key);
+        const uint32_t c = cls ? (uint32_t)(cls - table->permutations) : UINT32_MAX;
+        if (step->key[0] == CACAO_PASS_PREPARE_GPU && step->key[2] && step->dispatch[2] == 2 && c != UINT32_MAX &&
+            s->measured[c].done && st->cycles >= 0 && e->step_count + extra < sizeof e->steps / sizeof e->steps[0]) {
+            const uint32_t *cwg = cls->workgroup_size;
+            gpu_step_estimate *x = &e->steps[cc->plan.step_count + extra++];
+            *x = (gpu_step_estimate){.name = "classify_gpu.downsampled (prepare_gpu's groups z 0)",
+                                     .stage = GPU_STAGE_CLASSIFY,
+                                     .groups = {step->dispatch[0], step->dispatch[1], 1},
+                                     .dispatches = 1,
+                                     .threads = cwg[0] * cwg[1] * cwg[2],
+                                     .inverse_throughput = s->measured[c].stats.value[GPU_STAT_INVERSE_THROUGHPUT]};
+            x->cycles = gpu_step_cost(x->groups, 1, x->threads, x->inverse_throughput);
+            if (x->cycles > st->cycles) x->cycles = st->cycles;
+            st->cycles -= x->cycles;
+        }
     }
+    e->step_count += extra;
     sum_stages(e);
     return true;
 }
@@ -708,8 +733,14 @@ static int spill_check(const gpu_session *s) {
 
 /* Measures what the options ask, then estimates and reports the configurations. */
 static int run(gpu_session *s, const sweep_config *configs, uint32_t config_count, const amd_pipelines *amd) {
-    for (uint32_t i = 0; i < config_count; ++i)
+    for (uint32_t i = 0; i < config_count; ++i) {
         if (!measure_config(s, &configs[i], s->options->normals_from_depth, true)) return 1;
+        /* classify_gpu.downsampled, which weighs a downsampled prepare_gpu's classification groups
+         * (estimate_cacao): the configuration with the caller's normals dispatches it */
+        sweep_config given = configs[i];
+        given.reconstruct_normals = false;
+        if (s->forms == CACAO_SHADER_FORMS_GPU && !measure_config(s, &given, false, false)) return 1;
+    }
     if (s->options->all) { /* the full sweep, with normals from an input and (where it differs) from depth */
         static sweep_config sweep[SWEEP_FULL_SIZE];
         const uint32_t n = sweep_full(sweep);
