@@ -72,8 +72,11 @@ static void dispatch_size(const cacao_plan *p, const cacao_key *key, uint32_t ou
     const uint32_t wx = quad * row->workgroup[0], wy = quad * row->workgroup[1];
     out[2] = 1;
     switch (row->grids[key->variant] != CACAOI_GRID_ROW ? row->grids[key->variant] : row->grid) {
+    case CACAOI_GRID_SLICE_CLASSIFY: out[2] = key->downsampled ? 2u : 1u; /* z 0: the classification's groups */
+        out[0] = div_up(p->slice_width, wx);
+        out[1] = div_up(p->slice_height, wy);
+        return;
     case CACAOI_GRID_SLICE_LAYERS: out[2] = p->slice_count; /* fall through */
-    case CACAOI_GRID_SLICE_CLASSIFY: out[2] = key->downsampled ? 2u : out[2]; /* fall through */
     case CACAOI_GRID_SLICE:
         out[0] = div_up(p->slice_width, wx);
         out[1] = div_up(p->slice_height, wy);

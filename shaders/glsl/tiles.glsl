@@ -29,8 +29,9 @@ bool group_of(out ivec2 g)
 #endif
 }
 
-/* The passes that classify tiles: classify, the GPU form of the fused prepare, which classifies
- * the texels it stores, native, and the GPU form of the horizon estimators' prepare. */
+/* The passes that classify tiles: classify, the GPU form of the fused prepare (native the texels
+ * it stores, downsampled in groups of its own), classify_gpu, and the GPU form of the horizon
+ * estimators' prepare. */
 #define CACAO_CLASSIFIES (CACAO_PASS == CACAO_PASS_CLASSIFY || CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU || \
                           CACAO_PASS == CACAO_PASS_PREPARE_GPU || CACAO_PASS == CACAO_PASS_CLASSIFY_GPU)
 /* The classes of the horizon estimators' pixels, from the caller's depth */
