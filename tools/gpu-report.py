@@ -743,21 +743,26 @@ def chain_section(fin, before):
     return out
 
 
+def ab_head(title, role, before_role, text, before, after, cfgs=AMD_CONFIGS):
+    """A before/after section's heading, its text (%s, %s: the runs' files) and its cacao/AMD table."""
+    return (['', '### %s (commit %s against %s)' % (title, C[role], C[before_role]), '',
+             text % (MEASURED[before_role], MEASURED[role]), ''] + ratio_rows(before, after, cfgs))
+
+
 def classify_groups_section(after, before):
     """The downsampled prepare classifying in groups of its own, against classify_gpu before it."""
     down = [c for c in AMD_CONFIGS if c.endswith('downsampled')]
     pairs = result_pairs(before, after, down)
     saved = [1000.0 * (b['cacao']['total_ms'] - a['cacao']['total_ms']) for b, a in pairs]
-    out = ['', '### The classification in the prepare\'s own groups, downsampled, measured (commit %s against %s)' % (
-               C['classify_groups'], C['classify_groups_before']), '',
-           'Downsampled with normals from depth, `prepare_gpu`\'s dispatch has twice the groups: those at z 0 '
-           'compute the tile classes from the caller\'s depth (the function `classify_gpu` runs, 2x2 slice texels '
-           'an invocation, a group per 2x2 tiles: the same footprint as a prepare group), those at z 1 prepare. One '
-           'dispatch instead of two (`classify_gpu`, then the prepare, with no barrier between), and the '
-           'prepare\'s code holds no classification (in it, gfx11 spilled two registers). The two builds, each '
-           'interleaved with AMD, scene by scene, the downsampled configurations (`%s`, `%s`). cacao/AMD, before / '
-           'after:' % (MEASURED['classify_groups_before'], MEASURED['classify_groups']), '']
-    out += ratio_rows(before, after, down)
+    out = ab_head('The classification in the prepare\'s own groups, downsampled, measured', 'classify_groups',
+                  'classify_groups_before',
+                  'Downsampled with normals from depth, `prepare_gpu`\'s dispatch has twice the groups: those at z 0 '
+                  'compute the tile classes from the caller\'s depth (the function `classify_gpu` runs, 2x2 slice texels '
+                  'an invocation, a group per 2x2 tiles: the same footprint as a prepare group), those at z 1 prepare. One '
+                  'dispatch instead of two (`classify_gpu`, then the prepare, with no barrier between), and the '
+                  'prepare\'s code holds no classification (in it, gfx11 spilled two registers). The two builds, each '
+                  'interleaved with AMD, scene by scene, the downsampled configurations (`%s`, `%s`). cacao/AMD, before / '
+                  'after:', before, after, down)
     if saved:
         out += ['', 'The frames are %.1f-%.1f microseconds shorter; the prepare step, its classification groups '
                 'included, takes %s microseconds where `classify_gpu` and the prepare took %s and %s: the second '
@@ -773,15 +778,13 @@ def classify_groups_section(after, before):
 
 def classify_gpu_section(after, before):
     """The classes from the caller's depth (classify_gpu) against the classify pass after the prepare."""
-    out = ['', '### The classes from the caller\'s depth, measured (commit %s against %s)' % (
-               C['classify_gpu'], C['classify_gpu_before']), '',
-           'Where the GPU forms\' prepare does not classify (downsampled, and with the caller\'s normals), '
-           '`classify_gpu` computes the tile classes from the caller\'s depth, before the prepare and with no '
-           'barrier between them, in place of the classify pass over the stored depths after the prepare (a '
-           'barrier, a dispatch, a barrier; docs/tiles.md). A later run than the final one, of both builds, each '
-           'interleaved with AMD, scene by scene (`%s`, `%s`; the cacao part only). cacao/AMD, before / after:' % (
-               MEASURED['classify_gpu_before'], MEASURED['classify_gpu']), '']
-    out += ratio_rows(before, after)
+    out = ab_head('The classes from the caller\'s depth, measured', 'classify_gpu', 'classify_gpu_before',
+                  'Where the GPU forms\' prepare does not classify (downsampled, and with the caller\'s normals), '
+                  '`classify_gpu` computes the tile classes from the caller\'s depth, before the prepare and with no '
+                  'barrier between them, in place of the classify pass over the stored depths after the prepare (a '
+                  'barrier, a dispatch, a barrier; docs/tiles.md). A later run than the final one, of both builds, each '
+                  'interleaved with AMD, scene by scene (`%s`, `%s`; the cacao part only). cacao/AMD, before / after:',
+                  before, after)
     saved = {}
     for sc in SCENES:
         for cfg in AMD_CONFIGS:
