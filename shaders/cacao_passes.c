@@ -111,9 +111,9 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
       * blocks of 2x2 tiles after a clear of the map, the GPU form over every tile, reading the  \
       * classes */                                                                                \
      .lists = {list, list, list, list, base_list}, .grids = {[CACAO_GENERATE_Q3_BASE] = base_grid}}
-/* The fused prepare (normals from depth) and its GPU form's row; the GPU form's native keys also
- * classify the tiles (tiles_variants: ALL; the CPU form, and the GPU form downsampled, run the
- * classify pass). */
+/* The fused prepare (normals from depth) and its GPU form's row; the GPU form also classifies the
+ * tiles (tiles_variants: ALL; native the texels it stores, downsampled in groups of its own, the
+ * grid rule CACAOI_GRID_SLICE_CLASSIFY; the CPU form runs the classify pass after it). */
 #define PREPARE_ROW(name, tiles_variants, grid, mips_binding, count)                              \
     {name, {"half", "full", "mips"}, 3, true, false, false, WG(PREPARE), grid, count,      \
      {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), W(DEPTHS_IMAGE, DEPTHS, V(CACAO_DEPTHS_HALF) | V(CACAO_DEPTHS_FULL)), \

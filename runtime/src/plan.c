@@ -71,15 +71,15 @@ static void dispatch_size(const cacao_plan *p, const cacao_key *key, uint32_t ou
     const uint32_t quad = row->quad[key->variant] ? row->quad[key->variant] : 1u; /* texels per invocation, x and y */
     const uint32_t wx = quad * row->workgroup[0], wy = quad * row->workgroup[1];
     out[2] = 1;
-    switch (row->grids[key->variant] != CACAOI_GRID_ROW ? row->grids[key->variant] : row->grid) {
-    case CACAOI_GRID_SLICE_CLASSIFY: out[2] = key->downsampled ? 2u : 1u; /* z 0: the classification's groups */
-        out[0] = div_up(p->slice_width, wx);
-        out[1] = div_up(p->slice_height, wy);
-        return;
-    case CACAOI_GRID_SLICE_LAYERS: out[2] = p->slice_count; /* fall through */
+    const uint8_t grid = row->grids[key->variant] != CACAOI_GRID_ROW ? row->grids[key->variant] : row->grid;
+    switch (grid) {
+    case CACAOI_GRID_SLICE_LAYERS:
+    case CACAOI_GRID_SLICE_CLASSIFY:
     case CACAOI_GRID_SLICE:
         out[0] = div_up(p->slice_width, wx);
         out[1] = div_up(p->slice_height, wy);
+        if (grid == CACAOI_GRID_SLICE_LAYERS) out[2] = p->slice_count;
+        if (grid == CACAOI_GRID_SLICE_CLASSIFY && key->downsampled) out[2] = 2; /* z 0: the classification's groups */
         return;
     case CACAOI_GRID_IMPORTANCE:
         out[0] = div_up(p->importance_width, wx);

@@ -343,7 +343,7 @@ static bool measure_config(gpu_session *s, const sweep_config *c, bool normals_f
         if (!pipeline || !read_statistics(s, pipeline, &m->stats))
             return complain("%s: no statistics for %s on '%s'", c->name, plan.steps[i].key_name, s->dev.device_name);
         m->done = true;
-        snprintf(m->config, sizeof m->config, "%s", c->name);
+        snprintf(m->config, sizeof m->config, "%.*s", (int)sizeof m->config - 1, c->name); /* names fit: sweep.h */
     }
     return true;
 }
@@ -737,9 +737,13 @@ static int run(gpu_session *s, const sweep_config *configs, uint32_t config_coun
         if (!measure_config(s, &configs[i], s->options->normals_from_depth, true)) return 1;
         /* classify_gpu.downsampled, which weighs a downsampled prepare_gpu's classification groups
          * (estimate_cacao): the configuration with the caller's normals dispatches it */
+        bool fell_back;
+        const cacao_settings set = config_settings(s, &configs[i], s->options->normals_from_depth, &fell_back);
         sweep_config given = configs[i];
         given.reconstruct_normals = false;
-        if (s->forms == CACAO_SHADER_FORMS_GPU && !measure_config(s, &given, false, false)) return 1;
+        if (s->forms == CACAO_SHADER_FORMS_GPU && set.estimator == CACAO_ESTIMATOR_CACAO && set.downsample &&
+            set.generate_normals && !measure_config(s, &given, false, false))
+            return 1;
     }
     if (s->options->all) { /* the full sweep, with normals from an input and (where it differs) from depth */
         static sweep_config sweep[SWEEP_FULL_SIZE];
