@@ -3,6 +3,8 @@
  *  - the synthetic crease of shared/spec/estimators.md section 9.3: per-row means of the spec's
  *    double-precision prototype (raw output, columns 400-559) and the closed-form visibility of a
  *    floor point at distance c R from a wall (V_fall, V_bin, section 9.1);
+ *  - past the image's edge a plane goes on: a crop whose border lies on one gives the whole
+ *    frame's visibility;
  *  - unoccluded planes give 1 (the normalisation by the unoccluded slice weight, section 9.2),
  *    through a perspective and an orthographic camera;
  *  - the bottom of a V-groove of opening alpha sees sin(alpha / 2) (edge formula, section 9.1);
@@ -173,6 +175,63 @@ static void test_crease(vkdev *dev) {
     }
     free(ao);
     scene_buffers_free(&b);
+}
+
+/* Samples past the image's edge: the surface is taken to go on as the tangent plane of the last
+ * pixel on the slice's line (horizon.glsl, side_plane). Exact where the surface there is one plane
+ * that goes on: a far wall seen through a square hole in a nearer one (1 unit in front of it,
+ * facing the camera), in a 960x540 frame and in a 64x156 crop of its middle (the same pixel
+ * centres and, at offsets that are multiples of 64, the same noise) whose border lies on the
+ * nearer wall. With the radius 2, samples reach 117 pixels from the far wall and 133 from the
+ * nearer one: the crop's leave it and meet the nearer wall past its edge, the frame's stay in it.
+ * The crop must give the frame's visibility. The spec's prototype's rule (a side stops at its
+ * first sample past the edge) differed by up to 0.45 (GTAO) and 0.34 (bitmask) in a pixel here.
+ * This rule: 0 (lavapipe); bound 0.01 per pixel, for a driver whose rounding of the plane's
+ * intersection differs from its read of a stored view z. */
+static void test_past_edge(vkdev *dev) {
+    enum { CROP_W = 64, CROP_H = 156, CROP_X0 = (960 - CROP_W) / 2, CROP_Y0 = (540 - CROP_H) / 2 };
+    static const cacao_prim prims[] = {
+        {.kind = CACAO_PRIM_PLANE, .a = {0, 0, -8}, .b = {0, 0, 1}}, /* the far wall */
+        /* the nearer wall, its front at z = -7, around the hole x in [-0.4, 0.4], y in [1.2, 2] */
+        {.kind = CACAO_PRIM_BOX, .a = {-100, -100, -7.3}, .b = {-0.4, 100, -7}},
+        {.kind = CACAO_PRIM_BOX, .a = {0.4, -100, -7.3}, .b = {100, 100, -7}},
+        {.kind = CACAO_PRIM_BOX, .a = {-0.4, 2.0, -7.3}, .b = {0.4, 100, -7}},
+        {.kind = CACAO_PRIM_BOX, .a = {-0.4, -100, -7.3}, .b = {0.4, 1.2, -7}},
+    };
+    cacao_scene frame = crease_scene(5, prims);
+    frame.camera.width = 960;
+    frame.camera.height = 540;
+    frame.ao_radius_world = 2.0;
+    cacao_scene crop = frame;
+    crop.camera.width = CROP_W;
+    crop.camera.height = CROP_H;
+    crop.camera.fov_y_deg = 2.0 * atan(tan(pi / 6) * CROP_H / 540.0) * 180.0 / pi;
+    scene_buffers bf, bc;
+    scene_buffers_render(&frame, &bf);
+    scene_buffers_render(&crop, &bc);
+    float *af = malloc(sizeof(float) * 960 * 540), *ac = malloc(sizeof(float) * CROP_W * CROP_H);
+    static const cacao_estimator estimators[] = {CACAO_ESTIMATOR_GTAO, CACAO_ESTIMATOR_BITMASK};
+    for (int e = 0; e < 2; ++e) {
+        const cacao_settings s = slice_settings(estimators[e], CACAO_VISIBILITY_FALLOFF, 4, 8, 2.0f);
+        vkdev_frame ff = scene_frame(&bf, false, true), fc = scene_frame(&bc, false, true);
+        if (!run(dev, &s, &ff, af) || !run(dev, &s, &fc, ac)) continue;
+        double worst = 0, occlusion = 0;
+        for (uint32_t y = 0; y < CROP_H; ++y)
+            for (uint32_t x = 0; x < CROP_W; ++x) {
+                const float c = ac[(size_t)y * CROP_W + x], f = af[(size_t)(y + CROP_Y0) * 960 + x + CROP_X0];
+                worst = fmax(worst, fabs(c - f));
+                occlusion = fmax(occlusion, 1.0 - f);
+            }
+        printf("past the edge, %s 4x8: the 64x156 crop against the frame, worst pixel difference %.5f "
+               "(the frame's deepest occlusion there %.3f)\n",
+               cacao_estimator_name(estimators[e]), worst, occlusion);
+        CHECK(occlusion > 0.1); /* the nearer wall occludes the far one */
+        CHECK(worst <= 0.01);
+    }
+    free(af);
+    free(ac);
+    scene_buffers_free(&bf);
+    scene_buffers_free(&bc);
 }
 
 /* Unoccluded surfaces give 1 at every budget: a wall facing the camera, and a floor alone seen at
@@ -449,39 +508,39 @@ static void test_shared_scenes(vkdev *dev, const char *shared) {
     static const char *const scenes[] = {"interior_fzkhaus", "statues_scanned", "street_track"};
     static const cacao_estimator estimators[] = {CACAO_ESTIMATOR_GTAO, CACAO_ESTIMATOR_BITMASK};
     /* measured (lavapipe), per level LOWEST..HIGHEST, interior/statues/street:
-     * gtao .0904/.0522/.0695, .0860/.0326/.0656, .0788/.0285/.0553, .0771/.0265/.0485, .0764/.0258/.0481;
-     * bitmask .1017/.0436/.0761, .0885/.0389/.0663, .0768/.0237/.0564, .0730/.0219/.0531, .0703/.0207/.0494 */
+     * gtao .0884/.0522/.0673, .0837/.0326/.0630, .0772/.0285/.0529, .0760/.0265/.0462, .0752/.0258/.0458;
+     * bitmask .0996/.0436/.0737, .0868/.0389/.0641, .0752/.0237/.0541, .0716/.0219/.0509, .0692/.0207/.0474 */
     static const double bound[2][2][5][3] = {
         {
-            {{0.0907, 0.0525, 0.0698},
-             {0.0863, 0.0329, 0.0659},
-             {0.0791, 0.0288, 0.0556},
-             {0.0774, 0.0268, 0.0488},
-             {0.0767, 0.0261, 0.0484}},
-            {{0.1020, 0.0439, 0.0764},
-             {0.0888, 0.0392, 0.0666},
-             {0.0771, 0.0240, 0.0567},
-             {0.0733, 0.0222, 0.0534},
-             {0.0706, 0.0210, 0.0497}},
+            {{0.0887, 0.0525, 0.0676},
+             {0.0840, 0.0329, 0.0633},
+             {0.0775, 0.0288, 0.0532},
+             {0.0763, 0.0268, 0.0465},
+             {0.0755, 0.0261, 0.0461}},
+            {{0.0999, 0.0439, 0.0740},
+             {0.0871, 0.0392, 0.0644},
+             {0.0755, 0.0240, 0.0544},
+             {0.0719, 0.0222, 0.0512},
+             {0.0695, 0.0210, 0.0477}},
         },
-        /* downsampled, measured: gtao .0976/.0574/.0721, .0906/.0355/.0666, .0830/.0319/.0566,
-         * .0799/.0294/.0495, .0791/.0281/.0488; bitmask .1070/.0481/.0775, .0944/.0443/.0682,
-         * .0806/.0275/.0570, .0770/.0259/.0537, .0743/.0246/.0502 */
+        /* downsampled, measured: gtao .0959/.0574/.0702, .0882/.0355/.0640, .0814/.0319/.0543,
+         * .0789/.0294/.0472, .0780/.0281/.0466; bitmask .1050/.0481/.0752, .0930/.0443/.0662, .0791/.0275/.0548,
+         * .0756/.0259/.0516, .0733/.0246/.0483 */
         {
-            {{0.0979, 0.0577, 0.0724},
-             {0.0909, 0.0358, 0.0669},
-             {0.0833, 0.0322, 0.0569},
-             {0.0802, 0.0297, 0.0498},
-             {0.0794, 0.0284, 0.0491}},
-            {{0.1073, 0.0484, 0.0778},
-             {0.0947, 0.0446, 0.0685},
-             {0.0809, 0.0278, 0.0573},
-             {0.0773, 0.0262, 0.0540},
-             {0.0746, 0.0249, 0.0505}},
+            {{0.0962, 0.0577, 0.0705},
+             {0.0885, 0.0358, 0.0643},
+             {0.0817, 0.0322, 0.0546},
+             {0.0792, 0.0297, 0.0475},
+             {0.0783, 0.0284, 0.0469}},
+            {{0.1053, 0.0484, 0.0755},
+             {0.0933, 0.0446, 0.0665},
+             {0.0794, 0.0278, 0.0551},
+             {0.0759, 0.0262, 0.0519},
+             {0.0736, 0.0249, 0.0486}},
         },
     };
-    /* binary visibility against ao_gt, bitmask HIGHEST: measured .0890/.0279/.0636 */
-    static const double binary_bound[3] = {0.0893, 0.0282, 0.0639};
+    /* binary visibility against ao_gt, bitmask HIGHEST: measured .0868/.0279/.0607 */
+    static const double binary_bound[3] = {0.0871, 0.0282, 0.0610};
     double highest_sum = 0;
     int highest_scenes = 0;
     for (int k = 0; k < 3; ++k) {
@@ -566,6 +625,7 @@ int main(int argc, char **argv) {
         test_shared_scenes(&dev, shared);
     } else {
         test_crease(&dev);
+        test_past_edge(&dev);
         test_unoccluded(&dev);
         test_groove(&dev);
         test_invariance(&dev);

@@ -20,7 +20,9 @@
  *     not, leaves every tile active (test_faded_layer).
  *   - the horizon estimators (GTAO, bitmask) likewise: identical to their reference, exactly 1
  *     with nothing estimated on an all-background frame, more than half the tiles skipped when
- *     three quarters of the pixels lie beyond the fade-out (test_horizon).
+ *     three quarters of the pixels lie beyond the fade-out (test_horizon), and where samples past
+ *     the image's edge read the normals of faded border tiles far from every active one
+ *     (test_horizon_border).
  * The CACAO and horizon cases run with both shader forms: the CPU forms skip through tile lists
  * and clears, the GPU forms in the shader (a group that is not needed stores the 1 and returns;
  * the prepare classifies where it can), counting the same tiles. The counts come from the runtime (cacao_record_tile_counts) through vkdev's
@@ -462,6 +464,52 @@ static void test_horizon(vkdev *dev, const scene_buffers *sb, const scene_buffer
     free(ao);
 }
 
+/* The samples past the image's edge read the last pixel of the image on their line, its view z
+ * and normal (horizon.glsl, side_plane), however far it lies from the tile being estimated: the CPU
+ * forms' prepare must store the normals of every border tile, not only of those within two of an
+ * active one. A box near the camera, right of the centre, is all that lies within the fade-out;
+ * the turned wall around it (and the floor below, mostly hidden) is faded, its border tiles three
+ * or more tiles from the box's; the radius makes the box's samples leave the image. (Without the
+ * border tiles in compact's normals list, 6-50 pixels differed in seven of the eight cases of the
+ * CPU forms.) */
+static void test_horizon_border(vkdev *dev) {
+    static const cacao_prim prims[] = {
+        {.kind = CACAO_PRIM_PLANE, .a = {0, 0, -6.5}, .b = {0.15, 0.1, 1}}, /* the far wall, turned */
+        {.kind = CACAO_PRIM_PLANE, .a = {0, -6, 0}, .b = {0, 1, 0}},  /* the floor, from 10.4 away */
+        {.kind = CACAO_PRIM_BOX, .a = {0.6, -0.4, -3.4}, .b = {1.4, 0.4, -2.6}},
+    };
+    const cacao_scene scene = {.prims = prims,
+                               .prim_count = 3,
+                               .camera = {.width = 128,
+                                          .height = 72,
+                                          .fov_y_deg = 60.0,
+                                          .near_z = 0.1,
+                                          .far_z = 100.0,
+                                          .eye = {0, 0, 0},
+                                          .target = {0, 0, -1},
+                                          .up = {0, 1, 0}},
+                               .ao_radius_world = 5.0};
+    scene_buffers sb;
+    scene_buffers_render(&scene, &sb);
+    static const cacao_estimator estimators[] = {CACAO_ESTIMATOR_GTAO, CACAO_ESTIMATOR_BITMASK};
+    for (int ds = 0; ds < 2; ++ds)
+        for (int e = 0; e < 2; ++e)
+            for (int given = 0; given < 2; ++given) {
+                const vkdev_frame f = scene_frame(&sb, false, given != 0);
+                const cacao_settings s = {.estimator = estimators[e], .quality = CACAO_QUALITY_MEDIUM,
+                                          .downsample = ds != 0, .generate_normals = !given,
+                                          .radius = (float)scene.ao_radius_world, .blur_pass_count = 1,
+                                          .fade_out_from = 4.0f, .fade_out_to = 5.0f};
+                cacao_tile_counts c;
+                if (same_as_all_tiles(dev, s, &f, "horizon, samples past the edge", &c)) {
+                    if (!(c.active > 0 && c.active * 4 < c.tiles && c.faded > 0))
+                        fprintf(stderr, "samples past the edge: %u active, %u faded of %u tiles\n", c.active, c.faded, c.tiles);
+                    CHECK(c.active > 0 && c.active * 4 < c.tiles && c.faded > 0);
+                }
+            }
+    scene_buffers_free(&sb);
+}
+
 int main(void) {
     vkdev dev;
     open_device(&dev);
@@ -492,9 +540,11 @@ int main(void) {
     test_faded_layer(&dev, &sb, &scene.camera);
     forms = CACAO_SHADER_FORMS_CPU;
     test_horizon(&dev, &sb, &sb, first_quartile_z(&sb, &scene.camera));
+    test_horizon_border(&dev);
     /* the horizon estimators' GPU forms: the prepare classifies, the other passes skip in the shader */
     forms = CACAO_SHADER_FORMS_GPU;
     test_horizon(&dev, &sb, &sb, first_quartile_z(&sb, &scene.camera));
+    test_horizon_border(&dev);
     scene_buffers_free(&sb);
     vkdev_destroy(&dev);
     CHECK(dev.validation_messages == 0);

@@ -232,6 +232,44 @@ float sector_fraction(float x, float y, horizon_frame f, float c_low4, float inv
 }
 #endif
 
+/* Past the image's edge (the spec's prototype stops a side at its first sample there) the surface
+ * is taken to go on as the tangent plane of the image's last pixel e on the side's line: its
+ * stored view z and normal. plane, w: that plane as where view rays meet it (plane_z). A zero
+ * plane (no sample past the edge) where e is background, or where no sample of the side can
+ * leave the image: a step reaches len_max pixels at most, half a pixel more per axis rounded. The
+ * CPU forms store the normals of every border tile that is not all background (compact.horizon).
+ * estimators-design.md: the mean RMSE over the shared scenes fell by 2-3% (nothing changed on the
+ * one whose samples stay inside). */
+void side_plane(ivec2 p, vec2 d, ivec2 size, float len_max, out vec4 plane, out float w)
+{
+    plane = vec4(0.0);
+    w = 0.0;
+    vec2 lim = mix(vec2(-0.5), vec2(size) - 0.5, greaterThan(d, vec2(0.0)));
+    vec2 tt = abs(lim - vec2(p)) / max(abs(d), vec2(1e-6));
+    float t = min(tt.x, tt.y); /* from p to the image's border along d */
+    if (t > len_max + 1.0) return;
+    ivec2 e = clamp(ivec2(roundEven(vec2(p) + t * d)), ivec2(0), size - 1);
+    float ze = fetch_view_z(e);
+    if (!(ze > 0.0)) return;
+    vec3 pe = horizon_pos(e, ze);
+    vec3 ne = fetch_stored_normal(e); /* a direction is all the plane needs: not renormalised */
+    /* q's ray: view_pos(uv, z) = (c(q) (view_xy_z.x z + view_xy_z.y), z), c(q) = ndc_to_view
+     * ((q + 0.5) / size); k(q) = n.xy . c(q) = plane.x + plane.y q.x + plane.z q.y */
+    vec2 m = ne.xy * CB.ndc_to_view_mul * CB.depth_buffer_inverse_dimensions;
+    plane = vec4(dot(ne.xy, CB.ndc_to_view_add) + 0.5 * (m.x + m.y), m, ne.z);
+    w = dot(ne, pe);
+}
+
+/* The view z where q's view ray meets the plane n . x = w: n . (c(q) (view_xy_z.x z +
+ * view_xy_z.y), z) = w; -1 (none) where it meets it behind the camera or nearly parallel. */
+float plane_z(vec4 plane, float w, ivec2 q)
+{
+    float k = plane.x + plane.y * float(q.x) + plane.z * float(q.y);
+    float den = k * CB.view_xy_z.x + plane.w;
+    float z = (w - k * CB.view_xy_z.y) / den;
+    return abs(den) >= 1e-6 && z > 0.0 && z < 1e30 ? z : -1.0;
+}
+
 /* The visibility of pixel p; noise_p indexes the per-pixel noise (the pixel itself, or its 2x2
  * block downsampled, so that neighbouring blocks see well-spread slice angles). */
 float horizon_visibility(ivec2 p, ivec2 noise_p, float z, float fade, ivec2 size)
@@ -242,6 +280,7 @@ float horizon_visibility(ivec2 p, ivec2 noise_p, float z, float fade, ivec2 size
     const float radius = CB.horizon_radius, radius2 = radius * radius, inv_radius2 = 1.0 / radius2;
     float rpx = radius / (CB.horizon_pixel_size * view_xy_scale(z)); /* radius in pixels */
     float min_s = CACAO_HORIZON_MIN_OFFSET_PX / rpx;
+    float len_max = (1.0 + min_s) * rpx; /* the longest step below (s < 1) */
     uint h = hilbert_index(uint(noise_p.x) & 63u, uint(noise_p.y) & 63u) + uint(CB.horizon_noise_offset);
     float xi_s = unit_fraction(h * R2_X + HALF);
     uint xi_t = h * R2_Y + HALF;
@@ -264,7 +303,10 @@ float horizon_visibility(ivec2 p, ivec2 noise_p, float z, float fade, ivec2 size
         float low_pos = -f.sin_n, low_neg = f.sin_n; /* cos(n +- pi/2): the half-circle edges */
         float c_pos = low_pos, c_neg = low_neg;
 #endif
-        bool open_pos = true, open_neg = true; /* a side stops at its first off-screen sample */
+        vec4 plane_pos, plane_neg;
+        float w_pos, w_neg;
+        side_plane(p, offset_dir, size, len_max, plane_pos, w_pos);
+        side_plane(p, -offset_dir, size, len_max, plane_neg, w_neg);
         for (int j = 0; j < m; ++j) {
             float xi = unit_fraction(xi_t + uint(i + j * m) * R1);
             float s = (float(j) + xi) / float(m);
@@ -275,14 +317,10 @@ float horizon_visibility(ivec2 p, ivec2 noise_p, float z, float fade, ivec2 size
             ivec2 delta = ivec2(roundEven(len * offset_dir));
             [[unroll]] for (int side = 0; side < 2; ++side) {
                 bool positive = side == 0;
-                if (!(positive ? open_pos : open_neg)) continue;
                 ivec2 q = positive ? p + delta : p - delta;
-                if (!in_rect(q, size)) {
-                    if (positive) open_pos = false;
-                    else open_neg = false;
-                    continue;
-                }
-                float zq = fetch_view_z(q);
+                ivec2 qc = clamp(q, ivec2(0), size - 1);
+                float zq = fetch_view_z(qc);
+                if (qc != q) zq = positive ? plane_z(plane_pos, w_pos, q) : plane_z(plane_neg, w_neg, q);
                 if (!(zq > 0.0)) continue; /* background: weight 0 */
                 vec3 sample_pos = horizon_pos(q, zq);
                 vec3 delta3 = sample_pos - pos;

@@ -490,9 +490,12 @@ void main()
          * the estimator reads the normals of the needed tiles, the denoise passes those of one
          * pixel around them (the upsample three): the tiles within two of an active one. The view
          * z: of the others (the caller's normals: their prepare stores both), or of every one
-         * (normals from depth: computed from the stored z, normals_list 2) */
+         * (normals from depth: computed from the stored z, normals_list 2). The border tiles'
+         * normals too: a sample past the image's edge reads its edge pixel's (horizon.glsl,
+         * side_plane). */
         if (tiles[CACAO_TILE_CLASSES + i] != CACAO_TILE_CLASS_BACKGROUND) {
-            bool normals = touches_needed(g - 1, g + 1);
+            bool border = g.x == 0 || g.y == 0 || g.x == CB.tiles_x - 1 || g.y == CB.tiles_y - 1;
+            bool normals = border || touches_needed(g - 1, g + 1);
             if (normals) append(CACAO_LIST_NORMALS, g);
             if (!normals || CB.normals_list == 2) append(CACAO_LIST_PREPARE, g);
         }
