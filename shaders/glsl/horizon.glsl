@@ -234,40 +234,38 @@ float sector_fraction(float x, float y, horizon_frame f, float c_low4, float inv
 
 /* Past the image's edge (the spec's prototype stops a side at its first sample there) the surface
  * is taken to go on as the tangent plane of the image's last pixel e on the side's line: its
- * stored view z and normal. plane, w: that plane as where view rays meet it (plane_z). A zero
- * plane (no sample past the edge) where e is background, or where no sample of the side can
- * leave the image: a step reaches len_max pixels at most, half a pixel more per axis rounded. The
- * CPU forms store the normals of every border tile that is not all background (compact.horizon).
- * estimators-design.md: the mean RMSE over the shared scenes fell by 2-3% (nothing changed on the
- * one whose samples stay inside). */
-void side_plane(ivec2 p, vec2 d, ivec2 size, float len_max, out vec4 plane, out float w)
+ * stored view z and normal n. On a view ray view_pos(uv, z) = (c (view_xy_z.x z + view_xy_z.y),
+ * z), c = ndc_to_view (uv), that plane n . x = n . p_e is met where 1 / z (perspective: view_xy_z
+ * = (1, 0)) or z (orthographic: (0, 1)) is an affine function of the pixel q: plane.x + plane.y
+ * q.x + plane.z q.y (plane_z). A zero plane (no sample past the edge) where e is background, or
+ * where no sample of the side can leave the image: a step reaches len_max pixels at most, half a
+ * pixel more per axis rounded. The CPU forms store the normals of every border tile that is not
+ * all background (compact.horizon). estimators-design.md: the mean RMSE over the shared scenes
+ * fell by 2-3% (nothing changed on the one whose samples stay inside). */
+vec3 side_plane(ivec2 p, vec2 d, ivec2 size, float len_max)
 {
-    plane = vec4(0.0);
-    w = 0.0;
     vec2 lim = mix(vec2(-0.5), vec2(size) - 0.5, greaterThan(d, vec2(0.0)));
     vec2 tt = abs(lim - vec2(p)) / max(abs(d), vec2(1e-6));
     float t = min(tt.x, tt.y); /* from p to the image's border along d */
-    if (t > len_max + 1.0) return;
+    if (t > len_max + 1.0) return vec3(0.0);
     ivec2 e = clamp(ivec2(roundEven(vec2(p) + t * d)), ivec2(0), size - 1);
     float ze = fetch_view_z(e);
-    if (!(ze > 0.0)) return;
-    vec3 pe = horizon_pos(e, ze);
+    if (!(ze > 0.0)) return vec3(0.0);
     vec3 ne = fetch_stored_normal(e); /* a direction is all the plane needs: not renormalised */
-    /* q's ray: view_pos(uv, z) = (c(q) (view_xy_z.x z + view_xy_z.y), z), c(q) = ndc_to_view
-     * ((q + 0.5) / size); k(q) = n.xy . c(q) = plane.x + plane.y q.x + plane.z q.y */
+    /* n.xy . c(q) = k.x + k.y q.x + k.z q.y, c(q) = ndc_to_view ((q + 0.5) / size) */
     vec2 m = ne.xy * CB.ndc_to_view_mul * CB.depth_buffer_inverse_dimensions;
-    plane = vec4(dot(ne.xy, CB.ndc_to_view_add) + 0.5 * (m.x + m.y), m, ne.z);
-    w = dot(ne, pe);
+    vec3 k = vec3(dot(ne.xy, CB.ndc_to_view_add) + 0.5 * (m.x + m.y), m);
+    float w = dot(ne, horizon_pos(e, ze));
+    /* perspective: z (k(q) + n.z) = w; orthographic: k(q) + n.z z = w */
+    return CB.horizon_ortho != 0 ? vec3(w - k.x, -k.yz) / ne.z : vec3(k.x + ne.z, k.yz) / w;
 }
 
-/* The view z where q's view ray meets the plane n . x = w: n . (c(q) (view_xy_z.x z +
- * view_xy_z.y), z) = w; -1 (none) where it meets it behind the camera or nearly parallel. */
-float plane_z(vec4 plane, float w, ivec2 q)
+/* The view z where q's view ray meets the side's plane; not positive or not finite where it
+ * meets it behind the camera or not at all (the caller's test rejects those). */
+float plane_z(vec3 plane, ivec2 q)
 {
-    float k = plane.x + plane.y * float(q.x) + plane.z * float(q.y);
-    float den = k * CB.view_xy_z.x + plane.w;
-    float z = (w - k * CB.view_xy_z.y) / den;
-    return abs(den) >= 1e-6 && z > 0.0 && z < 1e30 ? z : -1.0;
+    float u = plane.x + plane.y * float(q.x) + plane.z * float(q.y);
+    return CB.horizon_ortho != 0 ? u : 1.0 / u;
 }
 
 /* The visibility of pixel p; noise_p indexes the per-pixel noise (the pixel itself, or its 2x2
@@ -303,10 +301,8 @@ float horizon_visibility(ivec2 p, ivec2 noise_p, float z, float fade, ivec2 size
         float low_pos = -f.sin_n, low_neg = f.sin_n; /* cos(n +- pi/2): the half-circle edges */
         float c_pos = low_pos, c_neg = low_neg;
 #endif
-        vec4 plane_pos, plane_neg;
-        float w_pos, w_neg;
-        side_plane(p, offset_dir, size, len_max, plane_pos, w_pos);
-        side_plane(p, -offset_dir, size, len_max, plane_neg, w_neg);
+        vec3 plane_pos = side_plane(p, offset_dir, size, len_max);
+        vec3 plane_neg = side_plane(p, -offset_dir, size, len_max);
         for (int j = 0; j < m; ++j) {
             float xi = unit_fraction(xi_t + uint(i + j * m) * R1);
             float s = (float(j) + xi) / float(m);
@@ -320,8 +316,8 @@ float horizon_visibility(ivec2 p, ivec2 noise_p, float z, float fade, ivec2 size
                 ivec2 q = positive ? p + delta : p - delta;
                 ivec2 qc = clamp(q, ivec2(0), size - 1);
                 float zq = fetch_view_z(qc);
-                if (qc != q) zq = positive ? plane_z(plane_pos, w_pos, q) : plane_z(plane_neg, w_neg, q);
-                if (!(zq > 0.0)) continue; /* background: weight 0 */
+                if (qc != q) zq = plane_z(positive ? plane_pos : plane_neg, q);
+                if (!(zq > 0.0 && zq < 1e30)) continue; /* background (or no plane): weight 0 */
                 vec3 sample_pos = horizon_pos(q, zq);
                 vec3 delta3 = sample_pos - pos;
                 float dist2 = dot(delta3, delta3);
