@@ -260,8 +260,8 @@ vec3 side_plane(ivec2 p, vec2 d, ivec2 size, float len_max)
     return CB.horizon_ortho != 0 ? vec3(w - k.x, -k.yz) / ne.z : vec3(k.x + ne.z, k.yz) / w;
 }
 
-/* The view z where q's view ray meets the side's plane; not positive or not finite where it
- * meets it behind the camera or not at all (the caller's test rejects those). */
+/* The view z where q's view ray meets the side's plane; not positive, or not finite, where it
+ * meets it behind the camera or not at all (the caller rejects those). */
 float plane_z(vec3 plane, ivec2 q)
 {
     float u = plane.x + plane.y * float(q.x) + plane.z * float(q.y);
@@ -316,8 +316,11 @@ float horizon_visibility(ivec2 p, ivec2 noise_p, float z, float fade, ivec2 size
                 ivec2 q = positive ? p + delta : p - delta;
                 ivec2 qc = clamp(q, ivec2(0), size - 1);
                 float zq = fetch_view_z(qc);
-                if (qc != q) zq = plane_z(positive ? plane_pos : plane_neg, q);
-                if (!(zq > 0.0 && zq < 1e30)) continue; /* background (or no plane): weight 0 */
+                /* past the edge: a plane's sample more than the radius in front of or behind the
+                 * pixel weighs 0 (and one beyond all reach would overflow the distance) */
+                float zp = plane_z(positive ? plane_pos : plane_neg, q);
+                if (qc != q) zq = abs(zp - z) <= radius ? zp : -1.0;
+                if (!(zq > 0.0)) continue; /* background (or no plane's sample): weight 0 */
                 vec3 sample_pos = horizon_pos(q, zq);
                 vec3 delta3 = sample_pos - pos;
                 float dist2 = dot(delta3, delta3);
