@@ -317,7 +317,8 @@ float horizon_visibility(ivec2 p, ivec2 noise_p, float z, float fade, ivec2 size
                 ivec2 qc = clamp(q, ivec2(0), size - 1);
                 float zq = fetch_view_z(qc);
                 /* past the edge: a plane's sample more than the radius in front of or behind the
-                 * pixel weighs 0 (and one beyond all reach would overflow the distance) */
+                 * pixel weighs 0 (and one beyond all reach would overflow the distance). zp is
+                 * computed for every sample and selected: lavapipe runs both arms of a branch. */
                 float zp = plane_z(positive ? plane_pos : plane_neg, q);
                 if (qc != q) zq = abs(zp - z) <= radius ? zp : -1.0;
                 if (!(zq > 0.0)) continue; /* background (or no plane's sample): weight 0 */
