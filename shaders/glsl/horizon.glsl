@@ -317,10 +317,19 @@ float horizon_visibility(ivec2 p, ivec2 noise_p, float z, float fade, ivec2 size
                 ivec2 qc = clamp(q, ivec2(0), size - 1);
                 float zq = fetch_view_z(qc);
                 /* past the edge: a plane's sample more than the radius in front of or behind the
-                 * pixel weighs 0 (and one beyond all reach would overflow the distance). zp is
-                 * computed for every sample and selected: lavapipe runs both arms of a branch. */
+                 * pixel weighs 0 (and one beyond all reach would overflow the distance). The GPU
+                 * form computes zp under the branch (a wave's samples mostly stay inside: ACO
+                 * estimates 2% fewer cycles a wave on navi21, gfx1100 and vega10); the CPU form
+                 * computes it for every sample and selects: lavapipe runs both arms of a branch. */
+#if CACAO_PASS == CACAO_PASS_HORIZON_MAIN_GPU
+                if (qc != q) {
+                    float zp = plane_z(positive ? plane_pos : plane_neg, q);
+                    zq = abs(zp - z) <= radius ? zp : -1.0;
+                }
+#else
                 float zp = plane_z(positive ? plane_pos : plane_neg, q);
                 if (qc != q) zq = abs(zp - z) <= radius ? zp : -1.0;
+#endif
                 if (!(zq > 0.0)) continue; /* background (or no plane's sample): weight 0 */
                 vec3 sample_pos = horizon_pos(q, zq);
                 vec3 delta3 = sample_pos - pos;
