@@ -134,6 +134,7 @@ static SpvImageFormat spv_format(const char *glsl) {
     } formats[] = {
         {"r16f", SpvImageFormatR16f}, {"r32f", SpvImageFormatR32f}, {"rgba8_snorm", SpvImageFormatRgba8Snorm},
         {"rg8", SpvImageFormatRg8},   {"r8", SpvImageFormatR8}, {"rgba32f", SpvImageFormatRgba32f},
+        {"rg32f", SpvImageFormatRg32f},
     };
     for (size_t i = 0; i < sizeof formats / sizeof formats[0]; ++i)
         if (strcmp(formats[i].glsl, glsl) == 0) return formats[i].spv;

@@ -24,7 +24,8 @@ const cacaoi_slot_row cacaoi_slots[CACAO_BINDING_COUNT] = {
     SLOT(HORIZON_AO_OUT, STORAGE_IMAGE, NONE),  SLOT(OUTPUT, STORAGE_IMAGE, NONE),
     SLOT(DEPTH_HISTORY, STORAGE_IMAGE, NONE),   SLOT(NORMALS_HISTORY, STORAGE_IMAGE, NONE),
     SLOT(DEPTHS_MIP1, STORAGE_IMAGE, NONE),     SLOT(DEPTHS_MIP2, STORAGE_IMAGE, NONE),
-    SLOT(DEPTHS_MIP3, STORAGE_IMAGE, NONE),
+    SLOT(DEPTHS_MIP3, STORAGE_IMAGE, NONE),     SLOT(HISTORY, STORAGE_IMAGE, NONE),
+    SLOT(HISTORY_OUT, STORAGE_IMAGE, NONE),
 };
 #undef SLOT
 
@@ -59,6 +60,9 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
     /* reuse: 2x2 pixels a texel (tiles.glsl) */
     IMAGE(DEPTH_HISTORY,   "depth_history",   HALF,       false, false, R32G32B32A32_SFLOAT, "rgba32f", 16),
     IMAGE(NORMALS_HISTORY, "normals_history", HALF_X3,    false, false, R32G32B32A32_SFLOAT, "rgba32f", 16),
+    /* temporal accumulation: per pixel 2 n + AO (n the frames the AO holds) and the view z */
+    IMAGE(AO_HISTORY,      "ao_history",      FULL,       false, false, R32G32_SFLOAT,  "rg32f",       8),
+    IMAGE(AO_HISTORY_NEXT, "ao_history_next", FULL,       false, false, R32G32_SFLOAT,  "rg32f",       8),
 };
 #undef CALLER
 #undef BUFFER
@@ -308,6 +312,20 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                    .quad = {[CACAO_REUSE_DIFF_GPU] = 2, [CACAO_REUSE_DIFF_NORMALS_GPU] = 2},
                    .grids = {[CACAO_REUSE_PREFIX] = CACAOI_GRID_TILE_ROWS, [CACAO_REUSE_DIFF_GPU] = CACAOI_GRID_OUTPUT,
                              [CACAO_REUSE_DIFF_NORMALS_GPU] = CACAOI_GRID_OUTPUT}},
+    /* Temporal accumulation (cacao_settings.temporal_frames), both shader forms, over every pixel:
+     * the resolve reads the frame's AO from the intermediate the last filter pass wrote (a step
+     * rebinds HORIZON_AO), the view z and the history, and writes the output and the next history;
+     * the copy makes the next history the history (an image read where another invocation writes
+     * cannot be updated in place). */
+    PASS(HORIZON_TEMPORAL) = {"horizon_temporal", {"resolve", "copy"}, 2, false, false, false, WG(HORIZON),
+                              CACAOI_GRID_OUTPUT, 8,
+                              {CONSTANTS, R(HORIZON_AO, AO_RAW, V(CACAO_TEMPORAL_RESOLVE)),
+                               R(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_TEMPORAL_RESOLVE)),
+                               R(HISTORY, AO_HISTORY, V(CACAO_TEMPORAL_RESOLVE)),
+                               W(HISTORY_OUT, AO_HISTORY_NEXT, V(CACAO_TEMPORAL_RESOLVE)),
+                               W(OUTPUT, OUTPUT, V(CACAO_TEMPORAL_RESOLVE)),
+                               R(HISTORY, AO_HISTORY_NEXT, V(CACAO_TEMPORAL_COPY)),
+                               W(HISTORY_OUT, AO_HISTORY, V(CACAO_TEMPORAL_COPY))}},
 };
 #undef R
 #undef W

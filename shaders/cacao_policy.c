@@ -76,16 +76,26 @@ static unsigned reuse_diff_variant(const cacao_key_config *c) {
 }
 
 /* Denoise passes first..last over the needed tiles (pass: the form's), the first reading `ao`,
- * ping-ponging between AO_RAW and AO_PONG, the last into the output. */
-static void push_denoise_passes(cacaoi_step *out, size_t *n, unsigned pass_id, unsigned first, unsigned last,
-                                cacao_resource ao) {
+ * ping-ponging between AO_RAW and AO_PONG, the last into the output (with temporal accumulation,
+ * into the next intermediate too). Returns the intermediate the last pass wrote (`ao` when none
+ * ran). */
+static cacao_resource push_denoise_passes(cacaoi_step *out, size_t *n, unsigned pass_id, unsigned first,
+                                          unsigned last, cacao_resource ao, bool temporal) {
     for (unsigned pass = first; pass <= last; ++pass) {
-        cacaoi_step *s = push(out, n, pass_id, pass == last ? CACAO_DENOISE_FINAL : CACAO_DENOISE_INTERMEDIATE, 0, 0, 0);
+        const bool final = pass == last && !temporal;
+        cacaoi_step *s = push(out, n, pass_id, final ? CACAO_DENOISE_FINAL : CACAO_DENOISE_INTERMEDIATE, 0, 0, 0);
         const cacao_resource next = ao == CACAO_RES_AO_RAW ? CACAO_RES_AO_PONG : CACAO_RES_AO_RAW;
         rebind(s, CACAO_BINDING_HORIZON_AO, ao);
-        if (pass != last) rebind(s, CACAO_BINDING_HORIZON_AO_OUT, next);
+        if (!final) rebind(s, CACAO_BINDING_HORIZON_AO_OUT, next);
         ao = next;
     }
+    return ao;
+}
+
+/* Temporal accumulation last: the resolve reads the frame's AO from `ao`, then the copy. */
+static void push_temporal(cacaoi_step *out, size_t *n, cacao_resource ao) {
+    rebind(push(out, n, CACAO_PASS_HORIZON_TEMPORAL, CACAO_TEMPORAL_RESOLVE, 0, 0, 0), CACAO_BINDING_HORIZON_AO, ao);
+    push(out, n, CACAO_PASS_HORIZON_TEMPORAL, CACAO_TEMPORAL_COPY, 0, 0, 0);
 }
 
 /* Horizon estimators, the CPU forms: classification from the caller's depth (docs/tiles.md),
@@ -125,8 +135,11 @@ static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI
         if (from_depth) push(out, &n, CACAO_PASS_HORIZON_PREPARE, CACAO_HORIZON_VIEW_Z_ONLY, 0, 0, 0);
         push(out, &n, CACAO_PASS_HORIZON_PREPARE, normals, 0, 0, 0);
         if (!from_depth) push(out, &n, CACAO_PASS_HORIZON_PREPARE, CACAO_HORIZON_VIEW_Z_ONLY, 0, 0, 0);
-        /* the AO intermediates the denoise passes read, cleared to AO 1 (AO_RAW, AO_PONG) */
-        const bool raw = half ? blur >= 3 : blur >= 1, pong = blur >= 2;
+        /* the AO intermediates the denoise passes read, cleared to AO 1 (AO_RAW, AO_PONG); with
+         * temporal accumulation also the one the last pass writes (the resolve reads every pixel) */
+        const bool t = c->temporal;
+        const bool raw = half ? blur >= 3 || (t && blur >= 2) : blur >= 1 || t,
+                   pong = blur >= 2 || (t && (half || blur >= 1));
         if (raw) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0);
         if (pong) rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0), CACAO_BINDING_HORIZON_AO_OUT,
                          CACAO_RES_AO_PONG);
@@ -138,13 +151,17 @@ static size_t horizon_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI
             rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_HORIZON, 0, 0, 0), CACAO_BINDING_HORIZON_AO_OUT, CACAO_RES_AO_HALF);
         push(out, &n, gpu ? CACAO_PASS_HORIZON_MAIN_GPU : CACAO_PASS_HORIZON_MAIN,
              gtao ? CACAO_HORIZON_GTAO_HALF : CACAO_HORIZON_BITMASK_HALF, 0, 0, 0);
-        push(out, &n, denoise, blur == 1 ? CACAO_DENOISE_UPSAMPLE_FINAL : CACAO_DENOISE_UPSAMPLE, 0, 0, 0);
-        push_denoise_passes(out, &n, denoise, 2, blur, CACAO_RES_AO_PONG);
+        push(out, &n, denoise, blur == 1 && !c->temporal ? CACAO_DENOISE_UPSAMPLE_FINAL : CACAO_DENOISE_UPSAMPLE, 0,
+             0, 0);
+        const cacao_resource ao = push_denoise_passes(out, &n, denoise, 2, blur, CACAO_RES_AO_PONG, c->temporal);
+        if (c->temporal) push_temporal(out, &n, ao);
         return n;
     }
     push(out, &n, gpu ? CACAO_PASS_HORIZON_MAIN_GPU : CACAO_PASS_HORIZON_MAIN,
-         (gtao ? CACAO_HORIZON_GTAO : CACAO_HORIZON_BITMASK) + (blur == 0 ? CACAO_HORIZON_GTAO_DIRECT : 0), 0, 0, 0);
-    push_denoise_passes(out, &n, denoise, 1, blur, CACAO_RES_AO_RAW);
+         (gtao ? CACAO_HORIZON_GTAO : CACAO_HORIZON_BITMASK) + (blur == 0 && !c->temporal ? CACAO_HORIZON_GTAO_DIRECT : 0),
+         0, 0, 0);
+    const cacao_resource ao = push_denoise_passes(out, &n, denoise, 1, blur, CACAO_RES_AO_RAW, c->temporal);
+    if (c->temporal) push_temporal(out, &n, ao);
     return n;
 }
 
@@ -259,11 +276,14 @@ static bool key_dispatched(const cacao_key *key, const cacao_key_subset *subset,
                     for (unsigned blur = 0; blur <= CACAO_KEY_MAX_BLUR_PASSES; ++blur)
                         for (unsigned est = 0; est < CACAO_KEY_ESTIMATOR_COUNT; ++est)
                             for (unsigned gpu = 0; gpu < 2; ++gpu)
-                                for (unsigned reuse = 0; reuse < 2u; ++reuse) {
+                                for (unsigned reuse = 0; reuse < 4u; ++reuse) { /* bit 1: temporal */
                                     if (!(forms_mask & (1u << gpu))) continue;
                                     if (est != CACAO_KEY_ESTIMATOR_CACAO && ds && blur > CACAO_HORIZON_HALF_MAX_PASSES)
                                         continue; /* refused by the settings (cacao_settings_resolve) */
-                                    cacao_key_config c = {q, ds != 0, fp != 0, ni != 0, blur, est, gpu != 0, reuse != 0};
+                                    if ((reuse & 2u) && ((reuse & 1u) || est == CACAO_KEY_ESTIMATOR_CACAO))
+                                        continue; /* refused likewise */
+                                    cacao_key_config c = {q,   ds != 0,      fp != 0,          ni != 0, blur,
+                                                          est, gpu != 0, (reuse & 1u) != 0, (reuse & 2u) != 0};
                                     cacao_key keys[CACAO_KEY_CONFIG_MAX];
                                     size_t n = cacaoi_keys_for_config(&c, keys);
                                     for (size_t i = 0; i < n; ++i)

@@ -72,6 +72,7 @@ typedef struct cacao_key_config {
     unsigned estimator;    /* CACAO_KEY_ESTIMATOR_* */
     bool gpu_forms;        /* the GPU forms of the blur, apply, prepare and generate (cacao_shader_forms) */
     bool reuse;            /* reuse_unchanged (the REUSE passes first) */
+    bool temporal;         /* temporal_frames (the HORIZON_TEMPORAL passes last; horizon estimators only) */
 } cacao_key_config;
 
 /* The pass of the configuration's forms: BLUR, APPLY, PREPARE, GENERATE or their GPU rows (any

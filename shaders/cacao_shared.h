@@ -57,7 +57,11 @@
  * the caller's depth, the texels and view z the prepare stores, dispatched before the prepare with
  * no barrier between them (docs/tiles.md). */
 #define CACAO_PASS_CLASSIFY_GPU 23
-#define CACAO_PASS_COUNT 24
+/* The horizon estimators' temporal accumulation (cacao_settings.temporal_frames), after the last
+ * filter pass, both forms: the frame's AO blended into the history reprojected from the last
+ * frame, into the output and the next history; then the next history copied over the history. */
+#define CACAO_PASS_HORIZON_TEMPORAL 24
+#define CACAO_PASS_COUNT 25
 
 /* Depth-prepare variants (spec: prepare.md). HALF = slices 0 and 3 only (LOWEST), FULL = four
  * slices, MIPS = four slices plus mips 1..3 (HIGH and HIGHEST; MEDIUM never reads mips) in the
@@ -116,6 +120,10 @@
 #define CACAO_DENOISE_FINAL 1
 #define CACAO_DENOISE_UPSAMPLE 2
 #define CACAO_DENOISE_UPSAMPLE_FINAL 3
+
+/* Temporal variants: the blend, and the copy of the next history into the history. */
+#define CACAO_TEMPORAL_RESOLVE 0
+#define CACAO_TEMPORAL_COPY 1
 
 /* Classify variants (docs/tiles.md): from CACAO's deinterleaved depths, or from the horizon
  * estimators' full-resolution view z (their "slice" is the image: a tile is 8x8 pixels). */
@@ -267,7 +275,9 @@
 #define CACAO_BINDING_DEPTHS_MIP1 20     /* the GPU forms' depth mip chain: level 1 of the depths, image2DArray r16f */
 #define CACAO_BINDING_DEPTHS_MIP2 21     /* level 2 */
 #define CACAO_BINDING_DEPTHS_MIP3 22     /* level 3 */
-#define CACAO_BINDING_COUNT 23
+#define CACAO_BINDING_HISTORY 23         /* temporal: the history read, image2D rg32f */
+#define CACAO_BINDING_HISTORY_OUT 24     /* temporal: the history written, image2D rg32f */
+#define CACAO_BINDING_COUNT 25
 
 /* ---- Workgroup sizes (x, y); z is always 1 ---- */
 #define CACAO_WG_PREPARE_X 8
@@ -446,6 +456,7 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     A(VEC4, bilateral_axis_weight, 2)   /* [i] = exp(-(i/2)^2 / spatial variance), i = 0..5: the */ \
                                         /* upsample's spatial weight is the product for |dx|, |dy| */ \
     M(MAT4, normals_to_view)            /* n'_j = sum_i E[j][i] n_i, stored column-major */       \
+    M(MAT4, view_to_previous_view)      /* temporal: this frame's view position to the last frame's */ \
     M(VEC2, depth_unpack_d)             /* (0, -1) perspective, (P(3,3), 0) orthographic */       \
     M(VEC2, view_xy_z)                  /* view xy = (ndc_to_view_mul uv + add) (x z + y) */       \
     M(VEC2, edge_depth)                 /* depth an edge is relative to = x z + y */ \
@@ -492,7 +503,9 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(INT, reuse_margin)                /* slice texels a change reaches besides the taps */      \
     M(FLOAT, reuse_tap_reach)           /* farthest tap offset, in units of the lookup radius */   \
     M(FLOAT, reuse_near_k)              /* largest |view position| / z over the image's pixels */  \
-    M(INT, gate_count)                  /* gate commands a frame with no change zeroes, or classify.quiet opens */
+    M(INT, gate_count)                  /* gate commands a frame with no change zeroes, or classify.quiet opens */ \
+    M(FLOAT, temporal_min_weight)       /* temporal: 1 / temporal_frames, the blend's least weight */ \
+    M(INT, temporal_history)            /* temporal: 1 where the last frame's history is valid */
 
 #ifdef CACAO_GLSL
 #ifdef CACAO_BIND_CONSTANTS /* every pass row binds it (glsl/bindings.glsl declares the other slots) */

@@ -127,7 +127,9 @@ static void test_subset(void) {
                               "horizon_denoise_gpu.final",
                               /* reuse_unchanged (no axis: any CACAO configuration may ask for it) */
                               "reuse.diff", "reuse.diff_normals", "reuse.prefix", "reuse.reach", "reuse.diff_gpu",
-                              "reuse.diff_normals_gpu"};
+                              "reuse.diff_normals_gpu",
+                              /* temporal_frames (no axis: any horizon estimator configuration) */
+                              "horizon_temporal.resolve", "horizon_temporal.copy"};
     size_t n, kept = 0;
     cacao_key *keys = all_keys(&n);
     for (size_t i = 0; i < n; ++i) {

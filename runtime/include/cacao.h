@@ -163,6 +163,8 @@ CACAO_API cacao_result cacao_shader_forms_from_name(const char *name, cacao_shad
  * is 8 pixels from any tile it computes: with 3 + 5 pixels of reach the skipped tiles stay exactly
  * what the full computation gives. */
 #define CACAO_HORIZON_HALF_MAX_PASSES 6
+/* settings.temporal_frames: 0 (off) or 2..CACAO_TEMPORAL_MAX_FRAMES */
+#define CACAO_TEMPORAL_MAX_FRAMES 64
 
 /* Asks for no blur (blur_pass_count 0 means the default, 2). */
 #define CACAO_BLUR_NONE (-1)
@@ -223,6 +225,17 @@ typedef struct cacao_settings {
      * list that only the classification makes), in the GPU forms such a frame runs the last
      * denoise pass alone. */
     bool reuse_unchanged;
+    /* GTAO/BITMASK: temporal accumulation for engines without a temporal filter of their own
+     * (docs/estimators.md "Temporal accumulation"). 0: off, each frame stands alone. 2..64: the
+     * context keeps the AO of the last frames and blends each frame into it, a running mean of up
+     * to temporal_frames frames (then an exponential one of weight 1 / temporal_frames), so that
+     * the frames' sample patterns (cacao_inputs.frame_index, which the caller advances every
+     * frame) average out. The history follows the camera (cacao_inputs.view_to_previous_view) and
+     * is dropped per pixel where its view z does not match the surface (disocclusion, a moved
+     * object), and wholly after a resize, a change of settings or cacao_inputs.temporal_reset.
+     * Frames must reach the GPU in the order they were recorded. Costs 16 bytes per pixel. Not
+     * with reuse_unchanged (refused). */
+    int temporal_frames;
 } cacao_settings;
 
 /* Fills every defaulted field of *in into *out and checks every field. An explicit zero keeps its
@@ -256,6 +269,9 @@ typedef enum cacao_resource {
     CACAO_RES_DEPTH_HISTORY,    /* reuse_unchanged: the caller's depth as the last frame read it, RGBA32F
                                    (2x2 pixels a texel) */
     CACAO_RES_NORMALS_HISTORY,  /* reuse_unchanged with input normals: the caller's normals, RGBA32F */
+    CACAO_RES_AO_HISTORY,       /* temporal_frames: the accumulated AO, its frame count and view z, RG32F,
+                                   kept from frame to frame */
+    CACAO_RES_AO_HISTORY_NEXT,  /* temporal_frames: this frame's, copied into AO_HISTORY at its end */
     CACAO_RES_COUNT
 } cacao_resource;
 
@@ -498,6 +514,15 @@ typedef struct cacao_inputs {
      * horizon estimator's last pass; in their CPU forms the frame is a full one). */
     bool force_full_frame;
     bool output_holds_previous;
+    /* settings.temporal_frames only. view_to_previous_view maps this frame's view space (cacao's:
+     * x right, y up, z forward) to the previous frame's, for static geometry: previous_view *
+     * inverse(view) in the caller's conventions, expressed in cacao's view axes (the same change
+     * of axes as normals_to_view); all zero = identity (a still camera). Same storage rule as
+     * projection. The previous frame's projection is taken to be this one's (a change of
+     * projection: set temporal_reset). temporal_reset drops the whole history this frame (a cut,
+     * a teleport). */
+    float view_to_previous_view[16];
+    bool temporal_reset;
 } cacao_inputs;
 
 /* Records one frame: constant update, barriers and dispatches. cacao orders itself against the

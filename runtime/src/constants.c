@@ -115,6 +115,10 @@ cacao_result cacaoi_check_projection(const cacao_inputs *in, char *error, size_t
             cacaoi_set_error(error, error_size, "inputs.normals_to_view[%d] is not a finite number", i);
             return CACAO_ERROR_INVALID_ARGUMENT;
         }
+        if (!isfinite(in->view_to_previous_view[i])) {
+            cacaoi_set_error(error, error_size, "inputs.view_to_previous_view[%d] is not a finite number", i);
+            return CACAO_ERROR_INVALID_ARGUMENT;
+        }
     }
     const bool rm = in->matrices_row_major;
 #define P(r, c) mat_at(in->projection, rm, r, c)
@@ -414,6 +418,14 @@ void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao
         for (int col = 0; col < 4; ++col)
             c->normals_to_view.m[4 * col + row] =
                 identity ? (row == col ? 1.0f : 0.0f) : mat_at(in->normals_to_view, rm, row, col);
+    /* temporal accumulation: the camera's motion (identity when all zero); record.c sets
+     * temporal_history */
+    const bool still = all_zero(in->view_to_previous_view);
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col < 4; ++col)
+            c->view_to_previous_view.m[4 * col + row] =
+                still ? (row == col ? 1.0f : 0.0f) : mat_at(in->view_to_previous_view, rm, row, col);
+    c->temporal_min_weight = s->temporal_frames ? 1.0f / (float)s->temporal_frames : 1.0f;
     if (s->estimator != CACAO_ESTIMATOR_CACAO) fill_horizon_constants(s, &v, k, plan, in, c);
     fill_reuse_constants(plan, c);
 }

@@ -62,6 +62,7 @@ cacao_key_config cacaoi_key_config_of(const cacao_settings *s) {
         .estimator = (unsigned)s->estimator - 1u,
         .gpu_forms = s->shader_forms == CACAO_SHADER_FORMS_GPU,
         .reuse = s->reuse_unchanged, /* CACAO only (cacao_settings_resolve) */
+        .temporal = s->temporal_frames != 0, /* GTAO/BITMASK only, without reuse (cacao_settings_resolve) */
     };
 }
 

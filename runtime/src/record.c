@@ -98,17 +98,22 @@ static VkImageMemoryBarrier image_barrier(VkImage image, VkImageAspectFlags aspe
 /* Frame start: previous frames' accesses to our intermediates end before this frame overwrites
  * them (their contents are discarded: UNDEFINED -> GENERAL, unless reuse keeps them), the caller's
  * earlier writes to its inputs become visible, and the output goes to GENERAL for storage writes. */
-static void record_frame_start(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in, bool keep) {
+static void record_frame_start(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inputs *in, bool keep,
+                               bool keep_history) {
     VkImageMemoryBarrier barriers[CACAO_RES_COUNT + 3];
     uint32_t n = 0;
-    /* `keep` (reuse: the frame may keep tiles of the previous one): contents stay, in GENERAL */
-    for (uint32_t i = 0; i < ctx->plan.image_count; ++i)
-        barriers[n++] = image_barrier(ctx->images[ctx->plan.images[i].resource].image, VK_IMAGE_ASPECT_COLOR_BIT,
-                                      keep ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED,
+    /* `keep` (reuse: the frame may keep tiles of the previous one): contents stay, in GENERAL; so
+     * do the temporal history's, from the second frame after a resize */
+    for (uint32_t i = 0; i < ctx->plan.image_count; ++i) {
+        const cacao_resource res = ctx->plan.images[i].resource;
+        const bool kept = keep || (keep_history && res == CACAO_RES_AO_HISTORY);
+        barriers[n++] = image_barrier(ctx->images[res].image, VK_IMAGE_ASPECT_COLOR_BIT,
+                                      kept ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED,
                                       VK_IMAGE_LAYOUT_GENERAL,
                                       VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
                                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
                                           VK_ACCESS_TRANSFER_WRITE_BIT);
+    }
     barriers[n++] = image_barrier(in->depth.image, aspect_of(in->depth.format), in->depth.layout, in->depth.layout,
                                   VK_ACCESS_MEMORY_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT);
     if (!ctx->plan.settings.generate_normals)
@@ -366,7 +371,11 @@ cacao_result cacao_record(cacao_context *ctx, VkCommandBuffer cmd, const cacao_i
     cacao_constants constants;
     cacaoi_fill_constants(&ctx->plan, in, &constants);
     const int reuse = reuse_frame(ctx, in, &constants);
-    record_frame_start(ctx, cmd, in, reuse == 1);
+    /* temporal accumulation: the history of the last frame recorded, unless the caller drops it */
+    const bool primed = ctx->plan.settings.temporal_frames && ctx->temporal_primed;
+    constants.temporal_history = primed && !in->temporal_reset ? 1 : 0;
+    record_frame_start(ctx, cmd, in, reuse == 1, primed);
+    ctx->temporal_primed = ctx->plan.settings.temporal_frames != 0;
     record_constants(ctx, cmd, &constants);
     const VkQueryPool timer = in->timestamp_query_pool;
     if (timer)

@@ -192,6 +192,22 @@ cacao_result cacao_settings_resolve(const cacao_settings *in, cacao_settings *ou
         if (s.horizon_slices == 0) s.horizon_slices = CACAOI_HORIZON_SLICES(q, e); /* by quality and estimator */
         if (s.horizon_steps == 0) s.horizon_steps = CACAOI_HORIZON_STEPS(q, e);
     }
+    if (s.temporal_frames != 0 && (s.temporal_frames < 2 || s.temporal_frames > CACAO_TEMPORAL_MAX_FRAMES)) {
+        cacaoi_set_error(error, error_size, "settings.temporal_frames = %d is outside 2..%d (0 = off)", s.temporal_frames,
+                         CACAO_TEMPORAL_MAX_FRAMES);
+        return CACAO_ERROR_INVALID_ARGUMENT;
+    }
+    if (s.temporal_frames != 0 && !slice) {
+        cacaoi_set_error(error, error_size,
+                         "settings.temporal_frames = %d: temporal accumulation needs the GTAO or BITMASK estimator "
+                         "(CACAO's frames do not vary)",
+                         s.temporal_frames);
+        return CACAO_ERROR_INVALID_ARGUMENT;
+    }
+    if (s.temporal_frames != 0 && s.reuse_unchanged) {
+        cacaoi_set_error(error, error_size, "settings.temporal_frames and settings.reuse_unchanged exclude each other");
+        return CACAO_ERROR_INVALID_ARGUMENT;
+    }
     if ((int)s.precision != CACAO_PRECISION_FP32 && (int)s.precision != CACAO_PRECISION_FP16) {
         cacaoi_set_error(error, error_size, "settings.precision = %d is not a cacao_precision", (int)in->precision);
         return CACAO_ERROR_INVALID_ARGUMENT;

@@ -67,6 +67,9 @@ struct cacao_context {
     bool reuse_copies_stale; /* the last frame skipped the diff (its constants changed): the next
                                 one refreshes the copies of the inputs */
     cacao_constants reuse_constants;
+    /* temporal_frames (record.c): a frame was recorded since the last resize, so the history
+     * image holds its accumulation */
+    bool temporal_primed;
 
     VkSampler nearest_sampler, linear_sampler;
     VkDescriptorSetLayout set_layout;

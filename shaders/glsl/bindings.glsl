@@ -100,6 +100,15 @@ layout(set = 0, binding = CACAO_BINDING_HORIZON_AO_OUT, CACAO_FORMAT_HORIZON_AO_
     CACAO_ACCESS_HORIZON_AO_OUT image2D horizon_ao_out;
 #endif
 
+#ifdef CACAO_BIND_HISTORY
+layout(set = 0, binding = CACAO_BINDING_HISTORY, CACAO_FORMAT_HISTORY) uniform CACAO_ACCESS_HISTORY image2D history;
+#endif
+
+#ifdef CACAO_BIND_HISTORY_OUT
+layout(set = 0, binding = CACAO_BINDING_HISTORY_OUT, CACAO_FORMAT_HISTORY_OUT) uniform CACAO_ACCESS_HISTORY_OUT
+    image2D history_out;
+#endif
+
 #ifdef CACAO_BIND_OUTPUT
 /* No format qualifier: the caller's image format (shaderStorageImageWriteWithoutFormat). */
 layout(set = 0, binding = CACAO_BINDING_OUTPUT) uniform CACAO_ACCESS_OUTPUT image2D output_image;

@@ -5,7 +5,8 @@
 #define HORIZON_PREPARE_PASS (CACAO_PASS == CACAO_PASS_HORIZON_PREPARE || CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU)
 #define HORIZON_MAIN_PASS (CACAO_PASS == CACAO_PASS_HORIZON_MAIN || CACAO_PASS == CACAO_PASS_HORIZON_MAIN_GPU)
 #define HORIZON_DENOISE_PASS (CACAO_PASS == CACAO_PASS_HORIZON_DENOISE || CACAO_PASS == CACAO_PASS_HORIZON_DENOISE_GPU)
-#if HORIZON_PREPARE_PASS || HORIZON_MAIN_PASS || HORIZON_DENOISE_PASS
+#define HORIZON_TEMPORAL_PASS (CACAO_PASS == CACAO_PASS_HORIZON_TEMPORAL)
+#if HORIZON_PREPARE_PASS || HORIZON_MAIN_PASS || HORIZON_DENOISE_PASS || HORIZON_TEMPORAL_PASS
 /* spec: estimators.md. GTAO and the cosine-weighted visibility bitmask, at full resolution, one
  * invocation per pixel, all in fp32. View z of background pixels (the far plane, or depth that
  * gives no finite positive z: NaN, Inf, an infinite far plane) is stored as -1: such pixels output
@@ -522,4 +523,72 @@ void main()
 #endif
 }
 #endif /* HORIZON_DENOISE */
+
+#if HORIZON_TEMPORAL_PASS
+/* Temporal accumulation (cacao_settings.temporal_frames; docs/estimators.md "Temporal
+ * accumulation"). A history texel holds x = 2 n + AO (the AO of the last n frames, n >= 1, AO in
+ * [0, 1]) and y = the view z of its surface (-1: none). Every pixel: its point, moved into the last
+ * frame's view space (static geometry), projected into the last frame's pixels (its projection is
+ * this frame's), takes the bilinear mean of the history texels around it whose view z is that
+ * point's, within 1% and the depth's own slope across a pixel (the smaller one-sided difference
+ * of each axis: a silhouette's far side does not widen it); none match: disoccluded, the history
+ * starts again. The frame's AO then weighs max(1 / (n + 1), 1 / temporal_frames). */
+#if CACAO_VARIANT == CACAO_TEMPORAL_RESOLVE
+float temporal_view_z(ivec2 q, ivec2 size) { return in_rect(q, size) ? imageLoad(view_depth, q).r : -1.0; }
+#endif
+
+/* |z - zq| for a neighbour, huge where it is missing */
+float temporal_step(float z, float zq) { return zq > 0.0 ? abs(zq - z) : 1e30; }
+
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+#if CACAO_VARIANT == CACAO_TEMPORAL_COPY
+    /* the output's size from the constants (every pass binds them) */
+    if (in_rect(p, ivec2(round(1.0 / CB.output_buffer_inverse_dimensions)))) imageStore(history_out, p, imageLoad(history, p));
+#else
+    ivec2 size = imageSize(history_out);
+    if (!in_rect(p, size)) return;
+    float z = imageLoad(view_depth, p).r;
+    float ao = imageLoad(horizon_ao, p).r;
+    float frames = 0.0, previous = 1.0;
+    if (z > 0.0 && CB.temporal_history != 0) {
+        vec3 pos = (CB.view_to_previous_view * vec4(horizon_pos(p, z), 1.0)).xyz;
+        float scale = view_xy_scale(pos.z);
+        if (pos.z > 0.0 && scale > 0.0) {
+            float slope = max(min(temporal_step(z, temporal_view_z(p - ivec2(1, 0), size)),
+                                  temporal_step(z, temporal_view_z(p + ivec2(1, 0), size))),
+                              min(temporal_step(z, temporal_view_z(p - ivec2(0, 1), size)),
+                                  temporal_step(z, temporal_view_z(p + ivec2(0, 1), size))));
+            float tolerance = 0.01 * pos.z + min(slope, pos.z);
+            vec2 uv = (pos.xy / scale - CB.ndc_to_view_add) / CB.ndc_to_view_mul;
+            vec2 f = uv * vec2(size) - 0.5; /* texel centres at integers */
+            ivec2 b = ivec2(floor(f));
+            vec2 t = f - vec2(b);
+            float weight_sum = 0.0, sum = 0.0, fewest = 1e9;
+            [[unroll]] for (int k = 0; k < 4; ++k) {
+                ivec2 q = b + ivec2(k & 1, k >> 1);
+                float w = ((k & 1) != 0 ? t.x : 1.0 - t.x) * ((k >> 1) != 0 ? t.y : 1.0 - t.y);
+                vec2 h = imageLoad(history, clamp(q, ivec2(0), size - 1)).xy;
+                if (in_rect(q, size) && w > 0.0 && h.y > 0.0 && abs(h.y - pos.z) <= tolerance) {
+                    float n = floor(0.5 * h.x);
+                    sum += w * (h.x - 2.0 * n);
+                    weight_sum += w;
+                    fewest = min(fewest, n);
+                }
+            }
+            if (weight_sum > 1e-3) {
+                previous = sum / weight_sum;
+                frames = fewest;
+            }
+        }
+    }
+    float weight = max(1.0 / (frames + 1.0), CB.temporal_min_weight);
+    float blended = frames == 0.0 ? ao : sat(mix(previous, ao, weight)); /* the first frame: its own AO */
+    float kept = min(frames + 1.0, floor(1.0 / CB.temporal_min_weight + 0.5));
+    imageStore(history_out, p, vec4(2.0 * kept + blended, z > 0.0 ? z : -1.0, 0.0, 0.0));
+    imageStore(output_image, p, vec4(blended, 0.0, 0.0, 0.0));
+#endif
+}
+#endif /* HORIZON_TEMPORAL */
 #endif /* horizon estimators */

@@ -32,7 +32,7 @@ endforeach()
 # tile passes (no axis: every CACAO configuration runs them); and the GPU forms of the blur,
 # apply, prepare and generate, and of the horizon estimators' passes (a build
 # embeds both forms: the device chooses); the reuse passes (no axis: a setting of any CACAO
-# configuration).
+# configuration); the temporal passes (no axis: a setting of the horizon estimators).
 set(expected prepare_depths.full.native prepare_depths.mips.native prepare_depths.mips_chain.native prepare_normals.native prepare_normals.list.native
     generate.q1 generate.q2 blur.1.fp32 blur.2.fp32 blur.3.fp32
     blur.4.fp32 blur.5.fp32 blur.6.fp32 blur.7.fp32 blur.8.fp32 apply.smart.fp32 apply.smart_list.fp32
@@ -45,7 +45,7 @@ set(expected prepare_depths.full.native prepare_depths.mips.native prepare_depth
     reuse.diff reuse.diff_normals reuse.prefix reuse.reach reuse.diff_gpu reuse.diff_normals_gpu
     horizon_prepare_gpu.depth horizon_prepare_gpu.input horizon_main_gpu.gtao horizon_main_gpu.bitmask
     horizon_main_gpu.gtao_direct horizon_main_gpu.bitmask_direct horizon_denoise_gpu.intermediate
-    horizon_denoise_gpu.final classify_gpu.native)
+    horizon_denoise_gpu.final classify_gpu.native horizon_temporal.resolve horizon_temporal.copy)
 if(NOT names STREQUAL expected)
   message(FATAL_ERROR "subset table holds [${names}]\nexpected [${expected}]")
 endif()

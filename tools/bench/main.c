@@ -346,6 +346,7 @@ static bool run_one(vkdev *dev, const bench_options *o, const bench_scene *s, co
     const cli_inputs *in = &s->inputs;
     vkdev_frame frame = cli_inputs_frame(in, &set, o->cli.frame_index);
     frame.plan_out = &r->plan; /* the plan the context ran, fallbacks included */
+    frame.advance_frame_index = (&set)->temporal_frames != 0; /* a new sample pattern every frame */
     const cacao_result res = vkdev_run_timed(dev, &set, &frame, o->warmup, o->repeat, ao, &r->timings, err, sizeof err);
     if (res != CACAO_SUCCESS) return fail("%s on %s: %s: %s", c->name, s->name, cacao_result_string(res), err);
     const size_t pixels = (size_t)frame.width * frame.height;

@@ -110,6 +110,11 @@ static cJSON *result_json(const bench_run *run, const bench_result *r) {
     cJSON_AddNumberToObject(o, "pipeline_count", r->timings.pipeline_count);
     cJSON_AddNumberToObject(o, "pipeline_creation_ms", r->timings.setup_ms);
     cJSON_AddNumberToObject(o, "nonfinite", (double)r->nonfinite);
+    /* the frames the errors' AO averages: 1, or with temporal accumulation the frames run (warm-up
+     * and timed, each a new sample pattern, a still camera) up to temporal_frames */
+    const unsigned run_frames = run->warmup + (run->repeat ? run->repeat : 1);
+    const unsigned cap = (unsigned)r->resolved.temporal_frames;
+    cJSON_AddNumberToObject(o, "frames_accumulated", cap ? (run_frames < cap ? run_frames : cap) : 1);
     cJSON *errors = cJSON_AddObjectToObject(o, "errors");
     for (int t = 0; errors && t < BENCH_TRUTHS; ++t) {
         if (!r->has_error[t]) continue;

@@ -107,6 +107,7 @@ static bool run_on_device(vkdev *dev, const cli_options *o, const cli_inputs *in
                           render_result *out, char *err) {
     vkdev_frame frame = cli_inputs_frame(in, encoded, o->frame_index);
     frame.plan_out = &out->plan; /* the plan the context ran, fallbacks included */
+    frame.advance_frame_index = encoded->temporal_frames != 0; /* a new sample pattern every frame */
     float *moved = NULL;
     if (!cli_inputs_reuse_frame(o, in, &frame, &moved, err, ERR_SIZE)) return false;
     char why[ERR_SIZE - 128];

@@ -215,6 +215,15 @@ static const flag_def flags[] = {
      .help = "gtao/bitmask: steps per slice side, 1..32 (0 = by quality); depth reads = 2 x slices x steps",
      .int_max = 32,
      .estimators = HORIZON_ESTIMATORS},
+    {.name = "--temporal",
+     .value = "N",
+     .kind = SET_INT,
+     .offset = offsetof(cacao_settings, temporal_frames),
+     .json = "temporal_frames",
+     .help = "gtao/bitmask: temporal accumulation over up to N frames, 2..64 (0 = off); with --repeat the "
+             "frames advance the sample pattern (--frame, +1 a frame) under a still camera",
+     .int_max = 64,
+     .estimators = HORIZON_ESTIMATORS},
     SECTION("Device"),
     OPT("--device", NULL, "N|NAME", FLAG_PATH, device, "Vulkan device by index or name substring (default lavapipe)"),
     OPT("--list-devices", NULL, NULL, FLAG_SWITCH, list_devices, "list the Vulkan devices and exit"),
@@ -342,6 +351,13 @@ static bool check_with_runtime(const flag_def *def, const cacao_settings *s, con
     const size_t size = def->kind == SET_BOOL ? sizeof(bool) : sizeof(float);
     memcpy((char *)&probe + def->offset, (const char *)s + def->offset, size);
     if (def->kind == SET_FLOAT_PAIR) memcpy((char *)&probe + def->offset2, (const char *)s + def->offset2, size);
+    /* a setting of some estimators only is checked with the first of them (whether the run's
+     * estimator takes it is the estimators mask's check) */
+    for (int e = CACAO_ESTIMATOR_CACAO; def->estimators && e <= CACAO_ESTIMATOR_BITMASK; ++e)
+        if (def->estimators & (1u << e)) {
+            probe.estimator = (cacao_estimator)e;
+            break;
+        }
     char why[256];
     if (cacao_settings_resolve(&probe, &resolved, why, sizeof why) == CACAO_SUCCESS) return true;
     cacao_set_err(err, n, "%s: %s", label, why);

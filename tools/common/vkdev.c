@@ -744,6 +744,8 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
     };
     memcpy(in.projection, frame->projection, sizeof in.projection);
     memcpy(in.normals_to_view, frame->normals_to_view, sizeof in.normals_to_view);
+    memcpy(in.view_to_previous_view, frame->view_to_previous_view, sizeof in.view_to_previous_view);
+    in.temporal_reset = frame->temporal_reset;
     const uint32_t steps = plan->step_count;
     double *samples = calloc((size_t)frames * (steps ? steps : 1), sizeof *samples);
     if (!samples) goto vk_failed;
@@ -758,6 +760,7 @@ cacao_result vkdev_run_context_timed(vkdev *dev, cacao_context *ctx, const vkdev
         in.output_holds_previous = frame->output_holds_previous && rep > 0;
         in.projection[0] = frame->alternate_camera && rep % 2 ? frame->projection[0] * (1.0f + 1.0e-6f) : frame->projection[0];
         in.force_full_frame = frame->force_full_frame;
+        in.frame_index = frame->frame_index + (frame->advance_frame_index ? rep : 0u);
         r = cacao_record(ctx, dev->cmd, &in);
         if (r != CACAO_SUCCESS) {
             cacao_set_err(err, n, "%s", cacao_context_last_error(ctx));

@@ -83,6 +83,12 @@ typedef struct vkdev_frame {
     float normals_unpack_mul, normals_unpack_add;
     VkFormat output_format;    /* 0 = R32_SFLOAT */
     uint32_t frame_index;      /* cacao_inputs.frame_index (GTAO/BITMASK sample pattern) */
+    /* temporal_frames: the run's frames r = 0, 1, ... use frame_index + r (each a new sample
+     * pattern for the accumulation); view_to_previous_view (row-major, zero = identity) and
+     * temporal_reset are the inputs' */
+    bool advance_frame_index;
+    float view_to_previous_view[16];
+    bool temporal_reset;
     /* reuse_unchanged (docs/tiles.md): alternate_depth, when set, is the depth of every other frame
      * of a run (frames 1, 3, ...: a change between every two frames); output_holds_previous sets
      * that input on every frame after a run's first (the run keeps one output image);

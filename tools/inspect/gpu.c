@@ -205,7 +205,8 @@ typedef struct gpu_session {
     char driver[512];
     cacao_context *ctx;
     cacao_shader_forms forms; /* CPU or GPU: what the plans and the context compile */
-    bool reuse;               /* the configurations with reuse_unchanged (--all sweeps them too) */
+    bool reuse;               /* the configurations with reuse_unchanged, the horizon estimators' with
+                                 temporal_frames (--all sweeps them too) */
     PFN_vkGetPipelineExecutablePropertiesKHR get_executables;
     PFN_vkGetPipelineExecutableStatisticsKHR get_statistics;
     gpu_measured *measured; /* per embedded permutation, in table order */
@@ -300,7 +301,10 @@ static cacao_settings config_settings(const gpu_session *s, const sweep_config *
     cacao_settings set = sweep_settings(c, (cacao_settings){.generate_normals = normals_from_depth,
                                                             .shader_forms = s->forms,
                                                             .reuse_unchanged = s->reuse});
-    if (set.estimator != CACAO_ESTIMATOR_CACAO) set.reuse_unchanged = false;
+    if (set.estimator != CACAO_ESTIMATOR_CACAO) { /* their second sweep: temporal accumulation instead */
+        set.reuse_unchanged = false;
+        set.temporal_frames = s->reuse ? 8 : 0;
+    }
     *fell_back = set.precision == CACAO_PRECISION_FP16 && !s->dev.fp16 && set.estimator == CACAO_ESTIMATOR_CACAO;
     if (*fell_back) set.precision = CACAO_PRECISION_FP32;
     return set;
@@ -752,7 +756,8 @@ static int run(gpu_session *s, const sweep_config *configs, uint32_t config_coun
             for (uint32_t i = 0; i < n; ++i)
                 if (!(from_depth && sweep[i].reconstruct_normals) && !measure_config(s, &sweep[i], from_depth, false))
                     return 1;
-        /* and with reuse_unchanged (its diff, prefix and reach passes; the other steps are the same) */
+        /* and with reuse_unchanged (its diff, prefix and reach passes; the other steps are the same),
+         * the horizon estimators with temporal accumulation (its resolve and copy) */
         s->reuse = true;
         for (int from_depth = 0; from_depth < 2; ++from_depth)
             for (uint32_t i = 0; i < n; ++i)

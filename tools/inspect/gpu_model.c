@@ -63,6 +63,7 @@ static const struct {
     {"horizon_prepare", GPU_STAGE_HORIZON_PREPARE}, /* and the GPU forms: horizon_prepare_gpu.* */
     {"horizon_main", GPU_STAGE_HORIZON_MAIN},
     {"horizon_denoise", GPU_STAGE_HORIZON_DENOISE},
+    {"horizon_temporal", GPU_STAGE_HORIZON_DENOISE}, /* temporal accumulation: counted with the filters */
 };
 
 bool gpu_stage_of_key(const char *key_name, gpu_stage *out) {
