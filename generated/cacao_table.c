@@ -3,7 +3,7 @@
 
 #include "cacao_table.h"
 
-extern const cacao_module cacaoi_generated_modules[135];
+extern const cacao_module cacaoi_generated_modules[134];
 
 static const cacao_permutation permutations[] = {
     {{0, 0, 0, 0, 0}, "prepare_depths.half.native", 0, {8, 8, 1}, 1388, 0, {1, 0, 0, 3, 0, 0, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
@@ -139,11 +139,10 @@ static const cacao_permutation permutations[] = {
     {{22, 3, 0, 0, 0}, "horizon_denoise_gpu.upsample_final", 130, {8, 8, 1}, 1388, 0, {1, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4, 4, 0, 4, 0, 0, 0, 0, 0, 0, 0}},
     {{23, 0, 0, 0, 0}, "classify_gpu.native", 131, {8, 8, 1}, 1388, 0, {1, 0, 2, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
     {{23, 0, 1, 0, 0}, "classify_gpu.downsampled", 132, {8, 8, 1}, 1388, 0, {1, 0, 2, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}},
-    {{24, 0, 0, 0, 0}, "horizon_temporal.resolve", 133, {8, 8, 1}, 1388, 0, {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 0, 4, 0, 4, 0, 0, 0, 0, 0, 4, 4}},
-    {{24, 1, 0, 0, 0}, "horizon_temporal.copy", 134, {8, 8, 1}, 1388, 0, {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 4}},
+    {{24, 0, 0, 0, 0}, "horizon_temporal", 133, {8, 8, 1}, 1388, 0, {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 0, 4, 0, 4, 0, 0, 0, 0, 0, 4, 4}},
 };
 
 const cacao_table cacaoi_embedded_table = {
-    permutations, 135, cacaoi_generated_modules, 135, "main",
+    permutations, 134, cacaoi_generated_modules, 134, "main",
     "glslang 12.0.0", "SPIRV-Tools v2023.1", "all",
 };

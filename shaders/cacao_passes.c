@@ -314,18 +314,12 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                              [CACAO_REUSE_DIFF_NORMALS_GPU] = CACAOI_GRID_OUTPUT}},
     /* Temporal accumulation (cacao_settings.temporal_frames), both shader forms, over every pixel:
      * the resolve reads the frame's AO from the intermediate the last filter pass wrote (a step
-     * rebinds HORIZON_AO), the view z and the history, and writes the output and the next history;
-     * the copy makes the next history the history (an image read where another invocation writes
-     * cannot be updated in place). */
-    PASS(HORIZON_TEMPORAL) = {"horizon_temporal", {"resolve", "copy"}, 2, false, false, false, WG(HORIZON),
-                              CACAOI_GRID_OUTPUT, 8,
-                              {CONSTANTS, R(HORIZON_AO, AO_RAW, V(CACAO_TEMPORAL_RESOLVE)),
-                               R(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_TEMPORAL_RESOLVE)),
-                               R(HISTORY, AO_HISTORY, V(CACAO_TEMPORAL_RESOLVE)),
-                               W(HISTORY_OUT, AO_HISTORY_NEXT, V(CACAO_TEMPORAL_RESOLVE)),
-                               W(OUTPUT, OUTPUT, V(CACAO_TEMPORAL_RESOLVE)),
-                               R(HISTORY, AO_HISTORY_NEXT, V(CACAO_TEMPORAL_COPY)),
-                               W(HISTORY_OUT, AO_HISTORY, V(CACAO_TEMPORAL_COPY))}},
+     * rebinds HORIZON_AO), the view z and the history, and writes the output and the next history.
+     * The history is read where other invocations write, so it is two images that trade roles
+     * every frame (record.c binds them crossed on every other frame). */
+    PASS(HORIZON_TEMPORAL) = {"horizon_temporal", {NULL}, 1, false, false, false, WG(HORIZON), CACAOI_GRID_OUTPUT, 6,
+                              {CONSTANTS, R(HORIZON_AO, AO_RAW, ALL), R(VIEW_DEPTH, VIEW_DEPTH, ALL),
+                               R(HISTORY, AO_HISTORY, ALL), W(HISTORY_OUT, AO_HISTORY_NEXT, ALL), W(OUTPUT, OUTPUT, ALL)}},
 };
 #undef R
 #undef W

@@ -92,10 +92,10 @@ static cacao_resource push_denoise_passes(cacaoi_step *out, size_t *n, unsigned 
     return ao;
 }
 
-/* Temporal accumulation last: the resolve reads the frame's AO from `ao`, then the copy. */
+/* Temporal accumulation last: the resolve reads the frame's AO from `ao` (the two history images
+ * trade roles every frame at record time: record.c). */
 static void push_temporal(cacaoi_step *out, size_t *n, cacao_resource ao) {
     rebind(push(out, n, CACAO_PASS_HORIZON_TEMPORAL, CACAO_TEMPORAL_RESOLVE, 0, 0, 0), CACAO_BINDING_HORIZON_AO, ao);
-    push(out, n, CACAO_PASS_HORIZON_TEMPORAL, CACAO_TEMPORAL_COPY, 0, 0, 0);
 }
 
 /* Horizon estimators, the CPU forms: classification from the caller's depth (docs/tiles.md),

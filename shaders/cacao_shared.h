@@ -59,7 +59,7 @@
 #define CACAO_PASS_CLASSIFY_GPU 23
 /* The horizon estimators' temporal accumulation (cacao_settings.temporal_frames), after the last
  * filter pass, both forms: the frame's AO blended into the history reprojected from the last
- * frame, into the output and the next history; then the next history copied over the history. */
+ * frame, into the output and the next history (the two history images trade roles every frame). */
 #define CACAO_PASS_HORIZON_TEMPORAL 24
 #define CACAO_PASS_COUNT 25
 
@@ -121,9 +121,8 @@
 #define CACAO_DENOISE_UPSAMPLE 2
 #define CACAO_DENOISE_UPSAMPLE_FINAL 3
 
-/* Temporal variants: the blend, and the copy of the next history into the history. */
+/* The temporal pass has one variant. */
 #define CACAO_TEMPORAL_RESOLVE 0
-#define CACAO_TEMPORAL_COPY 1
 
 /* Classify variants (docs/tiles.md): from CACAO's deinterleaved depths, or from the horizon
  * estimators' full-resolution view z (their "slice" is the image: a tile is 8x8 pixels). */

@@ -129,7 +129,7 @@ static void test_subset(void) {
                               "reuse.diff", "reuse.diff_normals", "reuse.prefix", "reuse.reach", "reuse.diff_gpu",
                               "reuse.diff_normals_gpu",
                               /* temporal_frames (no axis: any horizon estimator configuration) */
-                              "horizon_temporal.resolve", "horizon_temporal.copy"};
+                              "horizon_temporal"};
     size_t n, kept = 0;
     cacao_key *keys = all_keys(&n);
     for (size_t i = 0; i < n; ++i) {

@@ -324,7 +324,7 @@ def report(a, scenes, ours, amd, gpu, up_before, up_after, work, device):
               'Every quality level of both estimators (given normals), cacao\'s CACAO levels and AMD\'s (AMD\'s '
               'reference settings, reconstructed normals), mean over the scenes; times as ratios to AMD\'s HIGH '
               'of this run, scene by scene; the last column: mean RMSE after 8 frames of temporal accumulation '
-              '(not timed; its two passes cost 5-7 ms a frame at 960x540 here, docs/estimators-design.md).', ''] + table + ['', 'Issue 34\'s targets:', ''] + \
+              '(not timed; its pass costs about four fifths of the upsample here, docs/estimators-design.md).', ''] + table + ['', 'Issue 34\'s targets:', ''] + \
         targets(scenes, ours, front) + real_gpu() + ['']
     for scene in scenes:
         amd_high = float(np.median(amd[(scene, 'high_native')]['total'])) if (scene, 'high_native') in amd else None

@@ -271,7 +271,7 @@ typedef enum cacao_resource {
     CACAO_RES_NORMALS_HISTORY,  /* reuse_unchanged with input normals: the caller's normals, RGBA32F */
     CACAO_RES_AO_HISTORY,       /* temporal_frames: the accumulated AO, its frame count and view z, RG32F,
                                    kept from frame to frame */
-    CACAO_RES_AO_HISTORY_NEXT,  /* temporal_frames: this frame's, copied into AO_HISTORY at its end */
+    CACAO_RES_AO_HISTORY_NEXT,  /* temporal_frames: this frame's; the two trade roles every frame */
     CACAO_RES_COUNT
 } cacao_resource;
 

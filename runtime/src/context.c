@@ -691,6 +691,7 @@ cacao_result cacao_context_resize(cacao_context *ctx, uint32_t width, uint32_t h
     ctx->ready = true;
     ctx->reuse_primed = false; /* new intermediates: the next frame is a full one */
     ctx->temporal_primed = false; /* and the history starts again */
+    ctx->temporal_odd = false;
     ctx->pipelines_only = false;
     ctx->last_error[0] = '\0';
     if (out_info) *out_info = ctx->memory;

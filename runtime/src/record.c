@@ -103,10 +103,10 @@ static void record_frame_start(cacao_context *ctx, VkCommandBuffer cmd, const ca
     VkImageMemoryBarrier barriers[CACAO_RES_COUNT + 3];
     uint32_t n = 0;
     /* `keep` (reuse: the frame may keep tiles of the previous one): contents stay, in GENERAL; so
-     * do the temporal history's, from the second frame after a resize */
+     * do the temporal history's two images, from the second frame after a resize */
     for (uint32_t i = 0; i < ctx->plan.image_count; ++i) {
         const cacao_resource res = ctx->plan.images[i].resource;
-        const bool kept = keep || (keep_history && res == CACAO_RES_AO_HISTORY);
+        const bool kept = keep || (keep_history && (res == CACAO_RES_AO_HISTORY || res == CACAO_RES_AO_HISTORY_NEXT));
         barriers[n++] = image_barrier(ctx->images[res].image, VK_IMAGE_ASPECT_COLOR_BIT,
                                       kept ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED,
                                       VK_IMAGE_LAYOUT_GENERAL,
@@ -269,8 +269,12 @@ static void describe(const cacao_context *ctx, const cacao_inputs *in, const cac
     case CACAO_RES_OUTPUT: info->image = (VkDescriptorImageInfo){0, in->output.view, VK_IMAGE_LAYOUT_GENERAL}; return;
     default: {
         /* a mip chain: its sampled view holds every level, the storage slots of levels 1..3 their
-         * own level (the last the chain has, for a slot past it) */
-        const cacao_intermediate *im = &ctx->images[b->resource];
+         * own level (the last the chain has, for a slot past it). The temporal history's two images
+         * trade roles every frame: the one written last frame is read (temporal_odd). */
+        cacao_resource res = (cacao_resource)b->resource;
+        if (ctx->temporal_odd && (res == CACAO_RES_AO_HISTORY || res == CACAO_RES_AO_HISTORY_NEXT))
+            res = res == CACAO_RES_AO_HISTORY ? CACAO_RES_AO_HISTORY_NEXT : CACAO_RES_AO_HISTORY;
+        const cacao_intermediate *im = &ctx->images[res];
         VkImageView view = im->view;
         unsigned level = cacaoi_depth_mip_slot_level(b->binding);
         while (level > 0 && !im->level_views[level]) --level;
@@ -375,6 +379,7 @@ cacao_result cacao_record(cacao_context *ctx, VkCommandBuffer cmd, const cacao_i
     const bool primed = ctx->plan.settings.temporal_frames && ctx->temporal_primed;
     constants.temporal_history = primed && !in->temporal_reset ? 1 : 0;
     record_frame_start(ctx, cmd, in, reuse == 1, primed);
+    ctx->temporal_odd = primed && !ctx->temporal_odd; /* the history this frame reads: the last one's output */
     ctx->temporal_primed = ctx->plan.settings.temporal_frames != 0;
     record_constants(ctx, cmd, &constants);
     const VkQueryPool timer = in->timestamp_query_pool;

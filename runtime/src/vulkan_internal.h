@@ -70,6 +70,7 @@ struct cacao_context {
     /* temporal_frames (record.c): a frame was recorded since the last resize, so the history
      * image holds its accumulation */
     bool temporal_primed;
+    bool temporal_odd; /* this frame reads AO_HISTORY_NEXT and writes AO_HISTORY (record.c describe) */
 
     VkSampler nearest_sampler, linear_sampler;
     VkDescriptorSetLayout set_layout;

@@ -533,9 +533,7 @@ void main()
  * point's, within 1% and the depth's own slope across a pixel (the smaller one-sided difference
  * of each axis: a silhouette's far side does not widen it); none match: disoccluded, the history
  * starts again. The frame's AO then weighs max(1 / (n + 1), 1 / temporal_frames). */
-#if CACAO_VARIANT == CACAO_TEMPORAL_RESOLVE
 float temporal_view_z(ivec2 q, ivec2 size) { return in_rect(q, size) ? imageLoad(view_depth, q).r : -1.0; }
-#endif
 
 /* |z - zq| for a neighbour, huge where it is missing */
 float temporal_step(float z, float zq) { return zq > 0.0 ? abs(zq - z) : 1e30; }
@@ -543,10 +541,6 @@ float temporal_step(float z, float zq) { return zq > 0.0 ? abs(zq - z) : 1e30; }
 void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-#if CACAO_VARIANT == CACAO_TEMPORAL_COPY
-    /* the output's size from the constants (every pass binds them) */
-    if (in_rect(p, ivec2(round(1.0 / CB.output_buffer_inverse_dimensions)))) imageStore(history_out, p, imageLoad(history, p));
-#else
     ivec2 size = imageSize(history_out);
     if (!in_rect(p, size)) return;
     float z = imageLoad(view_depth, p).r;
@@ -588,7 +582,6 @@ void main()
     float kept = min(frames + 1.0, floor(1.0 / CB.temporal_min_weight + 0.5));
     imageStore(history_out, p, vec4(2.0 * kept + blended, z > 0.0 ? z : -1.0, 0.0, 0.0));
     imageStore(output_image, p, vec4(blended, 0.0, 0.0, 0.0));
-#endif
 }
 #endif /* HORIZON_TEMPORAL */
 #endif /* horizon estimators */

@@ -45,7 +45,7 @@ set(expected prepare_depths.full.native prepare_depths.mips.native prepare_depth
     reuse.diff reuse.diff_normals reuse.prefix reuse.reach reuse.diff_gpu reuse.diff_normals_gpu
     horizon_prepare_gpu.depth horizon_prepare_gpu.input horizon_main_gpu.gtao horizon_main_gpu.bitmask
     horizon_main_gpu.gtao_direct horizon_main_gpu.bitmask_direct horizon_denoise_gpu.intermediate
-    horizon_denoise_gpu.final classify_gpu.native horizon_temporal.resolve horizon_temporal.copy)
+    horizon_denoise_gpu.final classify_gpu.native horizon_temporal)
 if(NOT names STREQUAL expected)
   message(FATAL_ERROR "subset table holds [${names}]\nexpected [${expected}]")
 endif()
