@@ -17,6 +17,18 @@ static bool all_zero(const float m[16]) {
     return true;
 }
 
+/* A caller's matrix as the constant block holds it: GLSL reads a mat4 column-major, m[4*col + row]
+ * = M(row, col), so v' = M * v; the identity where it is all zero (the inputs' convention) or where
+ * `identity` says so. */
+static cacao_mat4 block_mat4(const float m[16], bool row_major, bool identity) {
+    identity = identity || all_zero(m);
+    cacao_mat4 out;
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col < 4; ++col)
+            out.m[4 * col + row] = identity ? (row == col ? 1.0f : 0.0f) : mat_at(m, row_major, row, col);
+    return out;
+}
+
 /* The projection's view: x right, y up, z = distance forward (cacao's view space), whatever the
  * caller's handedness, depth convention, jitter or asymmetric frustum. */
 typedef struct projection_view {
@@ -412,19 +424,9 @@ void cacaoi_fill_constants(const cacao_plan *plan, const cacao_inputs *in, cacao
     static const float sample_pattern[128] = {CACAO_SAMPLE_PATTERN_VALUES};
     memcpy(c->sample_pattern, sample_pattern, sizeof sample_pattern);
 
-    /* GLSL reads the mat4 column-major: m[4*col + row] = N(row, col), so n' = N * n. */
-    const bool identity = s->generate_normals || all_zero(in->normals_to_view);
-    for (int row = 0; row < 4; ++row)
-        for (int col = 0; col < 4; ++col)
-            c->normals_to_view.m[4 * col + row] =
-                identity ? (row == col ? 1.0f : 0.0f) : mat_at(in->normals_to_view, rm, row, col);
-    /* temporal accumulation: the camera's motion (identity when all zero); record.c sets
-     * temporal_history */
-    const bool still = all_zero(in->view_to_previous_view);
-    for (int row = 0; row < 4; ++row)
-        for (int col = 0; col < 4; ++col)
-            c->view_to_previous_view.m[4 * col + row] =
-                still ? (row == col ? 1.0f : 0.0f) : mat_at(in->view_to_previous_view, rm, row, col);
+    c->normals_to_view = block_mat4(in->normals_to_view, rm, s->generate_normals);
+    /* temporal accumulation: the camera's motion; record.c sets temporal_history */
+    c->view_to_previous_view = block_mat4(in->view_to_previous_view, rm, false);
     c->temporal_min_weight = s->temporal_frames ? 1.0f / (float)s->temporal_frames : 1.0f;
     if (s->estimator != CACAO_ESTIMATOR_CACAO) fill_horizon_constants(s, &v, k, plan, in, c);
     fill_reuse_constants(plan, c);
