@@ -552,6 +552,11 @@ typedef struct cacao_tile_counts {
     uint32_t tiles, active, faded, background;   /* the frame's tiles by class */
     uint32_t generate_run, generate_total;       /* generate groups (tiles) run, of the full grid */
     uint32_t blur_run, blur_total;               /* blur groups (0 of 0 without a blur) */
+    uint32_t fill_run;                           /* skipped tiles given AO 1 by the fills (CACAO's
+                                                    CPU forms): without reuse, where apply or the
+                                                    upsample runs over lists, only those a pass
+                                                    reads; else every skipped tile (a change can
+                                                    reach, with reuse). 0 where no fill runs */
     uint32_t changed;                            /* reuse_unchanged: tiles whose inputs changed
                                                     (every tile on a full frame) */
     uint32_t recomputed;                         /* reuse_unchanged: tiles whose output a change

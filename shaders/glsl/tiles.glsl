@@ -457,6 +457,27 @@ void append(int list, ivec2 g)
     atomicMax(tiles[CACAO_TILE_COMMAND(list) + 1], i / list_width(list) + 1u); /* the command's y */
 }
 
+#if CACAO_VARIANT != CACAO_COMPACT_HORIZON
+/* Whether a later pass can read the AO of tile g, which generate skips: the fills' list. Where
+ * apply runs over every group, or with reuse (a tile keeps its AO for later frames), every skipped
+ * tile. Else (the CPU forms' listed apply or upsample, no reuse: the intermediates carry nothing
+ * from frame to frame) the tiles within reach of a needed one: the upsample's tiles (needed) read
+ * two slice texels around them, smart apply's blocks of 2x2 tiles (holding a needed one) two around
+ * the block: the tiles within one, or two, of a needed tile; the blur's output there is made of its
+ * input at most 8 texels away (8 passes), one tile more. What lies farther may be read by a blur
+ * group but reaches no texel that is read. */
+bool fill_read(ivec2 g)
+{
+    if (CB.needed_list == 0) return true;
+    int reach = CB.needed_list + (CB.blur_groups_x != 0 ? 1 : 0);
+    ivec2 t0 = max(g - reach, ivec2(0)), t1 = min(g + reach, ivec2(CB.tiles_x, CB.tiles_y) - 1);
+    for (int y = t0.y; y <= t1.y; ++y)
+        for (int x = t0.x; x <= t1.x; ++x)
+            if (tiles[needed_base() + tile_index(ivec2(x, y))] == 0u) return true;
+    return false;
+}
+#endif
+
 void main()
 {
     int i = int(gl_GlobalInvocationID.x);
@@ -475,7 +496,8 @@ void main()
             if (needed) append(CACAO_LIST_GENERATE, g);
             else store_output_one(g * CB.tile_pixels, CB.tile_pixels);
 #else
-            append(needed ? CACAO_LIST_GENERATE : CACAO_LIST_FILL_SLICES, g);
+            if (needed) append(CACAO_LIST_GENERATE, g);
+            else if (fill_read(g)) append(CACAO_LIST_FILL_SLICES, g);
             if (!needed && CB.needed_list != 0) store_output_one(g * CB.tile_pixels, CB.tile_pixels);
 #endif
         }

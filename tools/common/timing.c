@@ -74,6 +74,9 @@ void cacao_tile_counts_print(FILE *out, const cacao_tile_counts *c) {
         fprintf(out, ", %u of %u %s (%.1f%%)", c->blocks_total - c->blocks_run, c->blocks_total,
                 c->blocks_total == c->tiles ? "tiles of the Q3 base pass" : "blocks of 2x2 tiles",
                 share(c->blocks_total - c->blocks_run, c->blocks_total));
+    if (c->fill_run)
+        fprintf(out, ", AO 1 filled into %u of the %u skipped tiles (those a pass reads)", c->fill_run,
+                c->generate_total - c->generate_run);
     if (c->quiet) fprintf(out, "; a quiet frame (no pixel can be occluded): no tile classified, only the quiet test ran (it wrote the output)");
     fprintf(out, "\n");
 }
@@ -91,6 +94,7 @@ void cacao_tile_counts_add_json(cJSON *object, const cacao_tile_counts *c) {
     cJSON_AddNumberToObject(o, "changed", c->changed);       /* reuse_unchanged; 0 without */
     cJSON_AddNumberToObject(o, "recomputed", c->recomputed);
     cJSON_AddNumberToObject(o, "blur_total", c->blur_total);
+    cJSON_AddNumberToObject(o, "fill_run", c->fill_run); /* CACAO's CPU forms; 0 where no fill runs */
     cJSON_AddNumberToObject(o, "blocks_run", c->blocks_run); /* 0 of 0 where no step runs over blocks */
     cJSON_AddNumberToObject(o, "blocks_total", c->blocks_total);
     cJSON_AddBoolToObject(o, "quiet", c->quiet); /* docs/tiles.md "A quiet frame" */

@@ -325,8 +325,8 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
             if (reuse)
                 printf("writes AO 1 into the skipped tiles a change reaches (at most %u)\n", c->recomputed);
             else
-                printf("writes AO 1 into the %u skipped tiles (%.1f%% of the tiles)\n", generate_skipped,
-                       percent(generate_skipped, c->generate_total));
+                printf("writes AO 1 into the %u of the %u skipped tiles that a later pass reads (%.1f%% of the tiles)\n",
+                       c->fill_run, generate_skipped, percent(c->fill_run, c->generate_total));
             break;
         case CACAO_LIST_PREPARE:
             if (plan->settings.estimator == CACAO_ESTIMATOR_CACAO) {
