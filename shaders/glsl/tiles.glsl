@@ -471,6 +471,18 @@ bool fill_read(ivec2 g)
     if (CB.needed_list == 0) return true;
     int reach = CB.needed_list + (CB.blur_groups_x != 0 ? 1 : 0);
     ivec2 t0 = max(g - reach, ivec2(0)), t1 = min(g + reach, ivec2(CB.tiles_x, CB.tiles_y) - 1);
+    if (CB.blur_groups_x != 0) {
+        /* first the blur groups over those tiles (a few loads): a needed tile there lies in one,
+         * which classify marked (its output touches the tile); none marked, none needed */
+        ivec2 out_size = ivec2(CB.blur_out_x, CB.blur_out_y);
+        ivec2 b0 = t0 * CACAO_TILE / out_size, b1 = min(((t1 + 1) * CACAO_TILE - 1) / out_size,
+                                                        ivec2(CB.blur_groups_x, CB.blur_groups_y) - 1);
+        bool marked = false;
+        for (int y = b0.y; y <= b1.y; ++y)
+            for (int x = b0.x; x <= b1.x; ++x)
+                marked = marked || tiles[blur_needed_base() + uint(y * CB.blur_groups_x + x)] == 0u;
+        if (!marked) return false;
+    }
     for (int y = t0.y; y <= t1.y; ++y)
         for (int x = t0.x; x <= t1.x; ++x)
             if (tiles[needed_base() + tile_index(ivec2(x, y))] == 0u) return true;
