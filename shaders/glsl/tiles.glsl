@@ -459,8 +459,9 @@ void append(int list, ivec2 g)
 
 #if CACAO_VARIANT != CACAO_COMPACT_HORIZON
 /* Whether a later pass can read the AO of tile g, which generate skips: the fills' list. Where
- * apply runs over every group, or with reuse (a tile keeps its AO for later frames), every skipped
- * tile. Else (the CPU forms' listed apply or upsample, no reuse: the intermediates carry nothing
+ * apply runs over every group, every skipped tile (needed_list 0: also every frame with reuse, where
+ * a tile keeps its AO for later frames; cacao_policy lists apply and the upsample only without
+ * reuse). Else (the CPU forms' listed apply or upsample, no reuse: the intermediates carry nothing
  * from frame to frame) the tiles within reach of a needed one: the upsample's tiles (needed) read
  * two slice texels around them, smart apply's blocks of 2x2 tiles (holding a needed one) two around
  * the block: the tiles within one, or two, of a needed tile; the blur's output there is made of its
@@ -470,10 +471,10 @@ bool fill_read(ivec2 g)
 {
     if (CB.needed_list == 0) return true;
     int reach = CB.needed_list + (CB.blur_groups_x != 0 ? 1 : 0);
-    ivec2 t0 = max(g - reach, ivec2(0)), t1 = min(g + reach, ivec2(CB.tiles_x, CB.tiles_y) - 1);
     if (CB.blur_groups_x != 0) {
         /* first the blur groups over those tiles (a few loads): a needed tile there lies in one,
          * which classify marked (its output touches the tile); none marked, none needed */
+        ivec2 t0 = max(g - reach, ivec2(0)), t1 = min(g + reach, ivec2(CB.tiles_x, CB.tiles_y) - 1);
         ivec2 out_size = ivec2(CB.blur_out_x, CB.blur_out_y);
         ivec2 b0 = t0 * CACAO_TILE / out_size, b1 = min(((t1 + 1) * CACAO_TILE - 1) / out_size,
                                                         ivec2(CB.blur_groups_x, CB.blur_groups_y) - 1);
@@ -483,10 +484,7 @@ bool fill_read(ivec2 g)
                 marked = marked || tiles[blur_needed_base() + uint(y * CB.blur_groups_x + x)] == 0u;
         if (!marked) return false;
     }
-    for (int y = t0.y; y <= t1.y; ++y)
-        for (int x = t0.x; x <= t1.x; ++x)
-            if (tiles[needed_base() + tile_index(ivec2(x, y))] == 0u) return true;
-    return false;
+    return touches_needed(g - reach, g + reach);
 }
 #endif
 

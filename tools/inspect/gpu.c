@@ -757,7 +757,7 @@ static int run(gpu_session *s, const sweep_config *configs, uint32_t config_coun
                 if (!(from_depth && sweep[i].reconstruct_normals) && !measure_config(s, &sweep[i], from_depth, false))
                     return 1;
         /* and with reuse_unchanged (its diff, prefix and reach passes; the other steps are the same),
-         * the horizon estimators with temporal accumulation (its resolve and copy) */
+         * the horizon estimators with temporal accumulation (its resolve pass) */
         s->reuse = true;
         for (int from_depth = 0; from_depth < 2; ++from_depth)
             for (uint32_t i = 0; i < n; ++i)
