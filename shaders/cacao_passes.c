@@ -87,6 +87,7 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
 #define PASS(id) [CACAO_PASS_##id]
 #define WG(name) {CACAO_WG_##name##_X, CACAO_WG_##name##_Y}
 #define GEN CACAO_LIST_GENERATE
+#define GEN_INPUT (V(CACAO_GENERATE_Q0_INPUT) | V(CACAO_GENERATE_Q1_INPUT))
 #define DIFFS_NORMALS (V(CACAO_REUSE_DIFF_NORMALS) | V(CACAO_REUSE_DIFF_NORMALS_GPU))
 #define DIFFS (V(CACAO_REUSE_DIFF) | V(CACAO_REUSE_DIFF_GPU) | DIFFS_NORMALS)
 #define LISTED_UPSAMPLES                                                                                   \
@@ -102,10 +103,12 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
  * whose tile is not needed (classify's flag) storing AO 1 and returning (docs/tiles.md: a
  * workgroup-uniform branch). */
 #define GENERATE_ROW(name, taps, count, list, base_list, base_grid, tiles)                              \
-    {name, {"q0", "q1", "q2", "q3", "q3base"}, 5, false, false, false, WG(GENERATE), CACAOI_GRID_SLICE_LAYERS, count, \
+    {name, {"q0", "q1", "q2", "q3", "q3base", "q0_input", "q1_input"}, 7, false, false, false, WG(GENERATE),    \
+     CACAOI_GRID_SLICE_LAYERS, count,                                                                  \
      {CONSTANTS, R(LOAD_COUNTER, LOAD_COUNTER, V(CACAO_GENERATE_Q3)), R(DEPTHS, DEPTHS, ALL),               \
-      /* the normals' single texels: imageLoad (cacao.comp) */                                     \
-      taps R(NORMALS_IMAGE, NORMALS, ALL), R(SSAO_BASE, SSAO_PONG, V(CACAO_GENERATE_Q3)), \
+      /* the normals' single texels: imageLoad (cacao.comp); the _input variants the caller's */  \
+      taps R(NORMALS_IMAGE, NORMALS, ALL & ~GEN_INPUT), R(SRC_NORMALS, NORMALS_INPUT, GEN_INPUT),        \
+      R(SSAO_BASE, SSAO_PONG, V(CACAO_GENERATE_Q3)),                                                    \
       R(IMPORTANCE_MAP, IMPORTANCE, V(CACAO_GENERATE_Q3)), W(SSAO_IMAGE, SSAO_PING, ALL & ~V(CACAO_GENERATE_Q3_BASE)), \
       W(SSAO_IMAGE, SSAO_PONG, V(CACAO_GENERATE_Q3_BASE)), W(IMPORTANCE_MAP_IMAGE, IMPORTANCE, V(CACAO_GENERATE_Q3_BASE)), \
       tiles(TILES, TILES, ALL & ~V(CACAO_GENERATE_Q3_BASE)), R(TILES, TILES, V(CACAO_GENERATE_Q3_BASE))}, \
@@ -114,7 +117,7 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
       * that is not active has importance 0 (docs/tiles.md): the CPU form runs over compact's    \
       * blocks of 2x2 tiles after a clear of the map, the GPU form over every tile, reading the  \
       * classes */                                                                                \
-     .lists = {list, list, list, list, base_list}, .grids = {[CACAO_GENERATE_Q3_BASE] = base_grid}}
+     .lists = {list, list, list, list, base_list, list, list}, .grids = {[CACAO_GENERATE_Q3_BASE] = base_grid}}
 /* The fused prepare (normals from depth) and its GPU form's row; the GPU form also classifies the
  * tiles (tiles_variants: ALL; native the texels it stores, downsampled in groups of its own, the
  * grid rule CACAOI_GRID_SLICE_CLASSIFY; the CPU form runs the classify pass after it). */
@@ -181,7 +184,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * load counter; the Q3 base pass writes the second AO buffer and the importance map
      * (importance.md "GenerateImportanceMap"): an invocation per importance texel computes the
      * 2x2 slice texels of every layer that texel reads. */
-    PASS(GENERATE) = GENERATE_ROW("generate", R(DEPTHS_IMAGE, DEPTHS, ALL) COMMA, 12, GEN, CACAO_LIST_BLOCKS,
+    PASS(GENERATE) = GENERATE_ROW("generate", R(DEPTHS_IMAGE, DEPTHS, ALL) COMMA, 13, GEN, CACAO_LIST_BLOCKS,
                                   CACAOI_GRID_IMPORTANCE, R),
     /* spec: importance.md: two smoothing passes (ping-pong) of the map the Q3 base pass wrote. */
     PASS(IMPORTANCE_A) = {"importance_a", {NULL}, 1, false, false, false, WG(IMPORTANCE), CACAOI_GRID_IMPORTANCE, 3,
@@ -280,7 +283,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * (levels 1..3 through their own slots); generate: the taps sampled from that chain. */
     PASS(PREPARE_GPU) = PREPARE_ROW("prepare_gpu", ALL, CACAOI_GRID_SLICE_CLASSIFY, W(DEPTHS_IMAGE, DEPTHS, V(CACAO_DEPTHS_MIPS)) COMMA
                                     W_CHAIN(V(CACAO_DEPTHS_MIPS)), 9),
-    PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu", , 11, CACAO_LIST_NONE,
+    PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu", , 12, CACAO_LIST_NONE,
                                       CACAO_LIST_NONE, CACAOI_GRID_SLICE, W),
     /* The value of the tiles no pass computes: AO 1 over the unneeded tiles into the slices' AO
      * and the blur's output (CACAO's CPU forms, a step rebinding SSAO_IMAGE) and into the caller's
@@ -333,6 +336,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
 #undef PASS
 #undef WG
 #undef GEN
+#undef GEN_INPUT
 #undef DIFFS
 #undef DIFFS_NORMALS
 #undef GENERATE_ROW

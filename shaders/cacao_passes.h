@@ -111,7 +111,7 @@ typedef struct cacaoi_pass_binding {
 
 /* Bindings a row lists (a binding per variant may share a slot) and variants a pass has. The
  * bindings one variant makes are at most CACAO_PLAN_MAX_BINDINGS (cacao.h): test_pass_table. */
-#define CACAOI_PASS_MAX_BINDINGS 12
+#define CACAOI_PASS_MAX_BINDINGS 13
 #define CACAOI_MAX_VARIANTS 7
 
 /* The level (1..3) of the depths' mip chain whose view a slot binds (the GPU forms' prepare writes

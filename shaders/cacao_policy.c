@@ -191,11 +191,13 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
         push(out, &n, CACAO_PASS_REUSE, CACAO_REUSE_PREFIX, 0, 0, 0);
         push(out, &n, CACAO_PASS_REUSE, CACAO_REUSE_REACH, 0, 0, 0);
     }
-    /* the caller's normals in the CPU forms without reuse, from MEDIUM up: transformed after
-     * compact, over the tiles whose normals generate reads (docs/tiles.md; at LOWEST and LOW the
-     * list cost a frame with nothing to skip more than 1%) */
-    const bool listed_normals = c->normals_from_input && !c->gpu_forms && !c->reuse &&
-                                c->quality >= CACAO_KEY_QUALITY_MEDIUM;
+    /* The caller's normals: below HIGH generate reads no normal but its texel's own and
+     * transforms it itself (its _input variants), with no prepare_normals pass; from HIGH up (the
+     * normal edges, the Q3 base pass) prepare_normals transforms them, in the CPU forms without
+     * reuse after compact, over the tiles whose normals generate reads (docs/tiles.md "The
+     * normals read where they are used") */
+    const bool generate_reads_input = c->normals_from_input && cacaoi_qualities[c->quality].generate_variant <= CACAO_GENERATE_Q1;
+    const bool listed_normals = c->normals_from_input && !generate_reads_input && !c->gpu_forms && !c->reuse;
     /* The GPU forms where no prepare classifies (the caller's normals): the classes from the caller's
      * depth, first (no barrier between it and the prepare: they read the same depth and write
      * different resources) */
@@ -204,7 +206,7 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
         /* the GPU forms' generate samples a mip chain, the CPU forms' loads from the atlas */
         const unsigned chain = c->gpu_forms && depths == CACAO_DEPTHS_MIPS ? CACAO_DEPTHS_MIPS_CHAIN : depths;
         push(out, &n, CACAO_PASS_PREPARE_DEPTHS, chain, ds, 0, 0);
-        if (!listed_normals) push(out, &n, CACAO_PASS_PREPARE_NORMALS, 0, ds, 0, 0);
+        if (!listed_normals && !generate_reads_input) push(out, &n, CACAO_PASS_PREPARE_NORMALS, 0, ds, 0, 0);
     } else {
         push(out, &n, cacaoi_form_pass(CACAO_PASS_PREPARE, c->gpu_forms), depths, ds, 0, 0); /* depths and normals in one pass */
     }
@@ -223,8 +225,8 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
         push(out, &n, CACAO_PASS_IMPORTANCE_A, 0, 0, 0, 0);
         push(out, &n, CACAO_PASS_IMPORTANCE_B, 0, 0, 0, 0);
     }
-    push(out, &n, cacaoi_form_pass(CACAO_PASS_GENERATE, c->gpu_forms), cacaoi_qualities[c->quality].generate_variant, 0,
-         0, 0);
+    push(out, &n, cacaoi_form_pass(CACAO_PASS_GENERATE, c->gpu_forms),
+         cacaoi_qualities[c->quality].generate_variant + (generate_reads_input ? CACAO_GENERATE_Q0_INPUT : 0), 0, 0, 0);
     /* Lists: the tiles generate skips read as AO 1 in its output and, where a blur runs, in the
      * blur's (the blur and apply groups next to a needed tile read them): fills over the list of
      * the unneeded tiles. */

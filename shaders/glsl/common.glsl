@@ -160,6 +160,29 @@ ivec2 full_res_pixel(ivec2 t, int slice)
 #endif
 }
 
+#if defined(CACAO_BIND_SRC_NORMALS) && (CACAO_PASS == CACAO_PASS_PREPARE_NORMALS || \
+                                        CACAO_PASS == CACAO_PASS_GENERATE || CACAO_PASS == CACAO_PASS_GENERATE_GPU)
+/* The caller's normal of slice texel t of the layer, in view space and clamped to [-1, 1] (spec:
+ * prepare.md "Normals from input normals"; not renormalised, [quirk] NORMALS-NOT-NORMALIZED):
+ * what prepare_normals stores, and what generate's _input variants compute themselves. */
+vec3 input_normal(ivec2 t, int layer)
+{
+#if CACAO_PASS == CACAO_PASS_PREPARE_NORMALS
+    ivec2 p = full_res_pixel(t, slice_of_layer(layer));
+#else
+    /* generate's keys have no resolution axis: a slice texel is tile_pixels / CACAO_TILE pixels
+     * wide (2 native, 4 downsampled), full_res_pixel's 2 t + d or 4 t + 2 d */
+    int slice = slice_of_layer(layer);
+    int f = CB.tile_pixels / CACAO_TILE;
+    ivec2 p = f * t + (f >> 1) * ivec2(slice & 1, slice >> 1);
+#endif
+    vec3 rgb = in_rect(p, textureSize(src_normals, 0)) ? texelFetch(src_normals, p, 0).rgb : vec3(0.0);
+    vec3 n = rgb * CB.normals_unpack_mul + CB.normals_unpack_add;
+    vec3 nv = (CB.normals_to_view * vec4(n, 0.0)).xyz; /* n'_j = sum_i E[j][i] n_i */
+    return clamp(nv, vec3(-1.0), vec3(1.0));
+}
+#endif
+
 #if CACAO_PASS == CACAO_PASS_HORIZON_PREPARE || CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU || \
     (CACAO_PASS == CACAO_PASS_CLASSIFY && CACAO_VARIANT == CACAO_CLASSIFY_HORIZON)
 /* Horizon estimators: raw depth -> view z, -1 for background (estimators.md section 1: the

@@ -17,6 +17,14 @@ layout(local_size_x = CACAO_WG_GENERATE_X, local_size_y = CACAO_WG_GENERATE_Y) i
 #define GEN_Q 3
 #define GEN_BASE 1
 #define GEN_TAPS CACAO_TAPS_Q3_BASE
+#elif CACAO_VARIANT == CACAO_GENERATE_Q0_INPUT
+#define GEN_Q 0
+#define GEN_BASE 0
+#define GEN_TAPS CACAO_TAPS_Q0
+#elif CACAO_VARIANT == CACAO_GENERATE_Q1_INPUT
+#define GEN_Q 1
+#define GEN_BASE 0
+#define GEN_TAPS CACAO_TAPS_Q1
 #else
 #define GEN_Q CACAO_VARIANT
 #define GEN_BASE 0
@@ -45,6 +53,11 @@ const float k_sample_pattern[128] = float[128](CACAO_SAMPLE_PATTERN_VALUES);
                               k_sample_pattern[4 * (i) + 2], k_sample_pattern[4 * (i) + 3])
 
 
+#ifdef CACAO_BIND_SRC_NORMALS
+/* A value in [-1, 1] as the normals' R8G8B8A8_SNORM image stores and loads it: round to the
+ * nearest of the 255 codes c / 127 (Vulkan's conversions; -128 never arises from a clamped value). */
+vec3 snorm8_round_trip(vec3 v) { return roundEven(v * 127.0) / 127.0; }
+#else
 /* Normal at slice texel p, clamped to the slice (as the nearest sampler at its centre). */
 vec3 load_normal(ivec2 p, int layer)
 {
@@ -57,6 +70,7 @@ vec3 load_normal_or_zero(ivec2 p, ivec2 s, int layer)
     vec3 v = load_normal(p, layer);
     return in_rect(p, s) ? v : vec3(0.0);
 }
+#endif
 
 /* The depth atlas (cacao_shared.h; the CPU form), per level l = 0..3: (width, height, x, y) of the
  * level in texels, as floats, the last level of the slice's chain, and 1 / level 0's size (the
@@ -170,7 +184,11 @@ float generate_texel(ivec2 xy, int layer)
     float zb = xy.y + 1 < size.y ? g_br.x : zc;
     vec2 uvs = uvd; /* slice UV used as screen UV ([quirk] SLICE-SUBPIXEL) */
     vec3 pc = view_pos(uvs, zc);
-#if GEN_GPU
+#ifdef CACAO_BIND_SRC_NORMALS
+    /* the _input variants (Q0, Q1: no normal but this one is read): the caller's normal through
+     * prepare_normals' arithmetic and its image's round trip (cacao_shared.h) */
+    vec3 n = snorm8_round_trip(input_normal(xy, layer));
+#elif GEN_GPU
     vec3 n = imageLoad(normals_image, ivec3(xy, layer)).xyz; /* xy is inside the slice (main) */
 #else
     vec3 n = load_normal(xy, layer);

@@ -402,15 +402,9 @@ void main()
     if (!group_of(g)) return;
     ivec2 t = texel_of(g);
     if (!in_rect(t, imageSize(normals_image).xy)) return; /* no side effects: no LDS, no atomics */
-    /* Transform the caller's normal; not renormalised ([quirk] NORMALS-NOT-NORMALIZED). */
-    ivec2 size = textureSize(src_normals, 0);
     [[unroll]] for (int layer = 0; layer < 4; ++layer) {
         if (layer >= CB.slice_count) break;
-        ivec2 p = full_res_pixel(t, slice_of_layer(layer));
-        vec3 rgb = in_rect(p, size) ? texelFetch(src_normals, p, 0).rgb : vec3(0.0);
-        vec3 n = rgb * CB.normals_unpack_mul + CB.normals_unpack_add;
-        vec3 nv = (CB.normals_to_view * vec4(n, 0.0)).xyz; /* n'_j = sum_i E[j][i] n_i */
-        imageStore(normals_image, ivec3(t, layer), vec4(clamp(nv, vec3(-1.0), vec3(1.0)), 1.0));
+        imageStore(normals_image, ivec3(t, layer), vec4(input_normal(t, layer), 1.0));
     }
 }
 #endif /* PREPARE_NORMALS */
