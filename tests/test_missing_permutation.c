@@ -39,7 +39,9 @@ int main(int argc, char **argv) {
     CHECK(vkdev_context_create(&dev, &ctx) == CACAO_SUCCESS);
     CHECK(cacao_embedded_permutation_count() == strtoul(argv[1], NULL, 10));
     expect_missing(&dev, ctx, &(cacao_settings){.quality = CACAO_QUALITY_HIGHEST}, "generate.q3base");
-    expect_missing(&dev, ctx, &(cacao_settings){.quality = CACAO_QUALITY_LOW}, "generate.q0");
+    expect_missing(&dev, ctx, &(cacao_settings){.quality = CACAO_QUALITY_LOW, .generate_normals = true}, "generate.q0");
+    /* with the caller's normals LOW's generate reads them itself */
+    expect_missing(&dev, ctx, &(cacao_settings){.quality = CACAO_QUALITY_LOW}, "generate.q0_input");
     expect_missing(&dev, ctx, &(cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true},
                    "prepare_depths.mips.downsampled");
     const cacao_settings fp16 = {.quality = CACAO_QUALITY_HIGH, .precision = CACAO_PRECISION_FP16};

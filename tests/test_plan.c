@@ -198,15 +198,32 @@ static void test_only_needed_resources(void) {
     CHECK(strcmp(low.steps[Q + 5].key_name, "apply.nonsmart.fp32") == 0 && low.steps[Q + 5].list == CACAO_LIST_NONE);
     CHECK(low.steps[Q + 5].dispatch[0] == 120 && low.steps[Q + 5].dispatch[1] == 68);
     cacao_plan given_low = build((cacao_settings){.quality = CACAO_QUALITY_LOW, .blur_pass_count = CACAO_BLUR_NONE}, 1920, 1080);
-    CHECK(given_low.step_count == Q + 7); /* normals given: prepare_depths and prepare_normals */
+    /* normals given, below HIGH: prepare_depths, and generate transforms the caller's normal of its
+     * texel itself (the only normal Q0 and Q1 read): no prepare_normals, no normals image */
+    CHECK(given_low.step_count == Q + 6);
     CHECK(strcmp(given_low.steps[Q].key_name, "prepare_depths.full.native") == 0);
     CHECK(given_low.steps[Q].dispatch[0] == 120 && given_low.steps[Q].dispatch[1] == 68); /* a texel each */
-    /* at LOW the caller's normals are transformed everywhere, after the depths (from MEDIUM up the
-     * CPU forms transform them after compact, over its list: below) */
-    CHECK(strcmp(given_low.steps[Q + 1].key_name, "prepare_normals.native") == 0);
-    cacao_plan given_medium = build((cacao_settings){.quality = CACAO_QUALITY_MEDIUM}, 1920, 1080);
-    CHECK(strcmp(given_medium.steps[Q + 3].key_name, "prepare_normals.list.native") == 0 &&
-          given_medium.steps[Q + 3].list == CACAO_LIST_NORMALS && strcmp(given_medium.steps[Q + 2].key_name, "compact") == 0);
+    CHECK(strcmp(given_low.steps[Q + 3].key_name, "generate.q0_input") == 0);
+    CHECK(find_image(&given_low, CACAO_RES_NORMALS) == NULL);
+    for (uint32_t i = 0; i < given_low.step_count; ++i) CHECK(strncmp(given_low.steps[i].key_name, "prepare_normals", 15) != 0);
+    for (int gpu = 0; gpu < 2; ++gpu) {
+        cacao_plan given_medium = build((cacao_settings){.quality = CACAO_QUALITY_MEDIUM, .downsample = true,
+                                                         .shader_forms = gpu ? CACAO_SHADER_FORMS_GPU : CACAO_SHADER_FORMS_CPU},
+                                        1920, 1080);
+        CHECK(find_image(&given_medium, CACAO_RES_NORMALS) == NULL);
+        bool q1_input = false;
+        for (uint32_t i = 0; i < given_medium.step_count; ++i) {
+            CHECK(strncmp(given_medium.steps[i].key_name, "prepare_normals", 15) != 0);
+            q1_input |= strcmp(given_medium.steps[i].key_name, gpu ? "generate_gpu.q1_input" : "generate.q1_input") == 0;
+        }
+        CHECK(q1_input);
+    }
+    /* from HIGH up (normal edges, the Q3 base pass) prepare_normals transforms them: the CPU forms
+     * after compact, over its list */
+    cacao_plan given_high = build((cacao_settings){.quality = CACAO_QUALITY_HIGH}, 1920, 1080);
+    CHECK(strcmp(given_high.steps[Q + 3].key_name, "prepare_normals.list.native") == 0 &&
+          given_high.steps[Q + 3].list == CACAO_LIST_NORMALS && strcmp(given_high.steps[Q + 2].key_name, "compact") == 0);
+    CHECK(find_image(&given_high, CACAO_RES_NORMALS) != NULL);
     cacao_plan odd = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true}, 1001, 37);
     CHECK(strcmp(odd.steps[odd.step_count - 1].key_name, "apply.half.fp32") == 0);
     /* odd sizes: still one quad per slice texel (501x19): ceil(501/8), ceil(19/8) */
