@@ -98,12 +98,14 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
  * which the taps' depths come with imageLoad: the CPU form's every variant (lavapipe runs it
  * faster than a fetch through the sampled view; the atlas, cacao_shared.h); the GPU form has none:
  * it samples the mip chain through the sampled view, the sampler choosing level and texel
- * (docs/gpu.md). `count` the row's bindings. `list` is the
+ * (docs/gpu.md). `variants`: the CPU form's 7, the GPU form's the first 5 (its generate reads
+ * the normals prepare_normals stored: ACO estimates the caller's normal transformed in generate at
+ * twice the pass's cost a texel, docs/tiles.md). `count` the row's bindings. `list` is the
  * tile list: the CPU form runs over the needed tiles' list; the GPU form over every tile, a group
  * whose tile is not needed (classify's flag) storing AO 1 and returning (docs/tiles.md: a
  * workgroup-uniform branch). */
-#define GENERATE_ROW(name, taps, count, list, base_list, base_grid, tiles)                              \
-    {name, {"q0", "q1", "q2", "q3", "q3base", "q0_input", "q1_input"}, 7, false, false, false, WG(GENERATE),    \
+#define GENERATE_ROW(name, variants, taps, count, list, base_list, base_grid, tiles)                    \
+    {name, {"q0", "q1", "q2", "q3", "q3base", "q0_input", "q1_input"}, variants, false, false, false, WG(GENERATE), \
      CACAOI_GRID_SLICE_LAYERS, count,                                                                  \
      {CONSTANTS, R(LOAD_COUNTER, LOAD_COUNTER, V(CACAO_GENERATE_Q3)), R(DEPTHS, DEPTHS, ALL),               \
       /* the normals' single texels: imageLoad (cacao.comp); the _input variants the caller's */  \
@@ -184,7 +186,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * load counter; the Q3 base pass writes the second AO buffer and the importance map
      * (importance.md "GenerateImportanceMap"): an invocation per importance texel computes the
      * 2x2 slice texels of every layer that texel reads. */
-    PASS(GENERATE) = GENERATE_ROW("generate", R(DEPTHS_IMAGE, DEPTHS, ALL) COMMA, 13, GEN, CACAO_LIST_BLOCKS,
+    PASS(GENERATE) = GENERATE_ROW("generate", 7, R(DEPTHS_IMAGE, DEPTHS, ALL) COMMA, 13, GEN, CACAO_LIST_BLOCKS,
                                   CACAOI_GRID_IMPORTANCE, R),
     /* spec: importance.md: two smoothing passes (ping-pong) of the map the Q3 base pass wrote. */
     PASS(IMPORTANCE_A) = {"importance_a", {NULL}, 1, false, false, false, WG(IMPORTANCE), CACAOI_GRID_IMPORTANCE, 3,
@@ -283,7 +285,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * (levels 1..3 through their own slots); generate: the taps sampled from that chain. */
     PASS(PREPARE_GPU) = PREPARE_ROW("prepare_gpu", ALL, CACAOI_GRID_SLICE_CLASSIFY, W(DEPTHS_IMAGE, DEPTHS, V(CACAO_DEPTHS_MIPS)) COMMA
                                     W_CHAIN(V(CACAO_DEPTHS_MIPS)), 9),
-    PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu", , 12, CACAO_LIST_NONE,
+    PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu", 5, , 12, CACAO_LIST_NONE,
                                       CACAO_LIST_NONE, CACAOI_GRID_SLICE, W),
     /* The value of the tiles no pass computes: AO 1 over the unneeded tiles into the slices' AO
      * and the blur's output (CACAO's CPU forms, a step rebinding SSAO_IMAGE) and into the caller's

@@ -192,16 +192,17 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
         push(out, &n, CACAO_PASS_REUSE, CACAO_REUSE_REACH, 0, 0, 0);
     }
     /* The caller's normals (docs/tiles.md "The normals where they are read"). Below HIGH generate
-     * reads no normal but its texel's own: its _input variants transform it themselves, with no
-     * prepare_normals pass and no normals image, at LOWEST and LOW, and at MEDIUM where that pass
-     * would run over every texel (the GPU forms, reuse). Otherwise prepare_normals transforms
-     * them, in the CPU forms without reuse after compact, over the tiles whose normals generate
-     * reads (at MEDIUM on lavapipe that list costs about what the transform in generate costs). */
-    const bool listable = !c->gpu_forms && !c->reuse;
+     * reads no normal but its texel's own: in the CPU forms its _input variants transform it
+     * themselves, with no prepare_normals pass and no normals image, at LOWEST and LOW, and at
+     * MEDIUM with reuse (where that pass would run over every texel). Otherwise prepare_normals
+     * transforms them: in the CPU forms without reuse after compact, over the tiles whose normals
+     * generate reads (at MEDIUM on lavapipe that list costs about what the transform in generate
+     * costs); the GPU forms over every texel (ACO estimates the transform in generate at twice
+     * the pass's cost a texel). */
     const unsigned q = cacaoi_qualities[c->quality].generate_variant;
-    const bool generate_reads_input =
-        c->normals_from_input && (q == CACAO_GENERATE_Q0 || (q == CACAO_GENERATE_Q1 && !listable));
-    const bool listed_normals = c->normals_from_input && !generate_reads_input && listable;
+    const bool generate_reads_input = c->normals_from_input && !c->gpu_forms &&
+                                      (q == CACAO_GENERATE_Q0 || (q == CACAO_GENERATE_Q1 && c->reuse));
+    const bool listed_normals = c->normals_from_input && !generate_reads_input && !c->gpu_forms && !c->reuse;
     /* The GPU forms where no prepare classifies (the caller's normals): the classes from the caller's
      * depth, first (no barrier between it and the prepare: they read the same depth and write
      * different resources) */

@@ -78,6 +78,7 @@ static void test_invalid_keys(void) {
     cacao_key bad[] = {
         {CACAO_PASS_COUNT, 0, 0, 0, 0},            /* no such pass */
         {CACAO_PASS_GENERATE, 7, 0, 0, 0},         /* no such variant */
+        {CACAO_PASS_GENERATE_GPU, CACAO_GENERATE_Q0_INPUT, 0, 0, 0}, /* the GPU form reads prepared normals */
         {CACAO_PASS_GENERATE, 1, 1, 0, 0},         /* generate has no resolution axis */
         {CACAO_PASS_BLUR, 0, 0, 0, 0},             /* blur needs 1..8 */
         {CACAO_PASS_BLUR, 0, 0, 9, 0},
@@ -94,8 +95,8 @@ static void test_subset(void) {
     cacao_key_subset s;
     CHECK(cacaoi_key_subset_parse("medium;high", "OFF", "fp32", &s));
     /* By hand: MEDIUM native = depths without mips, Q1, apply.smart; HIGH native = depths with
-     * mips, Q2, apply.smart; both: either normals source (given: prepare_depths, and at MEDIUM
-     * generate's Q1 reading the caller's normals, at HIGH prepare_normals; from depth: prepare,
+     * mips, Q2, apply.smart; both: either normals source (given: prepare_depths and
+     * prepare_normals, and at MEDIUM with reuse (CPU forms) Q1 reading the caller's normals; from depth: prepare,
      * both in one pass), blur 1..8 fp32. The
      * horizon-slice estimators have no quality axis (quality is their budget, a constant) and run
      * native in fp32: all their keys belong to any subset with native resolution. */
@@ -116,7 +117,7 @@ static void test_subset(void) {
                               "blur_gpu.1.fp32", "blur_gpu.2.fp32", "blur_gpu.3.fp32", "blur_gpu.4.fp32",
                               "blur_gpu.5.fp32", "blur_gpu.6.fp32", "blur_gpu.7.fp32", "blur_gpu.8.fp32",
                               "apply_gpu.smart.fp32", "prepare_gpu.full.native", "prepare_gpu.mips.native",
-                              "generate_gpu.q1", "generate_gpu.q2", "generate_gpu.q1_input",
+                              "generate_gpu.q1", "generate_gpu.q2",
                               /* the GPU forms' classification from the caller's depth, where the
                                * prepare does not classify (the caller's normals; downsampled) */
                               "classify_gpu.native",

@@ -206,30 +206,31 @@ static void test_only_needed_resources(void) {
     CHECK(strcmp(given_low.steps[Q + 3].key_name, "generate.q0_input") == 0);
     CHECK(find_image(&given_low, CACAO_RES_NORMALS) == NULL);
     for (uint32_t i = 0; i < given_low.step_count; ++i) CHECK(strncmp(given_low.steps[i].key_name, "prepare_normals", 15) != 0);
-    /* MEDIUM (Q1 reads its texel's normal alone too): the same where prepare_normals would run over
-     * every texel (the GPU forms, reuse); the CPU forms without reuse transform them after
-     * compact, over its list, as from HIGH up (normal edges, the Q3 base pass) */
+    /* MEDIUM (Q1 reads its texel's normal alone too): the same with reuse (prepare_normals would run
+     * over every texel); without reuse the CPU forms transform them after compact, over its list,
+     * as from HIGH up (normal edges, the Q3 base pass); the GPU forms' prepare_normals runs over
+     * every texel at every quality (docs/tiles.md) */
     for (int gpu = 0; gpu < 2; ++gpu)
-        for (int reuse = 0; reuse < 2; ++reuse) {
-            cacao_plan given_medium = build((cacao_settings){.quality = CACAO_QUALITY_MEDIUM, .downsample = true,
-                                                             .reuse_unchanged = reuse,
-                                                             .shader_forms = gpu ? CACAO_SHADER_FORMS_GPU : CACAO_SHADER_FORMS_CPU},
-                                            1920, 1080);
-            const bool reads_input = gpu || reuse;
-            CHECK((find_image(&given_medium, CACAO_RES_NORMALS) == NULL) == reads_input);
-            int q1_input = 0, prepare_normals = 0;
-            for (uint32_t i = 0; i < given_medium.step_count; ++i) {
-                prepare_normals += strncmp(given_medium.steps[i].key_name, "prepare_normals", 15) == 0;
-                q1_input += strcmp(given_medium.steps[i].key_name, gpu ? "generate_gpu.q1_input" : "generate.q1_input") == 0;
+        for (int reuse = 0; reuse < 2; ++reuse)
+            for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_MEDIUM; ++q) {
+                cacao_plan given = build((cacao_settings){.quality = (cacao_quality)q, .downsample = true,
+                                                          .reuse_unchanged = reuse,
+                                                          .shader_forms = gpu ? CACAO_SHADER_FORMS_GPU : CACAO_SHADER_FORMS_CPU},
+                                         1920, 1080);
+                const bool reads_input = !gpu && (q != CACAO_QUALITY_MEDIUM || reuse);
+                CHECK((find_image(&given, CACAO_RES_NORMALS) == NULL) == reads_input);
+                int input = 0, prepare_normals = 0;
+                for (uint32_t i = 0; i < given.step_count; ++i) {
+                    prepare_normals += strncmp(given.steps[i].key_name, "prepare_normals", 15) == 0;
+                    input += strstr(given.steps[i].key_name, "_input") != NULL;
+                }
+                CHECK(input == reads_input && prepare_normals == !reads_input);
             }
-            CHECK(q1_input == reads_input && prepare_normals == !reads_input);
-        }
     cacao_plan given_medium = build((cacao_settings){.quality = CACAO_QUALITY_MEDIUM}, 1920, 1080);
     CHECK(strcmp(given_medium.steps[Q + 3].key_name, "prepare_normals.list.native") == 0 &&
           given_medium.steps[Q + 3].list == CACAO_LIST_NORMALS && strcmp(given_medium.steps[Q + 2].key_name, "compact") == 0);
     CHECK(strcmp(given_medium.steps[Q + 4].key_name, "generate.q1") == 0);
-    cacao_plan given_high = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .shader_forms = CACAO_SHADER_FORMS_GPU},
-                                  1920, 1080);
+    cacao_plan given_high = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .reuse_unchanged = true}, 1920, 1080);
     CHECK(find_image(&given_high, CACAO_RES_NORMALS) != NULL);
     cacao_plan odd = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true}, 1001, 37);
     CHECK(strcmp(odd.steps[odd.step_count - 1].key_name, "apply.half.fp32") == 0);

@@ -26,9 +26,9 @@ foreach(l ${lines})
   list(APPEND names ${name})
 endforeach()
 # Expected by hand from the spec's quality table: MEDIUM = depths without mips, Q1, Apply;
-# HIGH = depths with mips, Q2, Apply; either normals source (given: prepare_depths, and at MEDIUM
-# Q1's variant that reads the caller's normals, at HIGH prepare_normals; from depth: prepare, both
-# in one pass); blur 1..8; fp32 only; native only;
+# HIGH = depths with mips, Q2, Apply; either normals source (given: prepare_depths and
+# prepare_normals, and at MEDIUM with reuse (CPU forms) Q1's variant that reads the caller's
+# normals; from depth: prepare, both in one pass); blur 1..8; fp32 only; native only;
 # every key of the horizon-slice estimators (full resolution, fp32, no quality axis) and the
 # tile passes (no axis: every CACAO configuration runs them); and the GPU forms of the blur,
 # apply, prepare and generate, and of the horizon estimators' passes (a build
@@ -43,7 +43,7 @@ set(expected prepare_depths.full.native prepare_depths.mips.native prepare_depth
     prepare.full.native prepare.mips.native
     blur_gpu.1.fp32 blur_gpu.2.fp32 blur_gpu.3.fp32 blur_gpu.4.fp32 blur_gpu.5.fp32 blur_gpu.6.fp32 blur_gpu.7.fp32
     blur_gpu.8.fp32 apply_gpu.smart.fp32 prepare_gpu.full.native prepare_gpu.mips.native generate_gpu.q1 generate_gpu.q2
-    generate_gpu.q1_input reuse.diff reuse.diff_normals reuse.prefix reuse.reach reuse.diff_gpu reuse.diff_normals_gpu
+    reuse.diff reuse.diff_normals reuse.prefix reuse.reach reuse.diff_gpu reuse.diff_normals_gpu
     horizon_prepare_gpu.depth horizon_prepare_gpu.input horizon_main_gpu.gtao horizon_main_gpu.bitmask
     horizon_main_gpu.gtao_direct horizon_main_gpu.bitmask_direct horizon_denoise_gpu.intermediate
     horizon_denoise_gpu.final classify_gpu.native horizon_temporal)
