@@ -164,8 +164,9 @@ ivec2 full_res_pixel(ivec2 t, int slice)
                                         CACAO_PASS == CACAO_PASS_GENERATE || CACAO_PASS == CACAO_PASS_GENERATE_GPU)
 /* The caller's normal of slice texel t of the layer, in view space and clamped to [-1, 1] (spec:
  * prepare.md "Normals from input normals"; not renormalised, [quirk] NORMALS-NOT-NORMALIZED):
- * what prepare_normals stores, and what generate's _input variants compute themselves. */
-vec3 input_normal(ivec2 t, int layer)
+ * what prepare_normals stores, and what generate's _input variants compute themselves. `size` is
+ * the caller's normals' (textureSize, read once by the caller of this function). */
+vec3 input_normal(ivec2 t, int layer, ivec2 size)
 {
 #if CACAO_PASS == CACAO_PASS_PREPARE_NORMALS
     ivec2 p = full_res_pixel(t, slice_of_layer(layer));
@@ -176,7 +177,7 @@ vec3 input_normal(ivec2 t, int layer)
     int f = CB.tile_pixels / CACAO_TILE;
     ivec2 p = f * t + (f >> 1) * ivec2(slice & 1, slice >> 1);
 #endif
-    vec3 rgb = in_rect(p, textureSize(src_normals, 0)) ? texelFetch(src_normals, p, 0).rgb : vec3(0.0);
+    vec3 rgb = in_rect(p, size) ? texelFetch(src_normals, p, 0).rgb : vec3(0.0);
     vec3 n = rgb * CB.normals_unpack_mul + CB.normals_unpack_add;
     vec3 nv = (CB.normals_to_view * vec4(n, 0.0)).xyz; /* n'_j = sum_i E[j][i] n_i */
     return clamp(nv, vec3(-1.0), vec3(1.0));

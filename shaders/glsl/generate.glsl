@@ -187,7 +187,7 @@ float generate_texel(ivec2 xy, int layer)
 #ifdef CACAO_BIND_SRC_NORMALS
     /* the _input variants (Q0, Q1: no normal but this one is read): the caller's normal through
      * prepare_normals' arithmetic and its image's round trip (cacao_shared.h) */
-    vec3 n = snorm8_round_trip(input_normal(xy, layer));
+    vec3 n = snorm8_round_trip(input_normal(xy, layer, textureSize(src_normals, 0)));
 #elif GEN_GPU
     vec3 n = imageLoad(normals_image, ivec3(xy, layer)).xyz; /* xy is inside the slice (main) */
 #else

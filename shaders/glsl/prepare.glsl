@@ -402,9 +402,10 @@ void main()
     if (!group_of(g)) return;
     ivec2 t = texel_of(g);
     if (!in_rect(t, imageSize(normals_image).xy)) return; /* no side effects: no LDS, no atomics */
+    ivec2 size = textureSize(src_normals, 0);
     [[unroll]] for (int layer = 0; layer < 4; ++layer) {
         if (layer >= CB.slice_count) break;
-        imageStore(normals_image, ivec3(t, layer), vec4(input_normal(t, layer), 1.0));
+        imageStore(normals_image, ivec3(t, layer), vec4(input_normal(t, layer, size), 1.0));
     }
 }
 #endif /* PREPARE_NORMALS */
