@@ -79,9 +79,10 @@
 #define CACAO_GENERATE_Q2 2
 #define CACAO_GENERATE_Q3 3
 #define CACAO_GENERATE_Q3_BASE 4
-/* Q0 and Q1 with the caller's normals: they read no normal but the texel's own, so generate
- * transforms the caller's normal itself (prepare_normals' arithmetic and its image's rounding) and
- * no prepare_normals pass runs (docs/tiles.md "The normals read where they are used") */
+/* Q0 and Q1 with the caller's normals (the CPU forms' generate only): they read no normal but the
+ * texel's own, so generate transforms the caller's normal itself (prepare_normals' arithmetic and
+ * its image's rounding) and no prepare_normals pass runs (docs/tiles.md "The normals where they
+ * are read") */
 #define CACAO_GENERATE_Q0_INPUT 5
 #define CACAO_GENERATE_Q1_INPUT 6
 

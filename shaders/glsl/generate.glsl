@@ -186,7 +186,7 @@ float generate_texel(ivec2 xy, int layer)
     vec3 pc = view_pos(uvs, zc);
 #ifdef CACAO_BIND_SRC_NORMALS
     /* the _input variants (Q0, Q1: no normal but this one is read): the caller's normal through
-     * prepare_normals' arithmetic and its image's round trip (cacao_shared.h) */
+     * prepare_normals' arithmetic and its image's round trip (docs/tiles.md) */
     vec3 n = snorm8_round_trip(input_normal(xy, layer, textureSize(src_normals, 0)));
 #elif GEN_GPU
     vec3 n = imageLoad(normals_image, ivec3(xy, layer)).xyz; /* xy is inside the slice (main) */
