@@ -199,16 +199,20 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                   {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(SSAO_IMAGE, SSAO_PONG, ALL), R(TILES, TILES, ALL)},
                   .lists = {CACAO_LIST_BLUR}},
     /* spec: apply.md, upsample.md. They read the blur's output where a blur ran (step override).
-     * smart_list (the CPU forms without reuse): over compact's list of the blocks of 2x2 tiles
-     * holding a needed tile, the output's other tiles given their 1 by compact; the
-     * others over every group (docs/tiles.md). */
-    PASS(APPLY) = {"apply", {"smart", "nonsmart", "half", "smart_list"}, 4, false, false, true, WG(APPLY),
-                   CACAOI_GRID_OUTPUT, 4,
-                   {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL), R(TILES, TILES, V(CACAO_APPLY_SMART_LIST))},
+     * The listed variants (the CPU forms without reuse) run over compact's list in
+     * CACAO_LIST_PREPARE, the output's other tiles given their 1 by compact: smart_list over the
+     * blocks of 2x2 tiles holding a needed tile; nonsmart_list and half_list over the tiles whose
+     * quads touch one, on frames that skip much (after the direct apply, which compact's list
+     * closes then). The others over every group (docs/tiles.md). */
+    PASS(APPLY) = {"apply", {"smart", "nonsmart", "half", "smart_list", "nonsmart_list", "half_list"}, 6, false, false,
+                   true, WG(APPLY), CACAOI_GRID_OUTPUT, 4,
+                   {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL),
+                    R(TILES, TILES, V(CACAO_APPLY_SMART_LIST) | V(CACAO_APPLY_NONSMART_LIST) | V(CACAO_APPLY_HALF_LIST))},
                    /* smart: 4x4 output pixels per invocation; non-smart and half: 2x2 */
                    .quad = {[CACAO_OUTPUT_SMART] = 4, [CACAO_OUTPUT_NON_SMART] = 2, [CACAO_OUTPUT_HALF] = 2,
-                            [CACAO_APPLY_SMART_LIST] = 4},
-                   .lists = {[CACAO_APPLY_SMART_LIST] = CACAO_LIST_PREPARE}},
+                            [CACAO_APPLY_SMART_LIST] = 4, [CACAO_APPLY_NONSMART_LIST] = 2, [CACAO_APPLY_HALF_LIST] = 2},
+                   .lists = {[CACAO_APPLY_SMART_LIST] = CACAO_LIST_PREPARE, [CACAO_APPLY_NONSMART_LIST] = CACAO_LIST_PREPARE,
+                             [CACAO_APPLY_HALF_LIST] = CACAO_LIST_PREPARE}},
     /* The upsample's listed variants: over compact's list of the needed tiles (a group is a tile,
      * 32x32 pixels), the others' output given its 1 by compact: the CPU forms without reuse
      * (the upsample's bilateral filter over every pixel was most of a downsampled frame with sky). */

@@ -243,15 +243,24 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     }
     /* The CPU forms without reuse: the upsample (downsampled) or smart apply over the groups that
      * touch a needed tile, the output's other tiles given their 1 by compact (with reuse they run from a
-     * gate, over every tile; the non-smart and half applies, LOWEST and LOW, over every group:
-     * listed, they cost a frame with nothing to skip more than they saved, docs/tiles.md) */
+     * gate, over every tile). The non-smart and half applies (LOWEST, LOW) are two steps: the direct
+     * one over every group, then the listed one. Compact lists their groups, and closes the direct
+     * one's gate, where at most CACAO_APPLY_LIST_ACTIVE_NUM/_DEN of the tiles are active: listed
+     * everywhere, they cost a frame with nothing to skip more than they saved (docs/tiles.md). */
     const unsigned output = c->downsampled ? cacaoi_qualities[c->quality].output_downsampled
                                            : cacaoi_qualities[c->quality].output_native;
-    const bool listed_output = lists && !c->reuse && (c->downsampled || output == CACAO_OUTPUT_SMART);
-    cacaoi_step *s = push(out, &n, cacaoi_form_pass(c->downsampled ? CACAO_PASS_UPSAMPLE : CACAO_PASS_APPLY, c->gpu_forms),
-                          !listed_output    ? output
-                          : c->downsampled ? output + CACAO_UPSAMPLE_LISTED
-                                           : CACAO_APPLY_SMART_LIST,
+    const bool listed_output = lists && !c->reuse;
+    const unsigned out_pass = cacaoi_form_pass(c->downsampled ? CACAO_PASS_UPSAMPLE : CACAO_PASS_APPLY, c->gpu_forms);
+    if (listed_output && !c->downsampled && output != CACAO_OUTPUT_SMART) {
+        cacaoi_step *direct = push(out, &n, out_pass, output, 0, 0, fp);
+        if (c->blur_passes > 0) rebind(direct, CACAO_BINDING_SSAO, CACAO_RES_SSAO_PONG);
+    }
+    cacaoi_step *s = push(out, &n, out_pass,
+                          !listed_output                    ? output
+                          : c->downsampled                  ? output + CACAO_UPSAMPLE_LISTED
+                          : output == CACAO_OUTPUT_SMART     ? CACAO_APPLY_SMART_LIST
+                          : output == CACAO_OUTPUT_NON_SMART ? CACAO_APPLY_NONSMART_LIST
+                                                             : CACAO_APPLY_HALF_LIST,
                           0, 0, fp);
     if (c->blur_passes > 0) rebind(s, CACAO_BINDING_SSAO, CACAO_RES_SSAO_PONG);
     return n;

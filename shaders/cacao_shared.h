@@ -95,9 +95,18 @@
 #define CACAO_UPSAMPLE_LISTED 3 /* + CACAO_OUTPUT_*: smart_list, nonsmart_list, half_list */
 /* Smart apply (native) over compact's list of the blocks of 2x2 tiles holding a needed tile
  * (CACAO_LIST_PREPARE; a group is a block): the CPU forms without reuse. The non-smart and half
- * applies (LOWEST, LOW) run over every group: listed, they cost a frame with nothing to skip more
- * than they saved (docs/tiles.md). */
+ * applies (LOWEST, LOW) over compact's list of the tiles whose quads touch a needed tile (a group
+ * is a tile), on frames that skip much: they run after the direct apply, whose gate compact
+ * closes where it lists them (docs/tiles.md "Apply over a list where the frame skips much"). */
 #define CACAO_APPLY_SMART_LIST 3
+#define CACAO_APPLY_NONSMART_LIST 4
+#define CACAO_APPLY_HALF_LIST 5
+/* Compact lists the non-smart and half applies' groups where at most this share of the tiles is
+ * active (classify's count), 3/4: below it the direct apply over every group and the fills of
+ * every skipped tile cost more than the list's apply and compact's stores of the output's 1s
+ * (docs/tiles.md). Either way the output is the same. */
+#define CACAO_APPLY_LIST_ACTIVE_NUM 3
+#define CACAO_APPLY_LIST_ACTIVE_DEN 4
 
 /* prepare_normals' variants: every texel, or the tiles of CACAO_LIST_NORMALS (a group each) */
 #define CACAO_PREPARE_NORMALS_LISTED 1
@@ -485,7 +494,12 @@ typedef struct cacao_mat4 { float m[16]; } cacao_mat4; /* GLSL column-major: m[4
     M(FLOAT, quiet_margin)              /* classification: fade argument below -margin is quiet */ \
     M(INT, tiles_all)                   /* 1: every tile active (no skipping: measurement, tests) */ \
     M(INT, needed_list)                 /* CACAO's compact lists in CACAO_LIST_PREPARE: 1 the needed tiles (the
-                                           upsample), 2 the blocks of 2x2 tiles holding one (smart apply) */ \
+                                           upsample), 2 the blocks of 2x2 tiles holding one (smart apply), 3 the
+                                           tiles whose quads touch one (non-smart and half apply, on frames whose
+                                           active tiles are at most CACAO_APPLY_LIST_ACTIVE_NUM/_DEN of all) */ \
+    M(INT, needed_shift)                /* needed_list 3: bit 0, 1: the quads lie a pixel left, up (odd output) */ \
+    M(INT, apply_gate)                  /* needed_list 3: the direct apply's gate (1-based), which compact closes
+                                           where it lists the apply's groups */ \
     M(INT, active_blocks)               /* 1: compact lists the blocks holding an active tile (CACAO_LIST_BLOCKS) */ \
     M(INT, normals_list)                /* 1: compact lists the tiles whose normals generate reads (CACAO_LIST_NORMALS);
                                            the horizon estimators' normals from depth: 2, their view

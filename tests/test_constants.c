@@ -343,7 +343,30 @@ static void test_reuse_margin(void) {
     }
 }
 
+/* What compact reads of the plan's output steps (docs/tiles.md "Apply over a list where the frame
+ * skips much"): the list it writes, the odd output's shift and the direct apply's gate. */
+static void test_output_lists(void) {
+    float p[16];
+    cacao_perspective(65.0, 16.0 / 9.0, 0.05, 100.0, false, p);
+    for (int q = CACAO_QUALITY_LOWEST; q <= CACAO_QUALITY_HIGHEST; ++q)
+        for (int ds = 0; ds < 2; ++ds)
+            for (int reuse = 0; reuse < 2; ++reuse) {
+                const cacao_settings s = {.quality = (cacao_quality)q, .downsample = ds, .reuse_unchanged = reuse,
+                                          .shader_forms = CACAO_SHADER_FORMS_CPU};
+                const cacao_constants c = fill(&s, 961, 540, p, true);
+                const int list = reuse ? 0 : ds ? 1 : q >= CACAO_QUALITY_MEDIUM ? 2 : 3;
+                CHECK(c.needed_list == list);
+                CHECK(c.needed_shift == (list == 3 ? 1 : 0)); /* the width is odd */
+                /* the gates: classify.quiet's, after it every direct step's, the direct apply's last of them */
+                CHECK(list == 3 ? c.apply_gate == c.gate_count && c.apply_gate > 0 : c.apply_gate == 0);
+            }
+    const cacao_settings gpu = {.quality = CACAO_QUALITY_LOWEST, .shader_forms = CACAO_SHADER_FORMS_GPU};
+    const cacao_constants c = fill(&gpu, 960, 541, p, true);
+    CHECK(c.needed_list == 0 && c.apply_gate == 0 && c.needed_shift == 0);
+}
+
 int main(int argc, char **argv) {
+    test_output_lists();
     test_bilateral_multiplier();
     test_reuse_margin();
     test_projection_conventions();

@@ -49,8 +49,8 @@ static void test_rows(void) {
             if (row->quad[v] > 1)
                 CHECK((grid == CACAOI_GRID_SLICE || grid == CACAOI_GRID_SLICE_CLASSIFY || grid == CACAOI_GRID_OUTPUT) &&
                       (row->lists[v] == CACAO_LIST_NONE ||
-                       (p == CACAO_PASS_APPLY && v == CACAO_APPLY_SMART_LIST && row->lists[v] == CACAO_LIST_PREPARE &&
-                        row->quad[v] == row->quad[CACAO_OUTPUT_SMART])));
+                       (p == CACAO_PASS_APPLY && v >= CACAO_APPLY_SMART_LIST && row->lists[v] == CACAO_LIST_PREPARE &&
+                        row->quad[v] == row->quad[v - CACAO_APPLY_SMART_LIST + CACAO_OUTPUT_SMART])));
             CHECK(row->grids[v] <= CACAOI_GRID_TILE_ROWS && (v < row->variants || row->grids[v] == CACAOI_GRID_ROW));
             /* a list's groups are tiles (or blur groups); the exception, the blocks list, holds
              * blocks of 2x2 tiles: the groups of a grid of CACAO_TILE x CACAO_TILE invocations,

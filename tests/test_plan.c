@@ -39,8 +39,9 @@ static void test_steps_per_quality(void) {
      * tiles' output) */
 #define OUT
     const char *expected[5][16] = {
-        {QUIET, "prepare.half.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.half.fp32"},
-        {QUIET, "prepare.full.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.nonsmart.fp32"},
+        {QUIET, "prepare.half.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.half.fp32", "apply.half_list.fp32"},
+        {QUIET, "prepare.full.native", TILES, "generate.q0", FILLS, "blur.2.fp32", "apply.nonsmart.fp32",
+         "apply.nonsmart_list.fp32"},
         {QUIET, "prepare.full.native", TILES, "generate.q1", FILLS, "blur.2.fp32", OUT "apply.smart_list.fp32"},
         {QUIET, "prepare.mips.native", TILES, "generate.q2", FILLS, "blur.2.fp32", OUT "apply.smart_list.fp32"},
         {"clear.importance", QUIET, "prepare.mips.native", TILES, "generate.q3base", "importance_a", "importance_b",
@@ -193,14 +194,19 @@ static void test_only_needed_resources(void) {
     CHECK(!low.uses_load_counter);
     CHECK(find_image(&low, CACAO_RES_DEPTHS)->mips == 1); /* LOW reads no mips */
     CHECK(low.steps[Q].dispatch[0] == 60 && low.steps[Q].dispatch[1] == 34); /* prepare.full: 2x2 texels each */
-    CHECK(low.step_count == Q + 6); /* (the quiet steps) prepare, classify, compact, generate, fill, apply: no blur, one fill */
-    /* apply.nonsmart: a 2x2 quad of output pixels per invocation, one per slice texel: ceil(960/8), ceil(540/8) */
+    /* (the quiet steps) prepare, classify, compact, generate, fill, apply twice: no blur, one fill */
+    CHECK(low.step_count == Q + 7);
+    /* apply.nonsmart: a 2x2 quad of output pixels per invocation, one per slice texel: ceil(960/8), ceil(540/8);
+     * from a gate (compact closes it where it lists the groups), then over compact's list of the
+     * tiles (docs/tiles.md "Apply over a list where the frame skips much") */
     CHECK(strcmp(low.steps[Q + 5].key_name, "apply.nonsmart.fp32") == 0 && low.steps[Q + 5].list == CACAO_LIST_NONE);
-    CHECK(low.steps[Q + 5].dispatch[0] == 120 && low.steps[Q + 5].dispatch[1] == 68);
+    CHECK(low.steps[Q + 5].dispatch[0] == 120 && low.steps[Q + 5].dispatch[1] == 68 && low.steps[Q + 5].gate != 0);
+    CHECK(strcmp(low.steps[Q + 6].key_name, "apply.nonsmart_list.fp32") == 0 && low.steps[Q + 6].list == CACAO_LIST_PREPARE);
+    CHECK(low.steps[Q + 6].barrier_before); /* both write the output */
     cacao_plan given_low = build((cacao_settings){.quality = CACAO_QUALITY_LOW, .blur_pass_count = CACAO_BLUR_NONE}, 1920, 1080);
     /* normals given, below HIGH: prepare_depths, and generate transforms the caller's normal of its
      * texel itself (the only normal Q0 and Q1 read): no prepare_normals, no normals image */
-    CHECK(given_low.step_count == Q + 6);
+    CHECK(given_low.step_count == Q + 7);
     CHECK(strcmp(given_low.steps[Q].key_name, "prepare_depths.full.native") == 0);
     CHECK(given_low.steps[Q].dispatch[0] == 120 && given_low.steps[Q].dispatch[1] == 68); /* a texel each */
     CHECK(strcmp(given_low.steps[Q + 3].key_name, "generate.q0_input") == 0);
@@ -233,9 +239,19 @@ static void test_only_needed_resources(void) {
     cacao_plan given_high = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .reuse_unchanged = true}, 1920, 1080);
     CHECK(find_image(&given_high, CACAO_RES_NORMALS) != NULL);
     cacao_plan odd = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true}, 1001, 37);
-    CHECK(strcmp(odd.steps[odd.step_count - 1].key_name, "apply.half.fp32") == 0);
+    CHECK(strcmp(odd.steps[odd.step_count - 2].key_name, "apply.half.fp32") == 0);
+    CHECK(strcmp(odd.steps[odd.step_count - 1].key_name, "apply.half_list.fp32") == 0);
     /* odd sizes: still one quad per slice texel (501x19): ceil(501/8), ceil(19/8) */
-    CHECK(odd.steps[odd.step_count - 1].dispatch[0] == 63 && odd.steps[odd.step_count - 1].dispatch[1] == 3);
+    CHECK(odd.steps[odd.step_count - 2].dispatch[0] == 63 && odd.steps[odd.step_count - 2].dispatch[1] == 3);
+    /* with reuse, or the GPU forms, one apply over every group */
+    for (int gpu = 0; gpu < 2; ++gpu) {
+        cacao_plan one = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true, .reuse_unchanged = !gpu,
+                                                .shader_forms = gpu ? CACAO_SHADER_FORMS_GPU : CACAO_SHADER_FORMS_CPU},
+                               1001, 37);
+        int applies = 0;
+        for (uint32_t i = 0; i < one.step_count; ++i) applies += strncmp(one.steps[i].key_name, "apply", 5) == 0;
+        CHECK(applies == 1 && one.steps[one.step_count - 1].list == CACAO_LIST_NONE);
+    }
     cacao_plan medium = build((cacao_settings){.quality = CACAO_QUALITY_MEDIUM, .generate_normals = true}, 1920, 1080);
     CHECK(find_image(&medium, CACAO_RES_DEPTHS)->mips == 1); /* MEDIUM never reads mips: none built */
     cacao_plan lowest = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true}, 1920, 1080);

@@ -554,9 +554,12 @@ typedef struct cacao_tile_counts {
     uint32_t blur_run, blur_total;               /* blur groups (0 of 0 without a blur) */
     uint32_t fill_run;                           /* skipped tiles given AO 1 by the fills (CACAO's
                                                     CPU forms): without reuse, where apply or the
-                                                    upsample runs over lists, only those a pass
-                                                    reads; else every skipped tile (a change can
-                                                    reach, with reuse). 0 where no fill runs */
+                                                    upsample runs over lists (downsampled; native
+                                                    from MEDIUM up, and at LOWEST and LOW on frames
+                                                    with at most 3/4 of the tiles active), only
+                                                    those a pass reads; else every skipped tile (a
+                                                    change can reach, with reuse). 0 where no fill
+                                                    runs */
     uint32_t changed;                            /* reuse_unchanged: tiles whose inputs changed
                                                     (every tile on a full frame) */
     uint32_t recomputed;                         /* reuse_unchanged: tiles whose output a change

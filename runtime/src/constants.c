@@ -270,8 +270,10 @@ static void fill_tile_constants(const cacao_plan *plan, const projection_view *v
                                   ? 2
                                   : 1;
         else if (plan->steps[i].list == CACAO_LIST_PREPARE && plan->settings.estimator == CACAO_ESTIMATOR_CACAO)
-            /* the upsample's groups are the needed tiles, smart apply's blocks of 2x2 tiles */
-            c->needed_list = plan->settings.downsample ? 1 : 2;
+            /* the upsample's groups are the needed tiles, smart apply's blocks of 2x2 tiles, the
+             * other applies' the tiles whose quads touch one (a pixel left, up where the output's
+             * width, height is odd) */
+            c->needed_list = plan->settings.downsample ? 1 : plan->steps[i].key[1] == CACAO_APPLY_SMART_LIST ? 2 : 3;
     c->tile_pixels = plan->settings.estimator != CACAO_ESTIMATOR_CACAO ? CACAO_TILE
                                                                         : (int)(CACAO_TILE * (plan->settings.downsample ? 4 : 2));
     /* A plan that can find its frame quiet (classify.quiet first: docs/tiles.md "A quiet frame"):
@@ -282,7 +284,13 @@ static void fill_tile_constants(const cacao_plan *plan, const projection_view *v
         const cacao_plan_step *st = &plan->steps[i];
         if (st->key[0] == CACAO_PASS_CLASSIFY && st->key[1] == CACAO_CLASSIFY_QUIET) c->quiet_test = 1;
         if (st->gate > c->gate_count) c->gate_count = st->gate;
+        /* the direct apply before the listed one (needed_list 3): compact closes its gate where it
+         * lists the groups */
+        if (st->key[0] == CACAO_PASS_APPLY && (st->key[1] == CACAO_OUTPUT_NON_SMART || st->key[1] == CACAO_OUTPUT_HALF))
+            c->apply_gate = st->gate;
     }
+    if (c->needed_list == 3) c->needed_shift = (int)((plan->width & 1) | (plan->height & 1) << 1);
+    else c->apply_gate = 0;
     const uint32_t scale = plan->settings.downsample ? 4 : 2;
     c->quiet_zero_depth = plan->slice_width * scale > plan->width || plan->slice_height * scale > plan->height;
     c->tiles_x = (int)plan->tiles_x;

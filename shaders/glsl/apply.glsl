@@ -133,7 +133,7 @@ void main()
 #else
 /* Non-smart and half: the mean of the layers (all four, or slices 0 and 3) read bilinearly at
  * uv = p / output size (no +0.5, as AMD). One invocation computes a 2x2 quad of output pixels. */
-#if CACAO_VARIANT == CACAO_OUTPUT_NON_SMART
+#if CACAO_VARIANT == CACAO_OUTPUT_NON_SMART || CACAO_VARIANT == CACAO_APPLY_NONSMART_LIST
 #define APPLY_LAYERS 4
 #else
 #define APPLY_LAYERS 2 /* layers 0,1 = slices 0,3 */
@@ -146,8 +146,11 @@ void main()
      * S = ceil(O / 2) texels, less half a texel, lies in [q - 1, q] for those p). So one gather
      * per layer at the corner between those texels reads the four texels of all four pixels, and
      * the filter is done here as the sampler does it on 8-bit texels, to the bit, with a quarter of
-     * its reads. */
-    ivec2 q = ivec2(gl_GlobalInvocationID.xy);
+     * its reads. Listed: the group is a tile's 8x8 quads, whose pixels lie a pixel left (up) of
+     * the tile's where the output's width (height) is odd. */
+    ivec2 g;
+    if (!group_of(g)) return;
+    ivec2 q = texel_of(g);
     ivec2 osize = imageSize(output_image);
     ivec2 ssize = textureSize(ssao, 0).xy;
     vec2 inv_o = CB.output_buffer_inverse_dimensions;

@@ -458,19 +458,32 @@ void append(int list, ivec2 g)
 }
 
 #if CACAO_VARIANT != CACAO_COMPACT_HORIZON
-/* Whether a later pass can read the AO of tile g, which generate skips: the fills' list. Where
- * apply runs over every group, every skipped tile (needed_list 0: also every frame with reuse, where
- * a tile keeps its AO for later frames; cacao_policy lists apply and the upsample only without
- * reuse). Else (the CPU forms' listed apply or upsample, no reuse: the intermediates carry nothing
- * from frame to frame) the tiles within reach of a needed one: the upsample's tiles (needed) read
- * two slice texels around them, smart apply's blocks of 2x2 tiles (holding a needed one) two around
- * the block: the tiles within one, or two, of a needed tile; the blur's output there is made of its
- * input at most 8 texels away (8 passes), one tile more. What lies farther may be read by a blur
- * group but reaches no texel that is read. */
-bool fill_read(ivec2 g)
+/* Whether a listed step writes the output's needed tiles, compact the others' 1s: the upsample's
+ * and smart apply's lists always (needed_list 1, 2); the non-smart and half applies' (3) where at
+ * most CACAO_APPLY_LIST_ACTIVE_NUM/_DEN of the tiles are active (classify's count, the same for
+ * every invocation); else their direct step runs over every group. */
+bool lists_output()
 {
-    if (CB.needed_list == 0) return true;
-    int reach = CB.needed_list + (CB.blur_groups_x != 0 ? 1 : 0);
+    if (CB.needed_list != 3) return CB.needed_list != 0;
+    return tiles[CACAO_TILE_COUNT_ACTIVE] * uint(CACAO_APPLY_LIST_ACTIVE_DEN) <=
+           uint(CB.tiles_x * CB.tiles_y * CACAO_APPLY_LIST_ACTIVE_NUM);
+}
+
+/* Whether a later pass can read the AO of tile g, which generate skips: the fills' list. Where
+ * apply runs over every group, every skipped tile (no listed output: also every frame with reuse,
+ * where a tile keeps its AO for later frames; cacao_policy lists apply and the upsample only
+ * without reuse). Else (the CPU forms' listed apply or upsample, no reuse: the intermediates carry
+ * nothing from frame to frame) the tiles within reach of a needed one: the upsample's tiles
+ * (needed) read two slice texels around them: the tiles within one of a needed tile; smart
+ * apply's blocks of 2x2 tiles (holding a needed one) two around the block, and the non-smart and
+ * half applies' tiles (within one of a needed tile: the odd output's shift) one texel before
+ * theirs: the tiles within two. The blur's output there is made of its input at most 8 texels
+ * away (8 passes), one tile more. What lies farther may be read by a blur group but reaches no
+ * texel that is read. */
+bool fill_read(ivec2 g, bool listed)
+{
+    if (!listed) return true;
+    int reach = (CB.needed_list == 1 ? 1 : 2) + (CB.blur_groups_x != 0 ? 1 : 0);
     if (CB.blur_groups_x != 0) {
         /* first the blur groups over those tiles (a few loads): a needed tile there lies in one,
          * which classify marked (its output touches the tile); none marked, none needed */
@@ -500,6 +513,12 @@ void main()
          * here, a tile's tile_pixels x tile_pixels pixels per invocation: on lavapipe about a third
          * of what a fill dispatch over the same tiles, an invocation per pixel or four, cost
          * (docs/tiles.md "What runs"). */
+#if CACAO_VARIANT != CACAO_COMPACT_HORIZON
+        bool listed = lists_output();
+        /* the non-smart and half applies listed: their direct step's gate closed (one invocation;
+         * classify.quiet opened it, the barrier after this pass orders both before the dispatch) */
+        if (i == 0 && CB.needed_list == 3 && listed) tiles[TILE_REGION(CACAO_TILE_GATES) + uint(3 * (CB.apply_gate - 1))] = 0u;
+#endif
         if (tile_recomputed(g)) {
             bool needed = touches_needed(g, g);
 #if CACAO_VARIANT == CACAO_COMPACT_HORIZON
@@ -507,8 +526,8 @@ void main()
             else store_output_one(g * CB.tile_pixels, CB.tile_pixels);
 #else
             if (needed) append(CACAO_LIST_GENERATE, g);
-            else if (fill_read(g)) append(CACAO_LIST_FILL_SLICES, g);
-            if (!needed && CB.needed_list != 0) store_output_one(g * CB.tile_pixels, CB.tile_pixels);
+            else if (fill_read(g, listed)) append(CACAO_LIST_FILL_SLICES, g);
+            if (!needed && listed) store_output_one(g * CB.tile_pixels, CB.tile_pixels);
 #endif
         }
         /* The blocks of 2x2 tiles holding an active tile, for CACAO's Q3 base pass at HIGHEST or the
@@ -538,6 +557,12 @@ void main()
         if (CB.needed_list == 1 && touches_needed(g, g)) append(CACAO_LIST_PREPARE, g);
         if (CB.needed_list == 2 && (g.x & 1) == 0 && (g.y & 1) == 0 && touches_needed(g, g + 1))
             append(CACAO_LIST_PREPARE, g / 2);
+        /* the non-smart and half applies where listed: the tiles whose quads' pixels, a pixel
+         * left (up) where the output's width (height) is odd, touch a needed tile: this one, or
+         * that one and the one before */
+        if (CB.needed_list == 3 && listed &&
+            touches_needed(max(g - ivec2(CB.needed_shift & 1, CB.needed_shift >> 1), ivec2(0)), g))
+            append(CACAO_LIST_PREPARE, g);
         /* the caller's normals, the CPU forms without reuse: generate reads the normals of the
          * needed tiles and of one texel around them, the Q3 base pass those of its blocks and one
          * texel around: the tiles within two of an active tile */
