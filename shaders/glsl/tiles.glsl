@@ -474,16 +474,16 @@ bool lists_output()
  * where a tile keeps its AO for later frames; cacao_policy lists apply and the upsample only
  * without reuse). Else (the CPU forms' listed apply or upsample, no reuse: the intermediates carry
  * nothing from frame to frame) the tiles within reach of a needed one: the upsample's tiles
- * (needed) read two slice texels around them: the tiles within one of a needed tile; smart
- * apply's blocks of 2x2 tiles (holding a needed one) two around the block, and the non-smart and
- * half applies' tiles (within one of a needed tile: the odd output's shift) one texel before
- * theirs: the tiles within two. The blur's output there is made of its input at most 8 texels
- * away (8 passes), one tile more. What lies farther may be read by a blur group but reaches no
- * texel that is read. */
+ * (needed) read two slice texels around them: the tiles within one of a needed tile; the
+ * non-smart and half applies' tile g (a needed tile in [g - shift, g]: the odd output's shift)
+ * reads the texels of tiles g - 1 and g: within one of that needed tile; smart apply's blocks of
+ * 2x2 tiles (holding a needed one) two around the block: the tiles within two. The blur's output
+ * there is made of its input at most 8 texels away (8 passes), one tile more. What lies farther
+ * may be read by a blur group but reaches no texel that is read. */
 bool fill_read(ivec2 g, bool listed)
 {
     if (!listed) return true;
-    int reach = (CB.needed_list == 1 ? 1 : 2) + (CB.blur_groups_x != 0 ? 1 : 0);
+    int reach = (CB.needed_list == 2 ? 2 : 1) + (CB.blur_groups_x != 0 ? 1 : 0);
     if (CB.blur_groups_x != 0) {
         /* first the blur groups over those tiles (a few loads): a needed tile there lies in one,
          * which classify marked (its output touches the tile); none marked, none needed */
