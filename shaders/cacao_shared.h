@@ -102,11 +102,12 @@
 #define CACAO_APPLY_NONSMART_LIST 4
 #define CACAO_APPLY_HALF_LIST 5
 /* Compact lists the non-smart and half applies' groups where at most this share of the tiles is
- * active (classify's count), 3/4: below it the direct apply over every group and the fills of
- * every skipped tile cost more than the list's apply and compact's stores of the output's 1s
- * (docs/tiles.md). Either way the output is the same. */
-#define CACAO_APPLY_LIST_ACTIVE_NUM 3
-#define CACAO_APPLY_LIST_ACTIVE_DEN 4
+ * active (classify's count), 2/3: below it the direct apply over every group and the fills of
+ * every skipped tile cost more than the list's apply and compact's stores of the output's 1s;
+ * measured on lavapipe, the two broke even at about 3/4 (docs/tiles.md "Apply over a list where
+ * the frame skips much"). Either way the output is the same. */
+#define CACAO_APPLY_LIST_ACTIVE_NUM 2
+#define CACAO_APPLY_LIST_ACTIVE_DEN 3
 
 /* prepare_normals' variants: every texel, or the tiles of CACAO_LIST_NORMALS (a group each) */
 #define CACAO_PREPARE_NORMALS_LISTED 1

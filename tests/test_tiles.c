@@ -57,6 +57,10 @@ static bool run_counts(vkdev *dev, const cacao_settings *s, const vkdev_frame *f
     return true;
 }
 
+/* Frames at LOWEST or LOW native (CPU forms) with skipped tiles whose apply ran over every group
+ * [0] and over compact's list [1]: main checks that the cases saw both. */
+static int apply_modes_seen[2];
+
 /* Runs s with skipping and with compute_all_tiles; checks the outputs are identical and the
  * counts add up. Returns the skipping run's counts in *on. */
 static bool same_as_all_tiles(vkdev *dev, cacao_settings s, const vkdev_frame *f, const char *what,
@@ -83,6 +87,21 @@ static bool same_as_all_tiles(vkdev *dev, cacao_settings s, const vkdev_frame *f
         CHECK(on->generate_run >= on->active && on->generate_run <= on->tiles); /* active tiles and a margin */
         CHECK(off.active == off.tiles && off.generate_run == off.tiles && off.blur_run == off.blur_total);
         CHECK(on->generate_total == on->tiles && on->blur_run <= on->blur_total);
+        /* The CPU forms of CACAO without reuse fill every tile generate skipped where apply runs
+         * over every group, at most those where it is listed: downsampled (the upsample), smart
+         * apply (MEDIUM up), and the half and non-smart applies on frames with at most 2/3 of the
+         * tiles active (compact's choice, docs/tiles.md "Apply over a list where the frame skips
+         * much") */
+        if (s.estimator <= CACAO_ESTIMATOR_CACAO && forms == CACAO_SHADER_FORMS_CPU && !s.reuse_unchanged && !on->quiet) {
+            const uint32_t skipped = on->generate_total - on->generate_run;
+            const bool listed = s.downsample || s.quality >= CACAO_QUALITY_MEDIUM || 3 * on->active <= 2 * on->tiles;
+            if (listed ? on->fill_run > skipped : on->fill_run != skipped)
+                fprintf(stderr, "%s, quality %d, %s: %u active of %u tiles, %u skipped, %u filled (%s apply)\n", what,
+                        (int)s.quality, s.downsample ? "downsampled" : "native", on->active, on->tiles, skipped,
+                        on->fill_run, listed ? "listed" : "direct");
+            CHECK(listed ? on->fill_run <= skipped : on->fill_run == skipped);
+            if (!s.downsample && s.quality <= CACAO_QUALITY_LOW && skipped > 0) ++apply_modes_seen[listed];
+        }
         /* The steps over blocks of 2x2 tiles (HIGHEST's Q3 base pass, the horizon estimators'
          * downsampled estimator in the CPU forms): every block without skipping; skipping, the
          * blocks holding an active tile, at least a quarter as many as the active tiles. The GPU
@@ -449,9 +468,9 @@ static void test_stale_ao(vkdev *dev) {
                 const uint32_t skipped = c->generate_total - c->generate_run;
                 CHECK(skipped * 2 > c->tiles && c->fill_run <= skipped);
                 /* apply or the upsample over lists: downsampled, smart apply (MEDIUM up) native, and
-                 * the non-smart and half applies (LOWEST, LOW) where at most 3/4 of the tiles are
+                 * the non-smart and half applies (LOWEST, LOW) where at most 2/3 of the tiles are
                  * active (these frames: fewer than half; else every skipped tile is filled) */
-                const bool listed = ds || s.quality >= CACAO_QUALITY_MEDIUM || 4 * c->active <= 3 * c->tiles;
+                const bool listed = ds || s.quality >= CACAO_QUALITY_MEDIUM || 3 * c->active <= 2 * c->tiles;
                 if (listed && c->fill_run >= skipped)
                     fprintf(stderr, "stale AO, quality %d, %s, blur %d: the fills ran over all %u skipped tiles\n",
                             (int)s.quality, ds ? "downsampled" : "native", s.blur_pass_count, skipped);
@@ -606,6 +625,9 @@ int main(void) {
     test_quiet_frames(&dev);
     test_stale_normals(&dev);
     test_stale_ao(&dev);
+    printf("LOWEST and LOW native with skipped tiles: %d frames applied over every group, %d over compact's list\n",
+           apply_modes_seen[0], apply_modes_seen[1]);
+    CHECK(apply_modes_seen[0] > 0 && apply_modes_seen[1] > 0);
     /* the GPU forms: the same cases (lavapipe runs both sides of their skip, slowly: the
      * downsampled frame once, with the CPU forms); mostly faded at 512x288, where the GPU blur's
      * larger groups (up to 64x48 texels) leave some away from every active tile */

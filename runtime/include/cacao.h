@@ -556,7 +556,7 @@ typedef struct cacao_tile_counts {
                                                     CPU forms): without reuse, where apply or the
                                                     upsample runs over lists (downsampled; native
                                                     from MEDIUM up, and at LOWEST and LOW on frames
-                                                    with at most 3/4 of the tiles active), only
+                                                    with at most 2/3 of the tiles active), only
                                                     those a pass reads; else every skipped tile (a
                                                     change can reach, with reuse). 0 where no fill
                                                     runs */
