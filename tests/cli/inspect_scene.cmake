@@ -58,6 +58,41 @@ if(NOT apply_needed EQUAL gen_run OR NOT output_filled EQUAL gen_skipped OR
   message(FATAL_ERROR "apply over its list, compact's stores of the output and the quiet test:\n${out}")
 endif()
 
+# LOWEST (the half apply): compact lists apply's groups where at most 2/3 of the tiles are active
+# (docs/tiles.md "Apply over a list where the frame skips much"), the direct apply's gate closed and
+# the output of the skipped tiles stored by compact; elsewhere the direct apply runs and every
+# skipped tile is filled. A fade-out close to the camera makes the first, none the second.
+foreach(fade "2,4" "")
+  if(fade)
+    inspect(0 plan --scene ${ROOM} --quality lowest --fade-out ${fade} --validate)
+  else()
+    inspect(0 plan --scene ${ROOM} --quality lowest --validate)
+  endif()
+  number_after("${out}" "\ntiles: ([0-9]+) \\(" lt)
+  number_after("${out}" ": ([0-9]+) active" la)
+  number_after("${out}" "generate[.a-z0-9_]* +runs [0-9]+ of [0-9]+ tiles, skips ([0-9]+)" ls)
+  number_after("${out}" "fill +writes AO 1 into the ([0-9]+) of the" lf)
+  math(EXPR a3 "3 * ${la}")
+  math(EXPR t2 "2 * ${lt}")
+  if(a3 GREATER t2)
+    set(direct TRUE)
+  else()
+    set(direct FALSE)
+  endif()
+  if(fade AND direct)
+    message(FATAL_ERROR "a fade-out at ${fade} should leave at most 2/3 of the tiles active:\n${out}")
+  endif()
+  if(direct AND (NOT out MATCHES "apply\\.half\\.fp32 +runs over everything" OR
+                 NOT out MATCHES "apply\\.half_list\\.fp32 +its list is empty" OR NOT lf EQUAL ls))
+    message(FATAL_ERROR "${la} of ${lt} tiles active: apply over every group, every skipped tile filled:\n${out}")
+  endif()
+  if(NOT direct AND (NOT out MATCHES "apply\\.half\\.fp32 +gated: at most 2/3" OR
+                     NOT out MATCHES "apply\\.half_list\\.fp32 +runs over the tiles whose quads touch" OR
+                     NOT out MATCHES "compact +runs over everything; writes AO 1 into the output" OR NOT lf LESS ls))
+    message(FATAL_ERROR "${la} of ${lt} tiles active: apply over compact's list, fewer tiles filled:\n${out}")
+  endif()
+endforeach()
+
 # The same frame through the cacao command: the same counts.
 cacao_ok(run --scene ${ROOM} ${flags} --timings --repeat 1 --json ${WORK}/t.json -o ${WORK}/t.pfm)
 file(READ ${WORK}/t.json report)

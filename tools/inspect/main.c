@@ -229,13 +229,30 @@ static int cmd_show(const char *key_name) {
 
 static double percent(uint32_t part, uint32_t whole) { return whole ? 100.0 * part / whole : 0.0; }
 
+/* The half and non-smart applies' listed step (LOWEST, LOW native, the CPU forms without reuse),
+ * which runs after their direct step, and compact's choice between them on a frame with counts c
+ * (the rule of tiles.glsl's lists_output: at most CACAO_APPLY_LIST_ACTIVE_NUM/_DEN of the tiles
+ * active; docs/tiles.md "Apply over a list where the frame skips much"). */
+static bool listed_apply_step(const cacao_plan_step *st) {
+    return st->key[0] == CACAO_PASS_APPLY && (st->key[1] == CACAO_APPLY_NONSMART_LIST || st->key[1] == CACAO_APPLY_HALF_LIST);
+}
+static bool apply_listed(const cacao_tile_counts *c) {
+    return (uint64_t)c->active * CACAO_APPLY_LIST_ACTIVE_DEN <= (uint64_t)c->tiles * CACAO_APPLY_LIST_ACTIVE_NUM;
+}
+static bool has_listed_apply(const cacao_plan *plan) {
+    for (uint32_t i = 0; i < plan->step_count; ++i)
+        if (listed_apply_step(&plan->steps[i])) return true;
+    return false;
+}
+
 /* Whether the plan's compact stores the AO 1 of the output's skipped tiles (the horizon
  * estimators' CPU forms; CACAO's where the upsample or smart apply runs over a list). */
-static bool compact_fills_output(const cacao_plan *plan) {
+static bool compact_fills_output(const cacao_plan *plan, const cacao_tile_counts *c) {
     for (uint32_t i = 0; i < plan->step_count; ++i) {
         const cacao_plan_step *st = &plan->steps[i];
         if ((st->key[0] == CACAO_PASS_COMPACT && st->key[1] == CACAO_COMPACT_HORIZON) ||
-            (st->list == CACAO_LIST_PREPARE && plan->settings.estimator == CACAO_ESTIMATOR_CACAO))
+            (st->list == CACAO_LIST_PREPARE && plan->settings.estimator == CACAO_ESTIMATOR_CACAO &&
+             (!listed_apply_step(st) || apply_listed(c))))
             return true;
     }
     return false;
@@ -329,6 +346,18 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
                        c->fill_run, generate_skipped, percent(c->fill_run, c->generate_total));
             break;
         case CACAO_LIST_PREPARE:
+            if (listed_apply_step(st)) {
+                if (apply_listed(c))
+                    printf("runs over the tiles whose quads touch one of the %u needed tiles (at most %d/%d of the tiles "
+                           "active: compact listed them; skips the %u others, %.1f%% of the tiles)\n",
+                           c->generate_run, CACAO_APPLY_LIST_ACTIVE_NUM, CACAO_APPLY_LIST_ACTIVE_DEN, generate_skipped,
+                           percent(generate_skipped, c->generate_total));
+                else
+                    printf("its list is empty: more than %d/%d of the tiles are active, the apply before ran over "
+                           "everything\n",
+                           CACAO_APPLY_LIST_ACTIVE_NUM, CACAO_APPLY_LIST_ACTIVE_DEN);
+                break;
+            }
             if (plan->settings.estimator == CACAO_ESTIMATOR_CACAO) {
                 printf(plan->settings.downsample ? "runs over the %u needed tiles, skips %u (%.1f%%)\n"
                                                  : "runs over the blocks of 2x2 tiles holding one of the %u needed tiles "
@@ -349,7 +378,7 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
                    percent(blur_skipped, c->blur_total));
             break;
         default:
-            if (st->key[0] == CACAO_PASS_COMPACT && compact_fills_output(plan))
+            if (st->key[0] == CACAO_PASS_COMPACT && compact_fills_output(plan, c))
                 printf("runs over everything; writes AO 1 into the output of the %u skipped tiles (%.1f%% of the "
                        "tiles)\n",
                        generate_skipped, percent(generate_skipped, c->generate_total));
@@ -357,6 +386,10 @@ static void print_skipped_work(const cacao_plan *plan, const cacao_tile_counts *
                 printf("reuse's bookkeeping (full frames record only the diff, or nothing)\n");
             else if (st->gate && nothing_changed && (i + 1 < plan->step_count || output_kept))
                 printf("gated: nothing changed, dispatches nothing\n");
+            else if (st->key[0] == CACAO_PASS_APPLY && has_listed_apply(plan) && apply_listed(c))
+                printf("gated: at most %d/%d of the tiles are active, compact listed the groups the next step runs; "
+                       "dispatches nothing\n",
+                       CACAO_APPLY_LIST_ACTIVE_NUM, CACAO_APPLY_LIST_ACTIVE_DEN);
             else
                 printf("runs over everything, skips 0%%\n");
         }
