@@ -108,6 +108,10 @@
  * the frame skips much"). Either way the output is the same. */
 #define CACAO_APPLY_LIST_ACTIVE_NUM 2
 #define CACAO_APPLY_LIST_ACTIVE_DEN 3
+/* That rule, for compact (tiles.glsl) and the tools that report its choice: active and tiles
+ * unsigned (a GLSL uint, a C unsigned type) */
+#define CACAO_APPLY_LISTS(active, tiles) \
+    ((active) * CACAO_APPLY_LIST_ACTIVE_DEN <= (tiles) * CACAO_APPLY_LIST_ACTIVE_NUM)
 
 /* prepare_normals' variants: every texel, or the tiles of CACAO_LIST_NORMALS (a group each) */
 #define CACAO_PREPARE_NORMALS_LISTED 1

@@ -465,8 +465,7 @@ void append(int list, ivec2 g)
 bool lists_output()
 {
     if (CB.needed_list != 3) return CB.needed_list != 0;
-    return tiles[CACAO_TILE_COUNT_ACTIVE] * uint(CACAO_APPLY_LIST_ACTIVE_DEN) <=
-           uint(CB.tiles_x * CB.tiles_y * CACAO_APPLY_LIST_ACTIVE_NUM);
+    return CACAO_APPLY_LISTS(tiles[CACAO_TILE_COUNT_ACTIVE], uint(CB.tiles_x * CB.tiles_y));
 }
 
 /* Whether a later pass can read the AO of tile g, which generate skips: the fills' list. Where

@@ -231,13 +231,13 @@ static double percent(uint32_t part, uint32_t whole) { return whole ? 100.0 * pa
 
 /* The half and non-smart applies' listed step (LOWEST, LOW native, the CPU forms without reuse),
  * which runs after their direct step, and compact's choice between them on a frame with counts c
- * (the rule of tiles.glsl's lists_output: at most CACAO_APPLY_LIST_ACTIVE_NUM/_DEN of the tiles
+ * (CACAO_APPLY_LISTS, compact's rule: at most CACAO_APPLY_LIST_ACTIVE_NUM/_DEN of the tiles
  * active; docs/tiles.md "Apply over a list where the frame skips much"). */
 static bool listed_apply_step(const cacao_plan_step *st) {
     return st->key[0] == CACAO_PASS_APPLY && (st->key[1] == CACAO_APPLY_NONSMART_LIST || st->key[1] == CACAO_APPLY_HALF_LIST);
 }
 static bool apply_listed(const cacao_tile_counts *c) {
-    return (uint64_t)c->active * CACAO_APPLY_LIST_ACTIVE_DEN <= (uint64_t)c->tiles * CACAO_APPLY_LIST_ACTIVE_NUM;
+    return CACAO_APPLY_LISTS((uint64_t)c->active, (uint64_t)c->tiles);
 }
 static bool has_listed_apply(const cacao_plan *plan) {
     for (uint32_t i = 0; i < plan->step_count; ++i)
