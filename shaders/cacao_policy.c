@@ -169,6 +169,14 @@ bool cacaoi_prepare_classifies(const cacao_key_config *c) {
     return c->estimator == CACAO_KEY_ESTIMATOR_CACAO && c->gpu_forms && !c->normals_from_input;
 }
 
+/* The CPU forms' fills of the slices' AO where generate skips: its output, and the blur's where
+ * one runs. */
+static void push_fills(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENCE_MAX], size_t *n) {
+    push(out, n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0);
+    if (c->blur_passes > 0)
+        rebind(push(out, n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0), CACAO_BINDING_SSAO_IMAGE, CACAO_RES_SSAO_PONG);
+}
+
 size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENCE_MAX]) {
     if (c->estimator != CACAO_KEY_ESTIMATOR_CACAO) return horizon_sequence(c, out);
     size_t n = 0;
@@ -222,6 +230,15 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     const bool lists = !c->gpu_forms;
     if (lists) push(out, &n, CACAO_PASS_COMPACT, 0, 0, 0, 0);
     if (listed_normals) push(out, &n, CACAO_PASS_PREPARE_NORMALS, CACAO_PREPARE_NORMALS_LISTED, ds, 0, 0);
+    /* Lists: the tiles generate skips read as AO 1 in its output and, where a blur runs, in the
+     * blur's (the blur and apply groups next to a needed tile read them): fills over the list of
+     * the unneeded tiles, which write no texel generate writes. Where prepare_normals runs over its
+     * list between compact and generate (MEDIUM, HIGH), the fills run beside it, before the barrier
+     * generate needs anyway: one barrier fewer (on lavapipe a barrier costs 0.05-0.1 ms whether
+     * or not work ran: docs/tiles.md "A quiet frame"). Not at HIGHEST: its Q3 base pass writes the
+     * blur's image. */
+    const bool early_fills = lists && listed_normals && c->quality != CACAO_KEY_QUALITY_HIGHEST;
+    if (early_fills) push_fills(c, out, &n);
     if (c->quality == CACAO_KEY_QUALITY_HIGHEST) {
         /* The base pass computes the tiles holding an active texel; the others' importance is 0:
          * the CPU form runs over compact's list of blocks (the map was cleared first), the GPU
@@ -232,15 +249,8 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     }
     push(out, &n, cacaoi_form_pass(CACAO_PASS_GENERATE, c->gpu_forms),
          cacaoi_qualities[c->quality].generate_variant + (generate_reads_input ? CACAO_GENERATE_Q0_INPUT : 0), 0, 0, 0);
-    /* Lists: the tiles generate skips read as AO 1 in its output and, where a blur runs, in the
-     * blur's (the blur and apply groups next to a needed tile read them): fills over the list of
-     * the unneeded tiles. */
-    if (lists) push(out, &n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0);
-    if (c->blur_passes > 0) {
-        if (lists)
-            rebind(push(out, &n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0), CACAO_BINDING_SSAO_IMAGE, CACAO_RES_SSAO_PONG);
-        push(out, &n, cacaoi_form_pass(CACAO_PASS_BLUR, c->gpu_forms), 0, 0, c->blur_passes, fp);
-    }
+    if (lists && !early_fills) push_fills(c, out, &n);
+    if (c->blur_passes > 0) push(out, &n, cacaoi_form_pass(CACAO_PASS_BLUR, c->gpu_forms), 0, 0, c->blur_passes, fp);
     /* The CPU forms without reuse: the upsample (downsampled) or smart apply over the groups that
      * touch a needed tile, the output's other tiles given their 1 by compact (with reuse they run from a
      * gate, over every tile). The non-smart and half applies (LOWEST, LOW) are two steps: the direct

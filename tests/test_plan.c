@@ -26,6 +26,12 @@ static cacao_plan build(cacao_settings s, uint32_t w, uint32_t h) {
     return p;
 }
 
+static uint32_t barrier_count(const cacao_plan *p) {
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < p->step_count; ++i) n += p->steps[i].barrier_before;
+    return n;
+}
+
 static void test_steps_per_quality(void) {
     /* By hand from the spec's pass graph, with blur 2, native, normals from depth, and the tile
      * passes of docs/tiles.md: classify and compact after the depths, a fill of the AO and of
@@ -235,7 +241,15 @@ static void test_only_needed_resources(void) {
     cacao_plan given_medium = build((cacao_settings){.quality = CACAO_QUALITY_MEDIUM}, 1920, 1080);
     CHECK(strcmp(given_medium.steps[Q + 3].key_name, "prepare_normals.list.native") == 0 &&
           given_medium.steps[Q + 3].list == CACAO_LIST_NORMALS && strcmp(given_medium.steps[Q + 2].key_name, "compact") == 0);
-    CHECK(strcmp(given_medium.steps[Q + 4].key_name, "generate.q1") == 0);
+    /* the fills beside it, before the barrier generate needs for the normals: no barrier of their
+     * own (the plan without listed normals has one before them, after generate) */
+    CHECK(strcmp(given_medium.steps[Q + 4].key_name, "fill") == 0 && strcmp(given_medium.steps[Q + 5].key_name, "fill") == 0);
+    CHECK(!given_medium.steps[Q + 4].barrier_before && !given_medium.steps[Q + 5].barrier_before);
+    CHECK(strcmp(given_medium.steps[Q + 6].key_name, "generate.q1") == 0 && given_medium.steps[Q + 6].barrier_before);
+    cacao_plan from_depth_medium = build((cacao_settings){.quality = CACAO_QUALITY_MEDIUM, .generate_normals = true}, 1920, 1080);
+    CHECK(strcmp(from_depth_medium.steps[Q + 3].key_name, "generate.q1") == 0 &&
+          strcmp(from_depth_medium.steps[Q + 4].key_name, "fill") == 0 && from_depth_medium.steps[Q + 4].barrier_before);
+    CHECK(barrier_count(&given_medium) == barrier_count(&from_depth_medium));
     cacao_plan given_high = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .reuse_unchanged = true}, 1920, 1080);
     CHECK(find_image(&given_high, CACAO_RES_NORMALS) != NULL);
     cacao_plan odd = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true}, 1001, 37);
@@ -467,13 +481,21 @@ static void test_reuse(void) {
             uint32_t m = 0;
             const bool listed_normals = !gpu && normals;
             CHECK(!listed_normals || strcmp(plain.steps[Q + 3].key_name, "prepare_normals.list.native") == 0);
+            uint32_t fills = 0; /* beside the listed normals they run before generate, else after it */
             for (uint32_t i = 0; i < plain.step_count; ++i) {
                 const char *name = plain.steps[i].key_name;
                 if (!strcmp(name, "classify.quiet") || !strcmp(name, "prepare_normals.list.native"))
                     continue;
+                if (listed_normals && !strcmp(name, "fill")) {
+                    ++fills;
+                    continue;
+                }
                 same[m++] = !strcmp(name, "apply.smart_list.fp32") ? "apply.smart.fp32" : name;
                 if (listed_normals && !strcmp(name, "prepare_depths.mips.native")) same[m++] = "prepare_normals.native";
+                if (!strncmp(name, "generate.", 9))
+                    for (; fills > 0; --fills) same[m++] = "fill";
             }
+            CHECK(fills == 0);
             CHECK(p.step_count == m + 3);
             const char *diff = gpu ? (normals ? "reuse.diff_normals_gpu" : "reuse.diff_gpu")
                                    : (normals ? "reuse.diff_normals" : "reuse.diff");

@@ -3,13 +3,13 @@
 # At quality high, native resolution, 2 blur passes, fp32, with normals given, the plan is ten
 # steps (spec: prepare depths with mips, prepare normals from the input, generate Q2, blur, apply;
 # docs/tiles.md: the quiet frame's test first, classify and compact (which stores the output of
-# the skipped tiles) before generate, the normals then over compact's list, the two fills before
-# the blur, apply over its list), which is what the table and the report must list, in that order, followed by
+# the skipped tiles) before generate, the normals then over compact's list with the two fills beside
+# them, before generate's barrier, apply over its list), which is what the table and the report must list, in that order, followed by
 # the tile counts.
 include(${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake)
 cacao_ok(run --scene ${ROOM} --quality high --validate --timings --repeat 3 --json ${WORK}/t.json -o ${WORK}/t.png)
 set(expected classify.quiet prepare_depths.mips.native classify compact prepare_normals.list.native
-    generate.q2 fill fill blur.2.fp32 apply.smart_list.fp32)
+    fill fill generate.q2 blur.2.fp32 apply.smart_list.fp32)
 string(REGEX MATCHALL "\n[a-z_0-9.]+ +[0-9]+\\.[0-9]+" rows "${run_out}")
 set(names "")
 foreach(row ${rows})
