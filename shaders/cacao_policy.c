@@ -236,8 +236,8 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
      * list between compact and generate (MEDIUM, HIGH), the fills run beside it, before the barrier
      * generate needs anyway: one barrier fewer (on lavapipe a barrier costs 0.05-0.1 ms whether
      * or not work ran: docs/tiles.md "A quiet frame"). Not at HIGHEST: its Q3 base pass writes the
-     * blur's image. */
-    const bool early_fills = lists && listed_normals && c->quality != CACAO_KEY_QUALITY_HIGHEST;
+     * blur's image. (listed_normals holds only in the CPU forms, which have the lists.) */
+    const bool early_fills = listed_normals && c->quality != CACAO_KEY_QUALITY_HIGHEST;
     if (early_fills) push_fills(c, out, &n);
     if (c->quality == CACAO_KEY_QUALITY_HIGHEST) {
         /* The base pass computes the tiles holding an active texel; the others' importance is 0:
