@@ -264,9 +264,10 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                           CACAOI_GRID_SLICE, 3, {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), W(TILES, TILES, ALL)},
                           .quad = {2}},
     /* it also stores the AO 1 of the output's unneeded tiles where a list step writes the others
-     * (docs/tiles.md "What runs") */
-    PASS(COMPACT) = {"compact", {NULL, "horizon"}, 2, false, false, false, {CACAO_WG_COMPACT, 1}, CACAOI_GRID_COMPACT, 3,
-                     {CONSTANTS, W(TILES, TILES, ALL), W(OUTPUT, OUTPUT, ALL)}},
+     * (docs/tiles.md "What runs"); CACAO's (the CPU forms) also generate's AO 1 in the unneeded
+     * tiles a later pass reads (its fill list) */
+    PASS(COMPACT) = {"compact", {NULL, "horizon"}, 2, false, false, false, {CACAO_WG_COMPACT, 1}, CACAOI_GRID_COMPACT, 4,
+                     {CONSTANTS, W(TILES, TILES, ALL), W(OUTPUT, OUTPUT, ALL), W(SSAO_IMAGE, SSAO_PING, V(CACAO_COMPACT_SLICES))}},
     /* spec: prepare.md, normals from depth: PREPARE_DEPTHS's variants and the normals in one pass,
      * a 2x2 quad of slice texels per invocation sharing one block of depths. */
     PASS(PREPARE) = PREPARE_ROW("prepare", 0u, CACAOI_GRID_SLICE, W_LEVELS(DEPTHS_IMAGE, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS)), 6),

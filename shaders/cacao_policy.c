@@ -57,8 +57,8 @@ static void rebind(cacaoi_step *s, unsigned slot, cacao_resource resource) {
 }
 
 /* The longest sequences: CACAO with the caller's normals at HIGHEST with a blur (prepare twice,
- * classify, compact, the importance map's clear, Q3 base, importance twice, generate, fill twice,
- * blur, apply: 13, and 3 reuse steps before), and the horizon estimators with the most denoise
+ * classify, compact, the importance map's clear, Q3 base, importance twice, generate, fill,
+ * blur, apply: 12, and 3 reuse steps before), and the horizon estimators with the most denoise
  * passes: native, classify, compact, the view's clear, the prepare twice (normals, view z), two AO
  * clears, the estimator and a pass per blur iteration; downsampled, the half-size AO's clear and the
  * upsample besides, and at most CACAO_HORIZON_HALF_MAX_PASSES (the settings refuse more;
@@ -169,11 +169,17 @@ bool cacaoi_prepare_classifies(const cacao_key_config *c) {
     return c->estimator == CACAO_KEY_ESTIMATOR_CACAO && c->gpu_forms && !c->normals_from_input;
 }
 
-/* The CPU forms' fills of the slices' AO where generate skips: its output, and the blur's where
- * one runs. */
-static void push_fills(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENCE_MAX], size_t *n) {
-    push(out, n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0);
-    if (c->blur_passes > 0)
+/* The CPU forms (lists): the tiles generate skips are read as AO 1 in its output and, where a
+ * blur runs, in the blur's (the blur and apply groups next to a needed tile read them). Compact
+ * stores the 1s of generate's output, the tiles of its fill list; the blur's input gets them from
+ * a fill over that list, pushed here after the last step before it that writes that image:
+ * generate (it writes another: no barrier separates them), or at HIGHEST the Q3 base pass, whose
+ * blocks hold only needed tiles (so the texels differ; the barrier after the base pass orders
+ * both) and which the importance passes follow, with no barrier for the fill either. The fills
+ * were two steps behind a barrier of their own, which on lavapipe costs 0.05-0.1 ms whether or not
+ * work ran (docs/tiles.md "A quiet frame"). */
+static void push_blur_fill(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENCE_MAX], size_t *n) {
+    if (!c->gpu_forms && c->blur_passes > 0)
         rebind(push(out, n, CACAO_PASS_FILL, CACAO_FILL_SLICES, 0, 0, 0), CACAO_BINDING_SSAO_IMAGE, CACAO_RES_SSAO_PONG);
 }
 
@@ -230,26 +236,18 @@ size_t cacaoi_sequence(const cacao_key_config *c, cacaoi_step out[CACAOI_SEQUENC
     const bool lists = !c->gpu_forms;
     if (lists) push(out, &n, CACAO_PASS_COMPACT, 0, 0, 0, 0);
     if (listed_normals) push(out, &n, CACAO_PASS_PREPARE_NORMALS, CACAO_PREPARE_NORMALS_LISTED, ds, 0, 0);
-    /* Lists: the tiles generate skips read as AO 1 in its output and, where a blur runs, in the
-     * blur's (the blur and apply groups next to a needed tile read them): fills over the list of
-     * the unneeded tiles, which write no texel generate writes. Where prepare_normals runs over its
-     * list between compact and generate (MEDIUM, HIGH), the fills run beside it, before the barrier
-     * generate needs anyway: one barrier fewer (on lavapipe a barrier costs 0.05-0.1 ms whether
-     * or not work ran: docs/tiles.md "A quiet frame"). Not at HIGHEST: its Q3 base pass writes the
-     * blur's image. (listed_normals holds only in the CPU forms, which have the lists.) */
-    const bool early_fills = listed_normals && c->quality != CACAO_KEY_QUALITY_HIGHEST;
-    if (early_fills) push_fills(c, out, &n);
     if (c->quality == CACAO_KEY_QUALITY_HIGHEST) {
         /* The base pass computes the tiles holding an active texel; the others' importance is 0:
          * the CPU form runs over compact's list of blocks (the map was cleared first), the GPU
          * form over every tile, storing the 0 itself (docs/tiles.md). */
         push(out, &n, cacaoi_form_pass(CACAO_PASS_GENERATE, c->gpu_forms), CACAO_GENERATE_Q3_BASE, 0, 0, 0);
+        push_blur_fill(c, out, &n);
         push(out, &n, CACAO_PASS_IMPORTANCE_A, 0, 0, 0, 0);
         push(out, &n, CACAO_PASS_IMPORTANCE_B, 0, 0, 0, 0);
     }
     push(out, &n, cacaoi_form_pass(CACAO_PASS_GENERATE, c->gpu_forms),
          cacaoi_qualities[c->quality].generate_variant + (generate_reads_input ? CACAO_GENERATE_Q0_INPUT : 0), 0, 0, 0);
-    if (lists && !early_fills) push_fills(c, out, &n);
+    if (c->quality != CACAO_KEY_QUALITY_HIGHEST) push_blur_fill(c, out, &n);
     if (c->blur_passes > 0) push(out, &n, cacaoi_form_pass(CACAO_PASS_BLUR, c->gpu_forms), 0, 0, c->blur_passes, fp);
     /* The CPU forms without reuse: the upsample (downsampled) or smart apply over the groups that
      * touch a needed tile, the output's other tiles given their 1 by compact (with reuse they run from a

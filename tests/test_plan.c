@@ -34,11 +34,12 @@ static uint32_t barrier_count(const cacao_plan *p) {
 
 static void test_steps_per_quality(void) {
     /* By hand from the spec's pass graph, with blur 2, native, normals from depth, and the tile
-     * passes of docs/tiles.md: classify and compact after the depths, a fill of the AO and of
-     * the blur's output after generate (the CPU forms: lists); at HIGHEST a clear of the
-     * importance map first, and the Q3 base pass over compact's blocks. */
+     * passes of docs/tiles.md: classify and compact (which fills generate's output where it
+     * skips) after the depths, the fill of the blur's output beside generate (the CPU forms:
+     * lists); at HIGHEST a clear of the importance map first, and the Q3 base pass over compact's
+     * blocks. */
 #define TILES "classify", "compact"
-#define FILLS "fill", "fill"
+#define FILLS "fill"
     /* first the quiet frame's test and its fill (docs/tiles.md "A quiet frame") */
 #define QUIET "classify.quiet"
     /* smart apply over compact's list of its groups at needed tiles (compact stores the other
@@ -50,8 +51,8 @@ static void test_steps_per_quality(void) {
          "apply.nonsmart_list.fp32"},
         {QUIET, "prepare.full.native", TILES, "generate.q1", FILLS, "blur.2.fp32", OUT "apply.smart_list.fp32"},
         {QUIET, "prepare.mips.native", TILES, "generate.q2", FILLS, "blur.2.fp32", OUT "apply.smart_list.fp32"},
-        {"clear.importance", QUIET, "prepare.mips.native", TILES, "generate.q3base", "importance_a", "importance_b",
-         "generate.q3", FILLS, "blur.2.fp32", OUT "apply.smart_list.fp32"},
+        {"clear.importance", QUIET, "prepare.mips.native", TILES, "generate.q3base", FILLS, "importance_a", "importance_b",
+         "generate.q3", "blur.2.fp32", OUT "apply.smart_list.fp32"},
     };
 #undef TILES
 #undef FILLS
@@ -67,16 +68,22 @@ static void test_steps_per_quality(void) {
                 fprintf(stderr, "quality %d step %u: %s, expected %s\n", q, i, p.steps[i].key_name, expected[q][i]);
             CHECK(strcmp(p.steps[i].key_name, expected[q][i]) == 0);
         }
-        /* No barrier before the first step, between the two fills (the AO and the blur's output),
-         * nor after the clear of the importance map (classify.quiet does not touch it); every
-         * other step depends on the one before. The clear is a transfer: it writes the map and
-         * dispatches nothing; the barriers before the base pass order it (they are global). */
+        /* No barrier before the first step, between generate and the fill of the blur's output
+         * (they write different images; at HIGHEST the fill follows the Q3 base pass, which
+         * writes that image, and the first importance pass runs beside the fill), nor after the
+         * clear of the importance map (classify.quiet does not touch it); every other step
+         * depends on the one before. The clear is a transfer: it writes the map and dispatches
+         * nothing; the barriers before the base pass order it (they are global). */
         CHECK(!p.steps[0].barrier_before);
         CHECK(p.steps[0].clear == (q == 4));
         for (uint32_t i = 1; i < p.step_count; ++i) {
             const bool clear = strcmp(p.steps[i].key_name, "clear.importance") == 0;
             CHECK(p.steps[i].clear == clear && (!clear || i == 0));
-            const bool independent = (strcmp(p.steps[i].key_name, "fill") == 0 && !strcmp(p.steps[i - 1].key_name, "fill")) ||
+            const bool independent = (strcmp(p.steps[i].key_name, "fill") == 0 &&
+                                      !strncmp(p.steps[i - 1].key_name, "generate.", 9) &&
+                                      strcmp(p.steps[i - 1].key_name, "generate.q3base") != 0) ||
+                                     (strcmp(p.steps[i].key_name, "importance_a") == 0 &&
+                                      strcmp(p.steps[i - 1].key_name, "fill") == 0) ||
                                      p.steps[i - 1].clear;
             CHECK(p.steps[i].barrier_before == !independent);
             if (clear)
@@ -200,19 +207,20 @@ static void test_only_needed_resources(void) {
     CHECK(!low.uses_load_counter);
     CHECK(find_image(&low, CACAO_RES_DEPTHS)->mips == 1); /* LOW reads no mips */
     CHECK(low.steps[Q].dispatch[0] == 60 && low.steps[Q].dispatch[1] == 34); /* prepare.full: 2x2 texels each */
-    /* (the quiet steps) prepare, classify, compact, generate, fill, apply twice: no blur, one fill */
-    CHECK(low.step_count == Q + 7);
+    /* (the quiet steps) prepare, classify, compact, generate, apply twice: no blur, no fill step
+     * (compact fills generate's output) */
+    CHECK(low.step_count == Q + 6);
     /* apply.nonsmart: a 2x2 quad of output pixels per invocation, one per slice texel: ceil(960/8), ceil(540/8);
      * from a gate (compact closes it where it lists the groups), then over compact's list of the
      * tiles (docs/tiles.md "Apply over a list where the frame skips much") */
-    CHECK(strcmp(low.steps[Q + 5].key_name, "apply.nonsmart.fp32") == 0 && low.steps[Q + 5].list == CACAO_LIST_NONE);
-    CHECK(low.steps[Q + 5].dispatch[0] == 120 && low.steps[Q + 5].dispatch[1] == 68 && low.steps[Q + 5].gate != 0);
-    CHECK(strcmp(low.steps[Q + 6].key_name, "apply.nonsmart_list.fp32") == 0 && low.steps[Q + 6].list == CACAO_LIST_PREPARE);
-    CHECK(low.steps[Q + 6].barrier_before); /* both write the output */
+    CHECK(strcmp(low.steps[Q + 4].key_name, "apply.nonsmart.fp32") == 0 && low.steps[Q + 4].list == CACAO_LIST_NONE);
+    CHECK(low.steps[Q + 4].dispatch[0] == 120 && low.steps[Q + 4].dispatch[1] == 68 && low.steps[Q + 4].gate != 0);
+    CHECK(strcmp(low.steps[Q + 5].key_name, "apply.nonsmart_list.fp32") == 0 && low.steps[Q + 5].list == CACAO_LIST_PREPARE);
+    CHECK(low.steps[Q + 5].barrier_before); /* both write the output */
     cacao_plan given_low = build((cacao_settings){.quality = CACAO_QUALITY_LOW, .blur_pass_count = CACAO_BLUR_NONE}, 1920, 1080);
     /* normals given, below HIGH: prepare_depths, and generate transforms the caller's normal of its
      * texel itself (the only normal Q0 and Q1 read): no prepare_normals, no normals image */
-    CHECK(given_low.step_count == Q + 7);
+    CHECK(given_low.step_count == Q + 6);
     CHECK(strcmp(given_low.steps[Q].key_name, "prepare_depths.full.native") == 0);
     CHECK(given_low.steps[Q].dispatch[0] == 120 && given_low.steps[Q].dispatch[1] == 68); /* a texel each */
     CHECK(strcmp(given_low.steps[Q + 3].key_name, "generate.q0_input") == 0);
@@ -241,15 +249,14 @@ static void test_only_needed_resources(void) {
     cacao_plan given_medium = build((cacao_settings){.quality = CACAO_QUALITY_MEDIUM}, 1920, 1080);
     CHECK(strcmp(given_medium.steps[Q + 3].key_name, "prepare_normals.list.native") == 0 &&
           given_medium.steps[Q + 3].list == CACAO_LIST_NORMALS && strcmp(given_medium.steps[Q + 2].key_name, "compact") == 0);
-    /* the fills beside it, before the barrier generate needs for the normals: no barrier of their
-     * own (the plan without listed normals has one before them, after generate) */
-    CHECK(strcmp(given_medium.steps[Q + 4].key_name, "fill") == 0 && strcmp(given_medium.steps[Q + 5].key_name, "fill") == 0);
-    CHECK(!given_medium.steps[Q + 4].barrier_before && !given_medium.steps[Q + 5].barrier_before);
-    CHECK(strcmp(given_medium.steps[Q + 6].key_name, "generate.q1") == 0 && given_medium.steps[Q + 6].barrier_before);
+    /* generate after it; the fill of the blur's output beside generate (no barrier of its own),
+     * with or without the listed normals: a barrier more for the normals' step */
+    CHECK(strcmp(given_medium.steps[Q + 4].key_name, "generate.q1") == 0 && given_medium.steps[Q + 4].barrier_before);
+    CHECK(strcmp(given_medium.steps[Q + 5].key_name, "fill") == 0 && !given_medium.steps[Q + 5].barrier_before);
     cacao_plan from_depth_medium = build((cacao_settings){.quality = CACAO_QUALITY_MEDIUM, .generate_normals = true}, 1920, 1080);
     CHECK(strcmp(from_depth_medium.steps[Q + 3].key_name, "generate.q1") == 0 &&
-          strcmp(from_depth_medium.steps[Q + 4].key_name, "fill") == 0 && from_depth_medium.steps[Q + 4].barrier_before);
-    CHECK(barrier_count(&given_medium) == barrier_count(&from_depth_medium));
+          strcmp(from_depth_medium.steps[Q + 4].key_name, "fill") == 0 && !from_depth_medium.steps[Q + 4].barrier_before);
+    CHECK(barrier_count(&given_medium) == barrier_count(&from_depth_medium) + 1);
     cacao_plan given_high = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .reuse_unchanged = true}, 1920, 1080);
     CHECK(find_image(&given_high, CACAO_RES_NORMALS) != NULL);
     cacao_plan odd = build((cacao_settings){.quality = CACAO_QUALITY_LOWEST, .generate_normals = true}, 1001, 37);
@@ -317,22 +324,22 @@ static void test_dispatch_sizes(void) {
      * 2x2 tiles), one z; the importance passes the same grid */
     CHECK(strcmp(p.steps[Q + 4].key_name, "generate.q3base") == 0);
     CHECK(p.steps[Q + 4].dispatch[0] == 60 && p.steps[Q + 4].dispatch[1] == 34 && p.steps[Q + 4].dispatch[2] == 1);
-    CHECK(p.steps[Q + 5].dispatch[0] == 60 && p.steps[Q + 5].dispatch[1] == 34);    /* importance_a */
-    CHECK(p.steps[Q + 7].dispatch[2] == 4);                                     /* generate.q3: 4 slices */
-    CHECK(p.steps[Q + 10].dispatch[0] == 15 && p.steps[Q + 10].dispatch[1] == 17);  /* blur, N = 2: ceil(960/64), ceil(540/32) */
+    CHECK(p.steps[Q + 6].dispatch[0] == 60 && p.steps[Q + 6].dispatch[1] == 34);    /* importance_a */
+    CHECK(p.steps[Q + 8].dispatch[2] == 4);                                     /* generate.q3: 4 slices */
+    CHECK(p.steps[Q + 9].dispatch[0] == 15 && p.steps[Q + 9].dispatch[1] == 17);  /* blur, N = 2: ceil(960/64), ceil(540/32) */
     /* past CACAO_BLUR_REGISTER_PASSES a group computes its 64x32 padded tile less N each side */
     cacao_plan b8 = build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .blur_pass_count = 8, .generate_normals = true},
                           1920, 1080);
     CHECK(strcmp(b8.steps[b8.step_count - 2].key_name, "blur.8.fp32") == 0); /* then apply */
     CHECK(b8.blur_groups_x == 20 && b8.blur_groups_y == 34); /* ceil(960/48), ceil(540/16) */
-    CHECK(p.steps[Q + 11].dispatch[0] == 60 && p.steps[Q + 11].dispatch[1] == 34); /* smart apply: 4x4 per invocation */
+    CHECK(p.steps[Q + 10].dispatch[0] == 60 && p.steps[Q + 10].dispatch[1] == 34); /* smart apply: 4x4 per invocation */
     /* the list's indirect command takes its z from these: generate and the blur cover the four
      * layers with z, a fill group loops over them, a base pass group covers its block's layers */
-    CHECK(p.steps[Q + 8].dispatch[2] == 1 && p.steps[Q + 9].dispatch[2] == 1 && p.steps[Q + 10].dispatch[2] == 4);
-    CHECK(p.steps[Q + 7].list == CACAO_LIST_GENERATE && p.steps[Q + 8].list == CACAO_LIST_FILL_SLICES &&
-          p.steps[Q + 10].list == CACAO_LIST_BLUR && p.steps[Q + 11].list == CACAO_LIST_PREPARE &&
-          p.steps[Q + 9].list == CACAO_LIST_FILL_SLICES && p.step_count == Q + 12 &&
-          p.steps[Q + 4].list == CACAO_LIST_BLOCKS && p.steps[Q + 5].list == CACAO_LIST_NONE);
+    CHECK(p.steps[Q + 5].dispatch[2] == 1 && p.steps[Q + 9].dispatch[2] == 4);
+    CHECK(p.steps[Q + 8].list == CACAO_LIST_GENERATE && p.steps[Q + 5].list == CACAO_LIST_FILL_SLICES &&
+          p.steps[Q + 9].list == CACAO_LIST_BLUR && p.steps[Q + 10].list == CACAO_LIST_PREPARE &&
+          p.step_count == Q + 11 &&
+          p.steps[Q + 4].list == CACAO_LIST_BLOCKS && p.steps[Q + 6].list == CACAO_LIST_NONE);
     cacao_plan d =
         build((cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true, .generate_normals = true}, 1001, 37);
     CHECK(d.slice_width == 251 && d.slice_height == 10); /* ceil(ceil(1001/2)/2), ceil(ceil(37/2)/2) */
@@ -481,21 +488,13 @@ static void test_reuse(void) {
             uint32_t m = 0;
             const bool listed_normals = !gpu && normals;
             CHECK(!listed_normals || strcmp(plain.steps[Q + 3].key_name, "prepare_normals.list.native") == 0);
-            uint32_t fills = 0; /* beside the listed normals they run before generate, else after it */
             for (uint32_t i = 0; i < plain.step_count; ++i) {
                 const char *name = plain.steps[i].key_name;
                 if (!strcmp(name, "classify.quiet") || !strcmp(name, "prepare_normals.list.native"))
                     continue;
-                if (listed_normals && !strcmp(name, "fill")) {
-                    ++fills;
-                    continue;
-                }
                 same[m++] = !strcmp(name, "apply.smart_list.fp32") ? "apply.smart.fp32" : name;
                 if (listed_normals && !strcmp(name, "prepare_depths.mips.native")) same[m++] = "prepare_normals.native";
-                if (!strncmp(name, "generate.", 9))
-                    for (; fills > 0; --fills) same[m++] = "fill";
             }
-            CHECK(fills == 0);
             CHECK(p.step_count == m + 3);
             const char *diff = gpu ? (normals ? "reuse.diff_normals_gpu" : "reuse.diff_gpu")
                                    : (normals ? "reuse.diff_normals" : "reuse.diff");

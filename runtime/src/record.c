@@ -460,7 +460,8 @@ cacao_result cacao_tile_counts_decode(const cacao_context *ctx, const void *byte
             out->quiet = h[CACAO_TILE_NOT_QUIET] == 0;
     for (uint32_t i = 0; i < p->step_count; ++i) { /* a step over compact's blocks, or the GPU form's base pass */
         const cacao_plan_step *st = &p->steps[i];
-        if (st->list == CACAO_LIST_FILL_SLICES) out->fill_run = LIST_X(CACAO_LIST_FILL_SLICES);
+        if (st->list == CACAO_LIST_FILL_SLICES || (st->key[0] == CACAO_PASS_COMPACT && st->key[1] == CACAO_COMPACT_SLICES))
+            out->fill_run = LIST_X(CACAO_LIST_FILL_SLICES); /* compact fills generate's output */
         if (st->list == CACAO_LIST_BLOCKS) {
             out->blocks_run = LIST_X(CACAO_LIST_BLOCKS);
             out->blocks_total = st->dispatch[0] * st->dispatch[1];

@@ -458,6 +458,22 @@ void append(int list, ivec2 g)
 }
 
 #if CACAO_VARIANT != CACAO_COMPACT_HORIZON
+/* AO 1 and edges 1 into tile g of every layer of generate's output, where a later pass reads the
+ * AO generate skips (the fill list): what the full computation gives every texel of a tile that
+ * is not needed (nothing reads the edges there). Generate writes only the needed tiles' texels;
+ * the barrier after this pass orders both. The blur's output gets its 1s from the fill step over
+ * the same list, beside generate (HIGHEST's Q3 base pass writes that image before generate). On
+ * lavapipe a tile's texels per invocation cost less than a dispatch of an invocation per texel
+ * (docs/tiles.md "A quiet frame"). */
+void store_slices_one(ivec2 g)
+{
+    ivec2 p0 = g * CACAO_TILE, size = imageSize(ssao_image).xy;
+    for (int layer = 0; layer < CB.slice_count; ++layer)
+        for (int y = 0; y < CACAO_TILE; ++y)
+            for (int x = 0; x < CACAO_TILE; ++x)
+                if (in_rect(p0 + ivec2(x, y), size)) imageStore(ssao_image, ivec3(p0 + ivec2(x, y), layer), vec4(1.0, 1.0, 0.0, 0.0));
+}
+
 /* Whether a listed step writes the output's needed tiles, compact the others' 1s: the upsample's
  * and smart apply's lists always (needed_list 1, 2); the non-smart and half applies' (3) where at
  * most CACAO_APPLY_LIST_ACTIVE_NUM/_DEN of the tiles are active (classify's count, the same for
@@ -525,7 +541,10 @@ void main()
             else store_output_one(g * CB.tile_pixels, CB.tile_pixels);
 #else
             if (needed) append(CACAO_LIST_GENERATE, g);
-            else if (fill_read(g, listed)) append(CACAO_LIST_FILL_SLICES, g);
+            else if (fill_read(g, listed)) {
+                append(CACAO_LIST_FILL_SLICES, g);
+                store_slices_one(g);
+            }
             if (!needed && listed) store_output_one(g * CB.tile_pixels, CB.tile_pixels);
 #endif
         }

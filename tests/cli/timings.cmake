@@ -1,15 +1,15 @@
 # --timings prints one row per step of the plan, named by its permutation key, then the total;
 # --json records settings, device, size, repeat, the per-pass times, the total and the output path.
-# At quality high, native resolution, 2 blur passes, fp32, with normals given, the plan is ten
+# At quality high, native resolution, 2 blur passes, fp32, with normals given, the plan is nine
 # steps (spec: prepare depths with mips, prepare normals from the input, generate Q2, blur, apply;
-# docs/tiles.md: the quiet frame's test first, classify and compact (which stores the output of
-# the skipped tiles) before generate, the normals then over compact's list with the two fills beside
-# them, before generate's barrier, apply over its list), which is what the table and the report must list, in that order, followed by
-# the tile counts.
+# docs/tiles.md: the quiet frame's test first, classify and compact (which stores the output and
+# generate's AO of the skipped tiles) before generate, the normals then over compact's list, the
+# fill of the blur's input beside generate, apply over its list), which is what the table and the
+# report must list, in that order, followed by the tile counts.
 include(${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake)
 cacao_ok(run --scene ${ROOM} --quality high --validate --timings --repeat 3 --json ${WORK}/t.json -o ${WORK}/t.png)
 set(expected classify.quiet prepare_depths.mips.native classify compact prepare_normals.list.native
-    fill fill generate.q2 blur.2.fp32 apply.smart_list.fp32)
+    generate.q2 fill blur.2.fp32 apply.smart_list.fp32)
 string(REGEX MATCHALL "\n[a-z_0-9.]+ +[0-9]+\\.[0-9]+" rows "${run_out}")
 set(names "")
 foreach(row ${rows})
