@@ -57,6 +57,9 @@ bool sg_reflect(sg_module *m) {
             m->bindings[binding] = kinds[k].kind;
             if (kinds[k].kind == CACAOI_DESCRIPTOR_SAMPLED_IMAGE || kinds[k].kind == CACAOI_DESCRIPTOR_STORAGE_IMAGE) {
                 spvc_type type = spvc_compiler_get_type_handle(compiler, list[i].type_id);
+                /* a storage image of dimension Buffer is a storage texel buffer */
+                if (kinds[k].kind == CACAOI_DESCRIPTOR_STORAGE_IMAGE && spvc_type_get_image_dimension(type) == SpvDimBuffer)
+                    m->bindings[binding] = CACAOI_DESCRIPTOR_STORAGE_TEXEL_BUFFER;
                 m->image_format[binding] = (uint32_t)spvc_type_get_image_storage_format(type);
                 m->image_arrayed[binding] = spvc_type_get_image_arrayed(type);
                 m->non_writable[binding] = spvc_compiler_has_decoration(compiler, list[i].id, SpvDecorationNonWritable);

@@ -9,6 +9,7 @@ const char *const cacaoi_descriptor_names[CACAOI_DESCRIPTOR_COUNT] = {
     [CACAOI_DESCRIPTOR_STORAGE_BUFFER] = "storage buffer",
     [CACAOI_DESCRIPTOR_SAMPLED_IMAGE] = "combined image sampler",
     [CACAOI_DESCRIPTOR_STORAGE_IMAGE] = "storage image",
+    [CACAOI_DESCRIPTOR_STORAGE_TEXEL_BUFFER] = "storage texel buffer",
 };
 
 #define SLOT(id, descriptor, sampler) [CACAO_BINDING_##id] = {#id, CACAOI_DESCRIPTOR_##descriptor, CACAOI_SAMPLER_##sampler}
@@ -25,7 +26,7 @@ const cacaoi_slot_row cacaoi_slots[CACAO_BINDING_COUNT] = {
     SLOT(DEPTH_HISTORY, STORAGE_IMAGE, NONE),   SLOT(NORMALS_HISTORY, STORAGE_IMAGE, NONE),
     SLOT(DEPTHS_MIP1, STORAGE_IMAGE, NONE),     SLOT(DEPTHS_MIP2, STORAGE_IMAGE, NONE),
     SLOT(DEPTHS_MIP3, STORAGE_IMAGE, NONE),     SLOT(HISTORY, STORAGE_IMAGE, NONE),
-    SLOT(HISTORY_OUT, STORAGE_IMAGE, NONE),
+    SLOT(HISTORY_OUT, STORAGE_IMAGE, NONE),     SLOT(TILE_ENTRIES, STORAGE_TEXEL_BUFFER, NONE),
 };
 #undef SLOT
 
@@ -43,8 +44,11 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
     /* the constants are updated and the counter and tiles reset in the command buffer (transfers) */
     BUFFER(CONSTANTS, "constants", sizeof(cacao_constants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
     BUFFER(LOAD_COUNTER, "load_counter", sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT),
-    /* the lists' indirect commands are dispatched from it */
-    TILES_BUFFER(TILES, "tiles", VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT),
+    /* the lists' indirect commands are dispatched from it; the list steps read their entries
+     * through a texel view of it (CACAO_BINDING_TILE_ENTRIES) */
+    TILES_BUFFER(TILES, "tiles",
+                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                     VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT),
     /*    resource         name               size        layered filtered format          glsl         bytes */
     IMAGE(DEPTHS,          "depths",          SLICE,      true,  false, R16_SFLOAT,     "r16f",        2),
     IMAGE(NORMALS,         "normals",         SLICE,      true,  false, R8G8B8A8_SNORM, "rgba8_snorm", 4),
@@ -81,6 +85,10 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
         W_LEVELS(DEPTHS_MIP2, DEPTHS, CACAO_DEPTH_MIP_COUNT, variants),                          \
         W_LEVELS(DEPTHS_MIP3, DEPTHS, CACAO_DEPTH_MIP_COUNT, variants)
 #define W_NATIVE(slot, res, variants) {CACAO_BINDING_##slot, CACAO_RES_##res, 0, true, variants, true}
+/* A list step's read of the tile buffer: its list's entries, through the buffer's R32_UINT texel
+ * view (the slot argument is ignored). On lavapipe a storage buffer load costs each invocation
+ * several times what a texel load does (docs/tiles.md "What a list costs"). */
+#define R_LIST(slot, res, variants) R(TILE_ENTRIES, res, variants)
 #define ALL CACAOI_ALL_VARIANTS
 #define V(v) CACAOI_VARIANT(v)
 #define CONSTANTS R(CONSTANTS, CONSTANTS, ALL)
@@ -104,7 +112,7 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
  * tile list: the CPU form runs over the needed tiles' list; the GPU form over every tile, a group
  * whose tile is not needed (classify's flag) storing AO 1 and returning (docs/tiles.md: a
  * workgroup-uniform branch). */
-#define GENERATE_ROW(name, variants, taps, count, list, base_list, base_grid, tiles)                    \
+#define GENERATE_ROW(name, variants, taps, count, list, base_list, base_grid, tiles, base_tiles)        \
     {name, {"q0", "q1", "q2", "q3", "q3base", "q0_input", "q1_input"}, variants, false, false, false, WG(GENERATE), \
      CACAOI_GRID_SLICE_LAYERS, count,                                                                  \
      {CONSTANTS, R(LOAD_COUNTER, LOAD_COUNTER, V(CACAO_GENERATE_Q3)), R(DEPTHS, DEPTHS, ALL),               \
@@ -113,7 +121,7 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
       R(SSAO_BASE, SSAO_PONG, V(CACAO_GENERATE_Q3)),                                                    \
       R(IMPORTANCE_MAP, IMPORTANCE, V(CACAO_GENERATE_Q3)), W(SSAO_IMAGE, SSAO_PING, ALL & ~V(CACAO_GENERATE_Q3_BASE)), \
       W(SSAO_IMAGE, SSAO_PONG, V(CACAO_GENERATE_Q3_BASE)), W(IMPORTANCE_MAP_IMAGE, IMPORTANCE, V(CACAO_GENERATE_Q3_BASE)), \
-      tiles(TILES, TILES, ALL & ~V(CACAO_GENERATE_Q3_BASE)), R(TILES, TILES, V(CACAO_GENERATE_Q3_BASE))}, \
+      tiles(TILES, TILES, ALL & ~V(CACAO_GENERATE_Q3_BASE)), base_tiles(TILES, TILES, V(CACAO_GENERATE_Q3_BASE))}, \
      /* the Q3 base pass computes the tiles holding an active texel (its values feed the         \
       * importance map and the load counter, which steer the adaptive pass everywhere); a tile   \
       * that is not active has importance 0 (docs/tiles.md): the CPU form runs over compact's    \
@@ -140,7 +148,7 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
       W(VIEW_NORMALS, VIEW_NORMALS, V(CACAO_HORIZON_NORMALS_DEPTH) | V(CACAO_HORIZON_NORMALS_INPUT)),      \
       tiles(TILES, TILES, ALL)},                                                                           \
      .lists = {__VA_ARGS__}}
-#define HORIZON_MAIN_ROW(name, tiles, ...)                                                                 \
+#define HORIZON_MAIN_ROW(name, tiles, half_tiles, ...)                                                     \
     {name, {"gtao", "bitmask", "gtao_direct", "bitmask_direct", "gtao_half", "bitmask_half"}, 6, false, false, \
      false, WG(HORIZON), CACAOI_GRID_OUTPUT, 8,                                                               \
      {CONSTANTS, R(VIEW_DEPTH, VIEW_DEPTH, ALL), R(VIEW_NORMALS, VIEW_NORMALS, ALL),                           \
@@ -150,7 +158,7 @@ const cacaoi_resource_row cacaoi_resources[CACAO_RES_COUNT] = {
       tiles(TILES, TILES, V(CACAO_HORIZON_GTAO) | V(CACAO_HORIZON_BITMASK) | V(CACAO_HORIZON_GTAO_DIRECT) |   \
                               V(CACAO_HORIZON_BITMASK_DIRECT)),                                               \
       /* downsampled: the CPU form over compact's blocks, the GPU form reading the 2x2 tiles' classes */  \
-      R(TILES, TILES, V(CACAO_HORIZON_GTAO_HALF) | V(CACAO_HORIZON_BITMASK_HALF))},                       \
+      half_tiles(TILES, TILES, V(CACAO_HORIZON_GTAO_HALF) | V(CACAO_HORIZON_BITMASK_HALF))},              \
      .lists = {__VA_ARGS__},                                                                                        \
      .grids = {[CACAO_HORIZON_GTAO_HALF] = CACAOI_GRID_HALF, [CACAO_HORIZON_BITMASK_HALF] = CACAOI_GRID_HALF}}
 #define HORIZON_DENOISE_ROW(name, tiles, ...)                                                   \
@@ -180,14 +188,14 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * reads (docs/tiles.md); a group is a tile */
     PASS(PREPARE_NORMALS) = {"prepare_normals", {NULL, "list"}, 2, true, false, false, WG(PREPARE), CACAOI_GRID_SLICE, 4,
                              {CONSTANTS, R(SRC_NORMALS, NORMALS_INPUT, ALL), W(NORMALS_IMAGE, NORMALS, ALL),
-                              R(TILES, TILES, V(CACAO_PREPARE_NORMALS_LISTED))},
+                              R_LIST(TILES, TILES, V(CACAO_PREPARE_NORMALS_LISTED))},
                              .lists = {[CACAO_PREPARE_NORMALS_LISTED] = CACAO_LIST_NORMALS}},
     /* spec: generate.md. Q3 (HIGHEST's adaptive pass) adds its base, the importance map and the
      * load counter; the Q3 base pass writes the second AO buffer and the importance map
      * (importance.md "GenerateImportanceMap"): an invocation per importance texel computes the
      * 2x2 slice texels of every layer that texel reads. */
     PASS(GENERATE) = GENERATE_ROW("generate", 7, R(DEPTHS_IMAGE, DEPTHS, ALL) COMMA, 13, GEN, CACAO_LIST_BLOCKS,
-                                  CACAOI_GRID_IMPORTANCE, R),
+                                  CACAOI_GRID_IMPORTANCE, R_LIST, R_LIST),
     /* spec: importance.md: two smoothing passes (ping-pong) of the map the Q3 base pass wrote. */
     PASS(IMPORTANCE_A) = {"importance_a", {NULL}, 1, false, false, false, WG(IMPORTANCE), CACAOI_GRID_IMPORTANCE, 3,
                           {CONSTANTS, R(IMPORTANCE_MAP, IMPORTANCE, ALL), W(IMPORTANCE_MAP_IMAGE, IMPORTANCE_PONG, ALL)}},
@@ -196,7 +204,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                            W(IMPORTANCE_MAP_IMAGE, IMPORTANCE, ALL)}},
     /* spec: blur.md: all iterations in one dispatch. */
     PASS(BLUR) = {"blur", {NULL}, 1, false, true, true, WG(BLUR), CACAOI_GRID_BLUR, 4,
-                  {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(SSAO_IMAGE, SSAO_PONG, ALL), R(TILES, TILES, ALL)},
+                  {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(SSAO_IMAGE, SSAO_PONG, ALL), R_LIST(TILES, TILES, ALL)},
                   .lists = {CACAO_LIST_BLUR}},
     /* spec: apply.md, upsample.md. They read the blur's output where a blur ran (step override).
      * The listed variants (the CPU forms without reuse) run over compact's list in
@@ -207,7 +215,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     PASS(APPLY) = {"apply", {"smart", "nonsmart", "half", "smart_list", "nonsmart_list", "half_list"}, 6, false, false,
                    true, WG(APPLY), CACAOI_GRID_OUTPUT, 4,
                    {CONSTANTS, R(SSAO, SSAO_PING, ALL), W(OUTPUT, OUTPUT, ALL),
-                    R(TILES, TILES, V(CACAO_APPLY_SMART_LIST) | V(CACAO_APPLY_NONSMART_LIST) | V(CACAO_APPLY_HALF_LIST))},
+                    R_LIST(TILES, TILES, V(CACAO_APPLY_SMART_LIST) | V(CACAO_APPLY_NONSMART_LIST) | V(CACAO_APPLY_HALF_LIST))},
                    /* smart: 4x4 output pixels per invocation; non-smart and half: 2x2 */
                    .quad = {[CACAO_OUTPUT_SMART] = 4, [CACAO_OUTPUT_NON_SMART] = 2, [CACAO_OUTPUT_HALF] = 2,
                             [CACAO_APPLY_SMART_LIST] = 4, [CACAO_APPLY_NONSMART_LIST] = 2, [CACAO_APPLY_HALF_LIST] = 2},
@@ -219,7 +227,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     PASS(UPSAMPLE) = {"upsample", {"smart", "nonsmart", "half", "smart_list", "nonsmart_list", "half_list"}, 6, false,
                       false, true, WG(UPSAMPLE), CACAOI_GRID_UPSAMPLE, 6,
                       {CONSTANTS, R(SRC_DEPTH, DEPTH_INPUT, ALL), R(DEPTHS, DEPTHS, ALL), R(SSAO, SSAO_PING, ALL),
-                       W(OUTPUT, OUTPUT, ALL), R(TILES, TILES, LISTED_UPSAMPLES)},
+                       W(OUTPUT, OUTPUT, ALL), R_LIST(TILES, TILES, LISTED_UPSAMPLES)},
                       .lists = {[CACAO_UPSAMPLE_LISTED + CACAO_OUTPUT_SMART] = CACAO_LIST_PREPARE,
                                 [CACAO_UPSAMPLE_LISTED + CACAO_OUTPUT_NON_SMART] = CACAO_LIST_PREPARE,
                                 [CACAO_UPSAMPLE_LISTED + CACAO_OUTPUT_HALF] = CACAO_LIST_PREPARE}},
@@ -230,20 +238,21 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
      * normals with their view z, the view z alone over the rest; normals from depth from the view
      * z stored first (docs/tiles.md). */
     PASS(HORIZON_PREPARE) =
-        HORIZON_PREPARE_ROW("horizon_prepare", 3, V(CACAO_HORIZON_NORMALS_INPUT) | V(CACAO_HORIZON_VIEW_Z_ONLY), R,
+        HORIZON_PREPARE_ROW("horizon_prepare", 3, V(CACAO_HORIZON_NORMALS_INPUT) | V(CACAO_HORIZON_VIEW_Z_ONLY), R_LIST,
                             CACAO_LIST_NORMALS, CACAO_LIST_NORMALS, CACAO_LIST_PREPARE),
     /* The estimator and the denoise passes run over the needed tiles (docs/tiles.md: a group is a
      * tile of 8x8 pixels); the clears and compact give the rest their AO 1. Downsampled, the estimator runs on
      * a half-size grid over compact's blocks of 2x2 tiles holding an active tile (a clear gives the
      * rest the 1 it would store there) and the upsample over the needed tiles. */
-    PASS(HORIZON_MAIN) = HORIZON_MAIN_ROW("horizon_main", R, GEN, GEN, GEN, GEN, CACAO_LIST_BLOCKS, CACAO_LIST_BLOCKS),
-    PASS(HORIZON_DENOISE) = HORIZON_DENOISE_ROW("horizon_denoise", R, GEN, GEN, GEN, GEN),
+    PASS(HORIZON_MAIN) = HORIZON_MAIN_ROW("horizon_main", R_LIST, R_LIST, GEN, GEN, GEN, GEN, CACAO_LIST_BLOCKS,
+                                          CACAO_LIST_BLOCKS),
+    PASS(HORIZON_DENOISE) = HORIZON_DENOISE_ROW("horizon_denoise", R_LIST, GEN, GEN, GEN, GEN),
     /* The GPU forms (CACAO_PASS_HORIZON_*_GPU): direct grids; the prepare writes every tile and its
      * classes, the estimator's and denoise passes' groups that are not needed store AO 1 (and
      * count: group_work). The downsampled estimator: every group of the half grid, one whose 2x2
      * tiles hold no active one storing AO 1 (it reads their classes). */
     PASS(HORIZON_PREPARE_GPU) = HORIZON_PREPARE_ROW("horizon_prepare_gpu", 2, ALL, W, CACAO_LIST_NONE),
-    PASS(HORIZON_MAIN_GPU) = HORIZON_MAIN_ROW("horizon_main_gpu", W, CACAO_LIST_NONE),
+    PASS(HORIZON_MAIN_GPU) = HORIZON_MAIN_ROW("horizon_main_gpu", W, R, CACAO_LIST_NONE),
     PASS(HORIZON_DENOISE_GPU) = HORIZON_DENOISE_ROW("horizon_denoise_gpu", W, CACAO_LIST_NONE),
     /* docs/tiles.md: classes (one invocation per tile), then the lists. CACAO classifies its
      * deinterleaved depths (variant 0 keeps the pass's name), the horizon estimators the caller's
@@ -265,9 +274,11 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
                           .quad = {2}},
     /* it also stores the AO 1 of the output's unneeded tiles where a list step writes the others
      * (docs/tiles.md "What runs"); CACAO's (the CPU forms) also generate's AO 1 in the unneeded
-     * tiles a later pass reads (its fill list) */
-    PASS(COMPACT) = {"compact", {NULL, "horizon"}, 2, false, false, false, {CACAO_WG_COMPACT, 1}, CACAOI_GRID_COMPACT, 4,
-                     {CONSTANTS, W(TILES, TILES, ALL), W(OUTPUT, OUTPUT, ALL), W(SSAO_IMAGE, SSAO_PING, V(CACAO_COMPACT_SLICES))}},
+     * tiles a later pass reads (its fill list). It reads the classes and flags the passes before
+     * it wrote through the texel view (tile_read), and builds the lists through the buffer. */
+    PASS(COMPACT) = {"compact", {NULL, "horizon"}, 2, false, false, false, {CACAO_WG_COMPACT, 1}, CACAOI_GRID_COMPACT, 5,
+                     {CONSTANTS, W(TILES, TILES, ALL), R(TILE_ENTRIES, TILES, ALL), W(OUTPUT, OUTPUT, ALL),
+                      W(SSAO_IMAGE, SSAO_PING, V(CACAO_COMPACT_SLICES))}},
     /* spec: prepare.md, normals from depth: PREPARE_DEPTHS's variants and the normals in one pass,
      * a 2x2 quad of slice texels per invocation sharing one block of depths. */
     PASS(PREPARE) = PREPARE_ROW("prepare", 0u, CACAOI_GRID_SLICE, W_LEVELS(DEPTHS_IMAGE, DEPTHS, CACAO_DEPTH_MIP_COUNT, V(CACAO_DEPTHS_MIPS)), 6),
@@ -291,7 +302,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     PASS(PREPARE_GPU) = PREPARE_ROW("prepare_gpu", ALL, CACAOI_GRID_SLICE_CLASSIFY, W(DEPTHS_IMAGE, DEPTHS, V(CACAO_DEPTHS_MIPS)) COMMA
                                     W_CHAIN(V(CACAO_DEPTHS_MIPS)), 9),
     PASS(GENERATE_GPU) = GENERATE_ROW("generate_gpu", 5, , 12, CACAO_LIST_NONE,
-                                      CACAO_LIST_NONE, CACAOI_GRID_SLICE, W),
+                                      CACAO_LIST_NONE, CACAOI_GRID_SLICE, W, R),
     /* The value of the tiles no pass computes: AO 1 over the unneeded tiles into the slices' AO
      * and the blur's output (CACAO's CPU forms, a step rebinding SSAO_IMAGE) and into the caller's
      * output (dispatches); into the horizon estimators' AO intermediates, and their view z and
@@ -301,7 +312,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
     PASS(FILL) = {"fill", {NULL, "horizon", "view", "importance"}, 4, false, false, false,
                   {CACAO_TILE, CACAO_TILE}, CACAOI_GRID_SLICE, 7,
                   {CONSTANTS,
-                   R(TILES, TILES, V(CACAO_FILL_SLICES)),
+                   R_LIST(TILES, TILES, V(CACAO_FILL_SLICES)),
                    W(SSAO_IMAGE, SSAO_PING, V(CACAO_FILL_SLICES)),
                    W(HORIZON_AO_OUT, AO_RAW, V(CACAO_FILL_HORIZON)),
                    W(VIEW_DEPTH, VIEW_DEPTH, V(CACAO_FILL_VIEW)),
@@ -337,6 +348,7 @@ const cacaoi_pass_row cacaoi_passes[CACAO_PASS_COUNT] = {
 #undef W_CHAIN
 #undef COMMA
 #undef W_NATIVE
+#undef R_LIST
 #undef ALL
 #undef V
 #undef CONSTANTS

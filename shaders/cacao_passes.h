@@ -39,9 +39,10 @@
 #define CACAOI_DESCRIPTOR_STORAGE_BUFFER 2
 #define CACAOI_DESCRIPTOR_SAMPLED_IMAGE 3 /* combined image sampler (immutable sampler) */
 #define CACAOI_DESCRIPTOR_STORAGE_IMAGE 4
-#define CACAOI_DESCRIPTOR_COUNT 5
+#define CACAOI_DESCRIPTOR_STORAGE_TEXEL_BUFFER 5 /* read-only R32_UINT view of a buffer */
+#define CACAOI_DESCRIPTOR_COUNT 6
 
-/* Their names in messages and listings: "-", "uniform buffer", ... "storage image". */
+/* Their names in messages and listings: "-", "uniform buffer", ... "storage texel buffer". */
 extern const char *const cacaoi_descriptor_names[CACAOI_DESCRIPTOR_COUNT];
 
 /* Immutable samplers of combined-image-sampler slots. Both clamp to edge, mipmap nearest. */

@@ -296,7 +296,8 @@
 #define CACAO_BINDING_DEPTHS_MIP3 22     /* level 3 */
 #define CACAO_BINDING_HISTORY 23         /* temporal: the history read, image2D rg32f */
 #define CACAO_BINDING_HISTORY_OUT 24     /* temporal: the history written, image2D rg32f */
-#define CACAO_BINDING_COUNT 25
+#define CACAO_BINDING_TILE_ENTRIES 25    /* the tile buffer read through an R32_UINT texel view: a list step's entries */
+#define CACAO_BINDING_COUNT 26
 
 /* ---- Workgroup sizes (x, y); z is always 1 ---- */
 #define CACAO_WG_PREPARE_X 8

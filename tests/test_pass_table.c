@@ -76,7 +76,9 @@ static void test_rows(void) {
                 if (!((b->variants >> v) & 1u)) continue;
                 ++seen[b->slot];
                 const uint8_t kind = cacaoi_slots[b->slot].descriptor;
-                const bool buffer_slot = kind == CACAOI_DESCRIPTOR_UNIFORM_BUFFER || kind == CACAOI_DESCRIPTOR_STORAGE_BUFFER;
+                /* (a storage texel buffer slot holds a buffer too: the tile buffer's texel view) */
+                const bool buffer_slot = kind == CACAOI_DESCRIPTOR_UNIFORM_BUFFER || kind == CACAOI_DESCRIPTOR_STORAGE_BUFFER ||
+                                         kind == CACAOI_DESCRIPTOR_STORAGE_TEXEL_BUFFER;
                 if (buffer_slot != is_buffer(b->resource))
                     fprintf(stderr, "%s variant %u: slot %s holds %s\n", row->name, v, cacaoi_slots[b->slot].name,
                             cacaoi_resources[b->resource].name);
@@ -259,7 +261,9 @@ static void check_config(const cacao_settings *s) {
             CHECK(have->format == row->format && have->layered == row->layered && have->size == row->size);
             CHECK(b->write == want.write[b->binding]);
             bound[b->binding] = true;
-            *(b->write ? &writes : &reads) |= 1u << b->resource;
+            /* compact writes the tile buffer and reads what the passes before it wrote there
+             * through its texel view; no other step reads what it writes */
+            if (b->binding != CACAO_BINDING_TILE_ENTRIES) *(b->write ? &writes : &reads) |= 1u << b->resource;
             const uint8_t size = have->size;
             CHECK(allocated[b->resource] || size == CACAOI_SIZE_CALLER || size == CACAOI_SIZE_BUFFER ||
                   (size == CACAOI_SIZE_TILES && plan.uses_tiles && plan.tile_buffer_bytes > 0));

@@ -53,6 +53,7 @@ VkDescriptorType cacaoi_binding_type(unsigned binding) {
     case CACAOI_DESCRIPTOR_UNIFORM_BUFFER: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     case CACAOI_DESCRIPTOR_STORAGE_BUFFER: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     case CACAOI_DESCRIPTOR_SAMPLED_IMAGE: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    case CACAOI_DESCRIPTOR_STORAGE_TEXEL_BUFFER: return VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
     default: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     }
 }
@@ -253,6 +254,7 @@ cacao_result cacao_context_create(const cacao_context_desc *desc, cacao_context 
     VkPhysicalDeviceProperties props;
     ctx->vk.GetPhysicalDeviceProperties(ctx->physical_device, &props);
     ctx->buffer_image_granularity = props.limits.bufferImageGranularity;
+    ctx->max_texel_buffer_elements = props.limits.maxTexelBufferElements;
     ctx->forms = desc->shader_forms != CACAO_SHADER_FORMS_DEFAULT ? desc->shader_forms
                  : props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? CACAO_SHADER_FORMS_CPU
                                                                    : CACAO_SHADER_FORMS_GPU;
@@ -297,6 +299,8 @@ static void release_pipelines(cacao_context *ctx) {
 /* Frees the intermediates and buffers resize created, not the pipelines or the layouts. */
 static void release_images_and_buffers(cacao_context *ctx) {
     VkDevice d = ctx->device;
+    if (ctx->tile_entries_view) ctx->vk.DestroyBufferView(d, ctx->tile_entries_view, ctx->alloc);
+    ctx->tile_entries_view = VK_NULL_HANDLE;
     for (unsigned r = 0; r < CACAO_RES_COUNT; ++r) {
         cacao_intermediate *im = &ctx->images[r];
         if (im->view) ctx->vk.DestroyImageView(d, im->view, ctx->alloc);
@@ -546,6 +550,37 @@ static cacao_result allocate_and_bind(cacao_context *ctx, const cacao_plan *plan
     return CACAO_SUCCESS;
 }
 
+/* The tile buffer's R32_UINT texel view, where a step of the plan reads its list through it (the
+ * CPU forms' list steps), within the device's limit on a texel buffer's elements. */
+static cacao_result create_tile_entries_view(cacao_context *ctx, const cacao_plan *plan) {
+    bool read = false;
+    for (uint32_t i = 0; i < plan->step_count && !read; ++i)
+        for (uint32_t j = 0; j < plan->steps[i].binding_count; ++j)
+            read = read || plan->steps[i].bindings[j].binding == CACAO_BINDING_TILE_ENTRIES;
+    if (!read) return CACAO_SUCCESS;
+    VkDeviceSize bytes = 0;
+    for (uint32_t i = 0; i < plan->buffer_count; ++i)
+        if (plan->buffers[i].resource == CACAO_RES_TILES) bytes = plan->buffers[i].bytes;
+    if (bytes / sizeof(uint32_t) > ctx->max_texel_buffer_elements)
+        return cacaoi_fail(ctx, CACAO_ERROR_UNSUPPORTED_DEVICE,
+                           "the tile buffer at %ux%u holds %llu entries, more than the device's "
+                           "maxTexelBufferElements (%u) that its list steps read through; use the GPU shader forms "
+                           "(shader_forms) or a smaller size",
+                           plan->width, plan->height, (unsigned long long)(bytes / sizeof(uint32_t)),
+                           ctx->max_texel_buffer_elements);
+    const VkBufferViewCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO,
+        .buffer = ctx->buffers[CACAO_RES_TILES],
+        .format = VK_FORMAT_R32_UINT,
+        .offset = 0,
+        .range = bytes / sizeof(uint32_t) * sizeof(uint32_t),
+    };
+    VkResult vr = ctx->vk.CreateBufferView(ctx->device, &info, ctx->alloc, &ctx->tile_entries_view);
+    if (vr == VK_SUCCESS) return CACAO_SUCCESS;
+    ctx->tile_entries_view = VK_NULL_HANDLE;
+    return vk_fail(ctx, vr, "vkCreateBufferView (tiles)");
+}
+
 /* Every intermediate and buffer of the plan, in memory, with its view. */
 static cacao_result create_intermediates(cacao_context *ctx, const cacao_plan *plan) {
     cacao_result r = CACAO_SUCCESS;
@@ -553,6 +588,7 @@ static cacao_result create_intermediates(cacao_context *ctx, const cacao_plan *p
     for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan->buffer_count; ++i) r = create_buffer(ctx, &plan->buffers[i]);
     if (r == CACAO_SUCCESS) r = allocate_and_bind(ctx, plan);
     for (uint32_t i = 0; r == CACAO_SUCCESS && i < plan->image_count; ++i) r = create_view(ctx, &plan->images[i]);
+    if (r == CACAO_SUCCESS) r = create_tile_entries_view(ctx, plan);
     return r;
 }
 

@@ -252,11 +252,16 @@ static void record_constants(cacao_context *ctx, VkCommandBuffer cmd, const caca
 typedef union descriptor_info {
     VkDescriptorBufferInfo buffer;
     VkDescriptorImageInfo image;
+    VkBufferView texel_view;
 } descriptor_info;
 
 static void describe(const cacao_context *ctx, const cacao_inputs *in, const cacao_plan_binding *b,
                      descriptor_info *info) {
     const uint8_t size = cacaoi_resources[b->resource].size;
+    if (b->binding == CACAO_BINDING_TILE_ENTRIES) { /* the tile buffer's texel view */
+        info->texel_view = ctx->tile_entries_view;
+        return;
+    }
     if (size == CACAOI_SIZE_BUFFER || size == CACAOI_SIZE_TILES) { /* the plan's buffers */
         info->buffer = (VkDescriptorBufferInfo){ctx->buffers[b->resource], 0, VK_WHOLE_SIZE};
         return;
@@ -342,13 +347,15 @@ static void record_step(cacao_context *ctx, VkCommandBuffer cmd, const cacao_inp
         const VkDescriptorType type = cacaoi_binding_type(b->binding);
         describe(ctx, in, b, &infos[i]);
         const bool buffer = type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER || type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        const bool texel = type == VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
         writes[i] = (VkWriteDescriptorSet){
             .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
             .dstBinding = b->binding,
             .descriptorCount = 1,
             .descriptorType = type,
-            .pImageInfo = buffer ? NULL : &infos[i].image,
+            .pImageInfo = buffer || texel ? NULL : &infos[i].image,
             .pBufferInfo = buffer ? &infos[i].buffer : NULL,
+            .pTexelBufferView = texel ? &infos[i].texel_view : NULL,
         };
     }
     ctx->vk.CmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->pipelines[index]);

@@ -22,7 +22,8 @@
     X(DestroyPipelineLayout) X(CreateShaderModule) X(DestroyShaderModule)                           \
     X(CreateComputePipelines) X(DestroyPipeline) X(CmdBindPipeline) X(CmdDispatch)                 \
     X(CmdDispatchIndirect) X(CmdPipelineBarrier) X(CmdUpdateBuffer) X(CmdFillBuffer)                \
-    X(CmdCopyBuffer) X(CmdWriteTimestamp) X(CmdPushDescriptorSetKHR) X(CmdClearColorImage)
+    X(CmdCopyBuffer) X(CmdWriteTimestamp) X(CmdPushDescriptorSetKHR) X(CmdClearColorImage)         \
+    X(CreateBufferView) X(DestroyBufferView)
 
 #define CACAOI_VK_MEMBER(name) PFN_vk##name name;
 typedef struct cacaoi_vk {
@@ -49,6 +50,7 @@ struct cacao_context {
     const VkAllocationCallbacks *alloc; /* &alloc_copy, or NULL */
     VkAllocationCallbacks alloc_copy;   /* the caller's callbacks, kept for the context's life */
     VkDeviceSize buffer_image_granularity;
+    uint32_t max_texel_buffer_elements; /* the device's limit on the tile buffer's texel view */
     VkPipelineCache pipeline_cache;
     uint32_t required_subgroup_size; /* 0: the driver's choice */
     VkPipelineCreateFlags pipeline_create_flags; /* the caller's, on every pipeline */
@@ -78,6 +80,8 @@ struct cacao_context {
     VkPipeline pipelines[CACAO_PLAN_MAX_STEPS]; /* one per plan step (VK_NULL_HANDLE for a clear) */
     cacao_intermediate images[CACAO_RES_COUNT];
     VkBuffer buffers[CACAO_RES_COUNT];             /* the plan's buffers, by resource */
+    VkBufferView tile_entries_view; /* the tile buffer as R32_UINT texels, where a list step reads
+                                       it (CACAO_BINDING_TILE_ENTRIES); else VK_NULL_HANDLE */
     VkDeviceMemory memory_blocks[VK_MAX_MEMORY_TYPES]; /* every intermediate and buffer lives in
                                                           these: one allocation per memory type used */
     cacao_memory_info memory;

@@ -19,6 +19,12 @@ layout(std430, set = 0, binding = CACAO_BINDING_LOAD_COUNTER) CACAO_ACCESS_LOAD_
 layout(std430, set = 0, binding = CACAO_BINDING_TILES) CACAO_ACCESS_TILES buffer cacao_tiles { uint tiles[]; };
 #endif
 
+#ifdef CACAO_BIND_TILE_ENTRIES
+/* The same buffer as the list steps read it, their entries: a texel load, which lavapipe runs per
+ * invocation at a fraction of a storage buffer load's cost (tiles.glsl, group_of). */
+layout(set = 0, binding = CACAO_BINDING_TILE_ENTRIES, r32ui) uniform readonly uimageBuffer tile_entries;
+#endif
+
 #ifdef CACAO_BIND_SRC_DEPTH
 layout(set = 0, binding = CACAO_BINDING_SRC_DEPTH) uniform sampler2D src_depth;
 #endif

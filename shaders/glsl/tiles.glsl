@@ -1,6 +1,15 @@
 /* tiles.glsl - tile classification (docs/tiles.md; the buffer's layout in cacao_shared.h): the
  * lists a pass dispatches from, and the classify, compact and fill passes. */
 
+/* Word i of the tile buffer, written by an earlier pass: through its texel view where the pass
+ * binds it (a list step, compact), which lavapipe loads at a fraction of a storage buffer's cost
+ * (docs/tiles.md "What a list costs"); else from the storage buffer. */
+#ifdef CACAO_BIND_TILE_ENTRIES
+uint tile_read(uint i) { return imageLoad(tile_entries, int(i)).x; }
+#elif defined(CACAO_BIND_TILES)
+uint tile_read(uint i) { return tiles[i]; }
+#endif
+
 #if CACAO_PASS == CACAO_PASS_CLASSIFY || CACAO_PASS == CACAO_PASS_COMPACT || CACAO_LIST != CACAO_LIST_NONE
 /* First uint of a list's entries (cacao_shared.h). */
 uint list_base(int list) { return uint(CACAO_TILE_LIST_BASE(list, CB.tiles_x * CB.tiles_y)); }
@@ -16,11 +25,13 @@ uint list_width(int list)
 /* The group this workgroup computes, false for none. Over a list: the entry at y width + x,
  * where width is the grid's (cb); past the last entry the host's fill left
  * CACAO_TILE_NO_ENTRY, and the group returns at once (uniformly, so also before a barrier).
- * One buffer load per invocation (lavapipe loads per lane). */
+ * One load per invocation, through the tile buffer's texel view: lavapipe loads a storage
+ * buffer lane by lane with a bounds check, which cost a list step's invocation about 4 ns, 30%
+ * of the half apply's (docs/tiles.md "What a list costs"). */
 bool group_of(out ivec2 g)
 {
 #if CACAO_LIST != CACAO_LIST_NONE
-    uint e = tiles[list_base(CACAO_LIST) + gl_WorkGroupID.y * list_width(CACAO_LIST) + gl_WorkGroupID.x];
+    uint e = tile_read(list_base(CACAO_LIST) + gl_WorkGroupID.y * list_width(CACAO_LIST) + gl_WorkGroupID.x);
     g = ivec2(int(e & 0xffffu), int(e >> 16));
     return e != CACAO_TILE_NO_ENTRY;
 #else
@@ -51,7 +62,7 @@ bool block_has_active(ivec2 b)
     bool any_active = false;
     for (int k = 0; k < 4; ++k) {
         ivec2 t = 2 * b + ivec2(k & 1, k >> 1);
-        any_active = any_active || (in_rect(t, ivec2(CB.tiles_x, CB.tiles_y)) && tiles[class_index(t)] == CACAO_TILE_CLASS_ACTIVE);
+        any_active = any_active || (in_rect(t, ivec2(CB.tiles_x, CB.tiles_y)) && tile_read(class_index(t)) == CACAO_TILE_CLASS_ACTIVE);
     }
     return any_active;
 }
@@ -87,7 +98,7 @@ bool touches_needed(ivec2 t0, ivec2 t1)
     t1 = clamp(t1 + 1, ivec2(0), last);
     for (int y = t0.y; y <= t1.y; ++y)
         for (int x = t0.x; x <= t1.x; ++x)
-            if (tiles[class_index(ivec2(x, y))] == CACAO_TILE_CLASS_ACTIVE) return true;
+            if (tile_read(class_index(ivec2(x, y))) == CACAO_TILE_CLASS_ACTIVE) return true;
     return false;
 }
 #endif
@@ -102,10 +113,10 @@ uint blur_recompute_base() { return TILE_REGION(CACAO_TILE_BLUR_RECOMPUTE); }
 /* Reuse (docs/tiles.md "Reusing the previous frame"): tile t, or blur group g, is recomputed this
  * frame (the reach pass's flags); without reuse, and on a full frame (which runs no reach pass),
  * every one is. */
-bool tile_recomputed(ivec2 t) { return CB.reuse != 1 || tiles[recompute_base() + tile_index(t)] == 0u; }
+bool tile_recomputed(ivec2 t) { return CB.reuse != 1 || tile_read(recompute_base() + tile_index(t)) == 0u; }
 bool blur_group_recomputed(ivec2 g)
 {
-    return CB.reuse != 1 || tiles[blur_recompute_base() + uint(g.y * CB.blur_groups_x + g.x)] == 0u;
+    return CB.reuse != 1 || tile_read(blur_recompute_base() + uint(g.y * CB.blur_groups_x + g.x)) == 0u;
 }
 #endif
 
@@ -481,7 +492,7 @@ void store_slices_one(ivec2 g)
 bool lists_output()
 {
     if (CB.needed_list != 3) return CB.needed_list != 0;
-    return CACAO_APPLY_LISTS(tiles[CACAO_TILE_COUNT_ACTIVE], uint(CB.tiles_x * CB.tiles_y));
+    return CACAO_APPLY_LISTS(tile_read(CACAO_TILE_COUNT_ACTIVE), uint(CB.tiles_x * CB.tiles_y));
 }
 
 /* Whether a later pass can read the AO of tile g, which generate skips: the fills' list. Where
@@ -509,7 +520,7 @@ bool fill_read(ivec2 g, bool listed)
         bool marked = false;
         for (int y = b0.y; y <= b1.y; ++y)
             for (int x = b0.x; x <= b1.x; ++x)
-                marked = marked || tiles[blur_needed_base() + uint(y * CB.blur_groups_x + x)] == 0u;
+                marked = marked || tile_read(blur_needed_base() + uint(y * CB.blur_groups_x + x)) == 0u;
         if (!marked) return false;
     }
     return touches_needed(g - reach, g + reach);
@@ -562,7 +573,7 @@ void main()
          * (normals from depth: computed from the stored z, normals_list 2). The border tiles'
          * normals too: a sample past the image's edge reads its edge pixel's (horizon.glsl,
          * side_plane). */
-        if (tiles[CACAO_TILE_CLASSES + i] != CACAO_TILE_CLASS_BACKGROUND) {
+        if (tile_read(CACAO_TILE_CLASSES + i) != CACAO_TILE_CLASS_BACKGROUND) {
             bool border = g.x == 0 || g.y == 0 || g.x == CB.tiles_x - 1 || g.y == CB.tiles_y - 1;
             bool normals = border || touches_needed(g - 1, g + 1);
             if (normals) append(CACAO_LIST_NORMALS, g);
