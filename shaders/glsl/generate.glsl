@@ -80,6 +80,16 @@ vec4 g_level[4];
 float g_top_level;
 vec2 g_inv_d;
 
+/* The adaptive pass's load counter (importance_b's sum). The CPU form reads it once, first in
+ * main: lavapipe loads a storage buffer inside control flow lane by lane with a bounds check, and
+ * at the top of main once for every invocation (docs/tiles.md "What a list costs"). */
+#if CACAO_VARIANT == CACAO_GENERATE_Q3 && !GEN_GPU
+uint g_load_counter;
+#define LOAD_COUNTER_VALUE g_load_counter
+#else
+#define LOAD_COUNTER_VALUE load_counter
+#endif
+
 void init_atlas(ivec2 s0)
 {
     for (int l = 0; l < 4; ++l) g_level[l] = vec4(depth_atlas_level(s0, l));
@@ -300,7 +310,7 @@ float generate_texel(ivec2 xy, int layer)
     obsc_sum += base.r * weight_sum;
 
     /* C: number of extra taps (limiter with D3D's saturate: NaN -> 0, +inf -> 1) */
-    float avg_importance = float(load_counter) * CB.load_counter_avg_div;
+    float avg_importance = float(LOAD_COUNTER_VALUE) * CB.load_counter_avg_div;
     float limiter = CB.adaptive_sample_count_limit / avg_importance;
     limiter = limiter > 0.0 ? min(limiter, 1.0) : 0.0;
     uint extra = uint(float(CACAO_ADAPTIVE_TAP_FLEXIBLE_COUNT) * (importance * limiter) + 1.5);
@@ -336,6 +346,9 @@ float generate_texel(ivec2 xy, int layer)
 void main()
 {
     hoist_constants();
+#if CACAO_VARIANT == CACAO_GENERATE_Q3 && !GEN_GPU
+    g_load_counter = load_counter;
+#endif
     ivec2 group;
     if (!group_of(group)) return;
     ivec2 xy = texel_of(group);
