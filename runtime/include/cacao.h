@@ -426,7 +426,9 @@ typedef struct cacao_memory_info {
 /* (Re)builds the plan for width x height (each 1..CACAO_MAX_SIZE) and the current settings, then
  * creates exactly the intermediates and pipelines it uses (nothing else); a resize that only
  * changes the size keeps the pipelines. The GPU must be done with earlier frames. out_info may be
- * NULL. */
+ * NULL. The CPU shader forms read their tile lists through a texel view of the tile buffer: a size
+ * whose tile buffer holds more entries than the device's maxTexelBufferElements is
+ * CACAO_ERROR_UNSUPPORTED_DEVICE (none at CACAO_MAX_SIZE on lavapipe, whose limit is 2^27). */
 CACAO_API cacao_result cacao_context_resize(cacao_context *context, uint32_t width, uint32_t height,
                                             cacao_memory_info *out_info);
 
