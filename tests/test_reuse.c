@@ -7,6 +7,10 @@
  *   - one object moved (a sphere of the embedded scene, a few tiles): only tiles within reach of
  *     it recomputed (fewer than all, except at HIGHEST, which recomputes everything when anything
  *     changed), and the same frame again after it;
+ *   - with the caller's normals, a frame whose normals alone changed in a region: recomputed; and,
+ *     where the frame reads the normals of some pixels only (downsampled: pixel (0,0) of each 2x2
+ *     block; LOWEST native: (0,0) and (1,1)), a frame whose normals changed at the other pixels
+ *     alone: the reference's output is the first frame's (nothing reads them), and so is reuse's;
  *   - the output kept by the caller (output_holds_previous) on an unchanged frame: nothing is
  *     written and the output is still the reference's;
  *   - the camera moved (another projection): a full frame, without the diff; the next frame with
@@ -139,6 +143,65 @@ static bool nothing_to_do(vkdev *dev, cacao_context *ctx, const vkdev_frame *f, 
     return true;
 }
 
+/* n's normals with those of the pixels of the image's middle third that pick accepts tilted (a
+ * new array; the caller frees it). */
+static float *tilted_normals(const float *n, bool (*pick)(uint32_t x, uint32_t y)) {
+    float *out = malloc((size_t)3 * W * H * sizeof(float));
+    memcpy(out, n, (size_t)3 * W * H * sizeof(float));
+    for (uint32_t y = H / 3; y < 2 * H / 3; ++y)
+        for (uint32_t x = W / 3; x < 2 * W / 3; ++x) {
+            if (!pick(x, y)) continue;
+            float *v = &out[3 * ((size_t)y * W + x)];
+            const float a = v[0] + 0.25f, b = v[1], c = v[2], len = sqrtf(a * a + b * b + c * c);
+            if (len > 0.0f) v[0] = a / len, v[1] = b / len, v[2] = c / len;
+        }
+    return out;
+}
+
+static bool every_pixel(uint32_t x, uint32_t y) { return (void)x, (void)y, true; }
+/* pixels whose normal no CACAO pass reads downsampled (the slices' texels take 4 t + 2 d: both
+ * even), and at LOWEST native (slices 0 and 3, 2 t and 2 t + 1: x and y of the same parity) */
+static bool unread_downsampled(uint32_t x, uint32_t y) { return ((x | y) & 1u) != 0; }
+static bool unread_lowest_native(uint32_t x, uint32_t y) { return ((x ^ y) & 1u) != 0; }
+
+/* With the caller's normals: the normals alone change (see the file's comment); the context ends
+ * on the base frame. */
+static void normals_only(vkdev *dev, cacao_context *ctx, const cacao_settings *s, const vkdev_frame *base,
+                         const float *normals, const float *ref) {
+    const size_t n = (size_t)W * H;
+    float *ref_changed = malloc(n * sizeof(float)), *ao = malloc(n * sizeof(float));
+    float *tilted = tilted_normals(normals, every_pixel);
+    cacao_tile_counts c;
+    vkdev_frame f = *base;
+    f.normals = tilted;
+    if (reference(dev, *s, &f, ref_changed) && step(dev, ctx, &f, 1, ao, &c)) {
+        check_same(ao, ref_changed, "normals changed");
+        CHECK(c.changed > 0 && c.changed < c.tiles);
+        if (step(dev, ctx, base, 1, ao, &c)) check_same(ao, ref, "normals back");
+    }
+    free(tilted);
+    bool (*unread)(uint32_t, uint32_t) = s->downsample                          ? unread_downsampled
+                                         : s->quality == CACAO_QUALITY_LOWEST ? unread_lowest_native
+                                                                              : NULL;
+    if (unread) {
+        tilted = tilted_normals(normals, unread);
+        f.normals = tilted;
+        if (reference(dev, *s, &f, ref_changed)) {
+            check_same(ref_changed, ref, "normals changed where no pass reads them (computed alone)");
+            /* the diff compares every pixel's normal (comparing only those read measured no
+             * faster on lavapipe: docs/tiles.md), so the region is recomputed, to the same output */
+            if (step(dev, ctx, &f, 1, ao, &c)) {
+                check_same(ao, ref, "normals changed where no pass reads them");
+                CHECK(c.changed > 0);
+            }
+            if (step(dev, ctx, base, 1, ao, &c)) check_same(ao, ref, "normals back");
+        }
+        free(tilted);
+    }
+    free(ref_changed);
+    free(ao);
+}
+
 /* The sequence of the file's comment for one configuration. */
 static void sequence(vkdev *dev, const frames *fr, cacao_settings s, bool normals) {
     snprintf(config, sizeof config, "quality %d, %s, blur %d, normals %s, %s forms", (int)s.quality,
@@ -180,6 +243,11 @@ static void sequence(vkdev *dev, const frames *fr, cacao_settings s, bool normal
                     c.recomputed, c.tiles);
         CHECK(c.recomputed >= c.changed && c.recomputed < c.tiles);
         CHECK(c.generate_run < c.tiles);
+    }
+    if (normals) {
+        if (!step(dev, ctx, &base, 1, ao, &c)) goto done;
+        check_same(ao, ref, "back to the first frame");
+        normals_only(dev, ctx, &s, &base, fr->base.normals, ref);
     }
     /* back to the first frame, then kept by the caller: the second run of two writes nothing */
     vkdev_frame keep = base;
@@ -361,6 +429,13 @@ int main(void) {
             sequence(&dev, &fr, s, false);
             sequence(&dev, &fr, s, true);
         }
+    /* the caller's normals where the frame reads some of them only: LOWEST native, downsampled */
+    for (int forms = 0; forms < 2; ++forms) {
+        const cacao_shader_forms f = forms ? CACAO_SHADER_FORMS_GPU : CACAO_SHADER_FORMS_CPU;
+        sequence(&dev, &fr, (cacao_settings){.quality = CACAO_QUALITY_LOWEST, .shader_forms = f}, true);
+        sequence(&dev, &fr, (cacao_settings){.quality = CACAO_QUALITY_LOW, .downsample = true, .shader_forms = f}, true);
+        sequence(&dev, &fr, (cacao_settings){.quality = CACAO_QUALITY_HIGH, .downsample = true, .shader_forms = f}, true);
+    }
     other_changes(&dev, &fr);
     /* the horizon estimators: both, both forms, native with no denoise pass and with 2, downsampled
      * with 1, normals from depth and given */
