@@ -84,6 +84,7 @@ int window_read(float w[4][4], ivec2 base, vec2 uv, vec2 fixed_size, ivec2 lo, b
  * (as the non-smart apply below). */
 void main()
 {
+    hoist_constants();
     ivec2 g; /* listed: a block of 2x2 tiles (the group's 16x16 slice texels) */
     if (!group_of(g)) return;
     ivec2 Q = 2 * texel_of(g);
@@ -141,6 +142,7 @@ void main()
 
 void main()
 {
+    hoist_constants();
     /* Quad q holds the output pixels o .. o + 1, o = 2q (even size) or 2q - 1 (odd): in either
      * case both of them read, per axis, between slice texels q - 1 and q (p / O in a slice of
      * S = ceil(O / 2) texels, less half a texel, lies in [q - 1, q] for those p). So one gather
@@ -247,6 +249,7 @@ rfloat table_value(float v)
 
 void main()
 {
+    hoist_constants();
     /* The block values step 2 uses in its 5x5 loop, read as main's first statements: on lavapipe
      * a block load after step 1's loop is made lane by lane with a bounds check, at every use
      * (docs/speed-notes.md, which has what this copy saves). */

@@ -93,6 +93,9 @@ void prepare_pixel(ivec2 p, ivec2 size)
  * tiles.glsl depth_flags: its class, its count and the needed tiles around an active one). */
 void main()
 {
+#if CACAO_HOISTS_CONSTANTS
+    hoist_constants();
+#endif
     ivec2 group;
 #if CACAO_PASS == CACAO_PASS_HORIZON_PREPARE_GPU
     group = ivec2(gl_WorkGroupID.xy);
@@ -407,6 +410,9 @@ float horizon_fade(float z) { return sat(z * CB.effect_fade_out_mul + CB.effect_
  * one storing 1 (their blocks are all quiet). The noise follows t. */
 void main()
 {
+#if CACAO_HOISTS_CONSTANTS
+    hoist_constants();
+#endif
     ivec2 group;
     if (!group_of(group)) return;
 #if CACAO_SKIPS_BY_CLASS
@@ -454,6 +460,9 @@ float denoise_weight(vec3 pos, vec3 nrm, float inv_scale, ivec2 q, float zq)
 /* Over the needed tiles (the GPU form: every tile; one that is not needed stores 1). */
 void main()
 {
+#if CACAO_HOISTS_CONSTANTS
+    hoist_constants();
+#endif
     ivec2 group;
     if (!group_of(group)) return;
 #if CACAO_SKIPS_BY_CLASS
@@ -540,6 +549,7 @@ float temporal_step(float z, float zq) { return zq > 0.0 ? abs(zq - z) : 1e30; }
 
 void main()
 {
+    hoist_constants();
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(history_out);
     if (!in_rect(p, size)) return;

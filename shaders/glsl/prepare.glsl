@@ -398,6 +398,7 @@ layout(local_size_x = CACAO_WG_PREPARE_X, local_size_y = CACAO_WG_PREPARE_Y) in;
 
 void main()
 {
+    hoist_constants();
     ivec2 g; /* listed: a tile (the group's 8x8 texels) */
     if (!group_of(g)) return;
     ivec2 t = texel_of(g);
