@@ -249,7 +249,6 @@ rfloat table_value(float v)
 
 void main()
 {
-    hoist_constants();
     /* The block values step 2 uses in its 5x5 loop, read as main's first statements: on lavapipe
      * a block load after step 1's loop is made lane by lane with a bounds check, at every use
      * (docs/speed-notes.md, which has what this copy saves). */

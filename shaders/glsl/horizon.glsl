@@ -410,9 +410,6 @@ float horizon_fade(float z) { return sat(z * CB.effect_fade_out_mul + CB.effect_
  * one storing 1 (their blocks are all quiet). The noise follows t. */
 void main()
 {
-#if CACAO_HOISTS_CONSTANTS
-    hoist_constants();
-#endif
     ivec2 group;
     if (!group_of(group)) return;
 #if CACAO_SKIPS_BY_CLASS
