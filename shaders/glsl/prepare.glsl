@@ -126,6 +126,9 @@ void store_slices(ivec2 t, vec4 z)
 #if CACAO_PASS == CACAO_PASS_PREPARE_DEPTHS
 void main()
 {
+#if CACAO_HOISTS_CONSTANTS
+    hoist_constants();
+#endif
     ivec2 s = slice_size();
 #if CACAO_VARIANT == CACAO_DEPTHS_HALF
     /* LOWEST: slices 0 and 3 in layers 0 and 1; integer loads, OOB -> raw 0 (z = M/A). */
@@ -268,6 +271,9 @@ void classify_group()
  * GPU form's classification groups downsampled, a whole group each). */
 void main()
 {
+#if CACAO_HOISTS_CONSTANTS
+    hoist_constants();
+#endif
 #if CACAO_PASS == CACAO_PASS_PREPARE_GPU && CACAO_DOWNSAMPLED == 1
     /* groups z 0 classify the tiles from the caller's depth (tiles.glsl), groups z 1 prepare: one
      * dispatch (a pass of its own cost an H200 its dispatch, docs/gpu.md), and the prepare's code
@@ -398,7 +404,9 @@ layout(local_size_x = CACAO_WG_PREPARE_X, local_size_y = CACAO_WG_PREPARE_Y) in;
 
 void main()
 {
+#if CACAO_HOISTS_CONSTANTS
     hoist_constants();
+#endif
     ivec2 g; /* listed: a tile (the group's 8x8 texels) */
     if (!group_of(g)) return;
     ivec2 t = texel_of(g);
