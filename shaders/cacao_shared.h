@@ -542,16 +542,15 @@ layout(std140, set = 0, binding = CACAO_BINDING_CONSTANTS) uniform cacao_constan
  * is cc, a private copy made by hoist_constants() as the first statement of their main: lavapipe
  * loads a block value inside control flow lane by lane with a bounds check (and everything after
  * an early return, or inside a loop, is inside control flow), but once at the top of main. The
- * copy made these passes faster on lavapipe (docs/speed-notes.md); none of them is a GPU form's
- * but generate's (RADV's counts of the others' unchanged). Elsewhere CB is the block itself: the copy made the depth mips
- * (whose groups meet at barriers) and classify.quiet (whose invocations mostly return at once)
- * slower, left the upsample and the horizon estimator as they were, and costs about 9 KB of
- * SPIR-V a module (it is not optimised away). The arrays are always read from the block (their
- * indices vary per pixel). */
+ * copy made these passes faster on lavapipe (docs/speed-notes.md); of them only generate has a
+ * GPU form (the other GPU forms' modules are unchanged). Elsewhere CB is the block itself: the
+ * copy made the depth mips (whose groups meet at barriers) and classify.quiet (whose invocations
+ * mostly return at once) slower, left apply, the upsample and the horizon estimator as they were
+ * (within this machine's noise), and costs about 9 KB of SPIR-V a module (it is not optimised
+ * away). The arrays are always read from the block (their indices vary per pixel). */
 #define CACAO_HOISTS_CONSTANTS                                                                         \
     (CACAO_PASS == CACAO_PASS_GENERATE || CACAO_PASS == CACAO_PASS_GENERATE_GPU ||                      \
      (CACAO_PASS == CACAO_PASS_PREPARE_NORMALS && CACAO_VARIANT == CACAO_PREPARE_NORMALS_LISTED) ||     \
-     CACAO_PASS == CACAO_PASS_APPLY ||                                                                  \
      CACAO_PASS == CACAO_PASS_HORIZON_PREPARE || CACAO_PASS == CACAO_PASS_HORIZON_DENOISE ||            \
      CACAO_PASS == CACAO_PASS_HORIZON_TEMPORAL ||                                                       \
      ((CACAO_PASS == CACAO_PASS_PREPARE || CACAO_PASS == CACAO_PASS_PREPARE_DEPTHS) &&                   \

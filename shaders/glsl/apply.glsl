@@ -84,7 +84,6 @@ int window_read(float w[4][4], ivec2 base, vec2 uv, vec2 fixed_size, ivec2 lo, b
  * (as the non-smart apply below). */
 void main()
 {
-    hoist_constants();
     ivec2 g; /* listed: a block of 2x2 tiles (the group's 16x16 slice texels) */
     if (!group_of(g)) return;
     ivec2 Q = 2 * texel_of(g);
@@ -142,7 +141,6 @@ void main()
 
 void main()
 {
-    hoist_constants();
     /* Quad q holds the output pixels o .. o + 1, o = 2q (even size) or 2q - 1 (odd): in either
      * case both of them read, per axis, between slice texels q - 1 and q (p / O in a slice of
      * S = ceil(O / 2) texels, less half a texel, lies in [q - 1, q] for those p). So one gather
