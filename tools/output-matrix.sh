@@ -10,8 +10,9 @@
 # (the defaults: the scene's normals where it has them) and in fp16 with blur 4, with no blur,
 # with blur 8, with normals from depth (--no-normals), reverse-Z,
 # every tile computed (--all-tiles); the GTAO and bitmask estimators at every quality with and
-# without denoise passes and with normals from depth; the embedded scene, and crops of it from 1x1 to odd
-# sizes, with a depth holding NaN and Inf. Needs ../shared/scenes (CACAO_SHARED_DIR) for the scene
+# without denoise passes, with normals from depth and downsampled, and with temporal accumulation
+# (the third frame); the embedded scene, and crops of it from 1x1 to odd sizes (the estimators
+# also downsampled with three denoise passes), with a depth holding NaN and Inf. Needs ../shared/scenes (CACAO_SHARED_DIR) for the scene
 # rows; without it only the embedded-scene rows run. --validate on every run (any validation
 # message fails the run). Prints the number of runs; exits non-zero on the first failed run.
 set -euo pipefail
@@ -55,7 +56,11 @@ if [ -d "$shared/scenes" ]; then
                 run "$scene.$est.$q" --scene "$dir" --estimator "$est" --quality "$q"
                 run "$scene.$est.$q.blur0" --scene "$dir" --estimator "$est" --quality "$q" --blur 0
                 run "$scene.$est.$q.no-normals" --scene "$dir" --estimator "$est" --quality "$q" --no-normals
+                run "$scene.$est.$q.downsampled" --scene "$dir" --estimator "$est" --quality "$q" --downsample
             done
+        done
+        for est in gtao bitmask; do
+            run "$scene.$est.temporal" --scene "$dir" --estimator "$est" --quality medium --temporal 4 --repeat 3
         done
     done
 fi
@@ -89,7 +94,10 @@ for depth in "$tmp"/*.pfm; do
         run "crop.$base.$q" --depth "$depth" --fov 60 --near 0.1 --far 100 --quality "$q"
         run "crop.$base.$q.ds" --depth "$depth" --fov 60 --near 0.1 --far 100 --quality "$q" --downsample
     done
-    run "crop.$base.gtao" --depth "$depth" --fov 60 --near 0.1 --far 100 --estimator gtao
-    run "crop.$base.bitmask" --depth "$depth" --fov 60 --near 0.1 --far 100 --estimator bitmask
+    for est in gtao bitmask; do
+        run "crop.$base.$est" --depth "$depth" --fov 60 --near 0.1 --far 100 --estimator "$est"
+        run "crop.$base.$est.ds.blur3" --depth "$depth" --fov 60 --near 0.1 --far 100 --estimator "$est" \
+            --downsample --blur 3
+    done
 done
 echo "output-matrix.sh: $runs runs into $out"
