@@ -224,15 +224,27 @@ float arc_g4(float theta, float cos2, float sin2, horizon_frame f)
 
 #if HORIZON_BITMASK
 /* Fraction U of the slice's cosine-weighted half-circle below the direction (x, y) = (along v,
- * along t) (estimators.md section 4.2); c_low4 = 4 C(n - pi/2), inv_full4 = 1 / (4 F(n)). */
+ * along t) (estimators.md section 4.2); c_low4 = 4 C(n - pi/2), inv_full4 = 1 / (4 F(n)).
+ * Directions beyond the half-circle's edges give 1 and 0. The GPU form returns early for them;
+ * the CPU form computes the arc for every direction and selects, since lavapipe runs every lane
+ * through both paths of an early return and pays for the masks: a third of the sector math, an
+ * eighth of the bitmask's main pass (docs/speed-notes.md). */
 float sector_fraction(float x, float y, horizon_frame f, float c_low4, float inv_full4)
 {
     float theta = fast_atan2(y, x);
+#if CACAO_PASS == CACAO_PASS_HORIZON_MAIN_GPU
     if (theta >= f.n + HORIZON_HALF_PI) return 1.0;
     if (theta <= f.n - HORIZON_HALF_PI) return 0.0;
+#endif
     float inv_r2 = 1.0 / max(x * x + y * y, 1e-30);
     float c4 = arc_g4(theta, (x * x - y * y) * inv_r2, 2.0 * x * y * inv_r2, f);
+#if CACAO_PASS == CACAO_PASS_HORIZON_MAIN_GPU
     return sat(((theta < 0.0 ? -c4 : c4) - c_low4) * inv_full4);
+#else
+    float u = sat(((theta < 0.0 ? -c4 : c4) - c_low4) * inv_full4);
+    u = theta <= f.n - HORIZON_HALF_PI ? 0.0 : u;
+    return theta >= f.n + HORIZON_HALF_PI ? 1.0 : u;
+#endif
 }
 #endif
 
