@@ -324,17 +324,21 @@ void main()
 #endif
 
     vec4 z[4]; /* z[q][k]: level 0 at quad texel q, slice k (the mips' input) */
-#if PREP_GPU_PATH
-    /* The GPU form: the unit direction between two neighbouring entries is normalised once, for
-     * both normals that use it (40 normalisations instead of 64); the other normal takes its
-     * negation, which is exactly the direction the other way (a - b = -(b - a), and
-     * normalize(-v) = -normalize(v)). The centres go row by row, so that only the directions of
-     * two rows are live (a GPU keeps them in registers: fewer of them, more waves). */
+#if PREP_GPU_PATH || (CACAO_PASS == CACAO_PASS_PREPARE && CACAO_VARIANT != CACAO_DEPTHS_HALF)
+    /* The unit direction between two neighbouring entries is normalised once, for both normals
+     * that use it (40 normalisations instead of 64); the other normal takes its negation, which is
+     * exactly the direction the other way (a - b = -(b - a), and normalize(-v) = -normalize(v)):
+     * the same output. The centres go row by row, so that only the directions of two rows are
+     * live (a GPU keeps them in registers: fewer of them, more waves). The CPU form has computed
+     * every entry before; LOWEST's two slices (0 and 3) share no neighbour and take the loop
+     * below. */
     [[unroll]] for (int q = 0; q < 4; ++q) z[q] = vec4(0.0);
     vec3 up[5]; /* up[i]: from entry (i, cj - 1) down to (i, cj) */
     [[unroll]] for (int i = 1; i < 5; ++i) up[i] = normalize(pos[1][i] - pos[0][i]);
     [[unroll]] for (int cj = 1; cj < 5; ++cj) {
+#if PREP_GPU_PATH
         if (cj == 1 || cj == 3) prep_rows(u, (cj + 1) / 2, inv, src_size, z0, pos, zc); /* rows cj + 1 .. cj + 2 */
+#endif
         vec3 right[5], down[5]; /* from entry (i, cj) to (i + 1, cj), and to (i, cj + 1) */
         [[unroll]] for (int i = 0; i < 5; ++i) right[i] = normalize(pos[cj][i + 1] - pos[cj][i]);
         [[unroll]] for (int i = 1; i < 5; ++i) down[i] = normalize(pos[cj + 1][i] - pos[cj][i]);
