@@ -172,6 +172,11 @@ void main()
 #else
 #define PREP_GPU_PATH 0
 #endif
+/* The normals' loop that normalises each direction between neighbouring entries once (main): the
+ * GPU form's path, and the CPU form's keys but HALF's, whose two slices share no neighbour. HALF
+ * (either form) and the GPU form's MIPS downsampled take the loop with a normalisation a
+ * neighbour. */
+#define PREP_SHARED_DIRECTIONS (PREP_GPU_PATH || (CACAO_PASS == CACAO_PASS_PREPARE && CACAO_VARIANT != CACAO_DEPTHS_HALF))
 
 /* Entry (i, j) = o + 1 of the block: its view z (read with clamp to edge) and view position. d:
  * its raw depth, gathered (native); downsampled, the entry loads its own (d unused). */
@@ -324,14 +329,13 @@ void main()
 #endif
 
     vec4 z[4]; /* z[q][k]: level 0 at quad texel q, slice k (the mips' input) */
-#if PREP_GPU_PATH || (CACAO_PASS == CACAO_PASS_PREPARE && CACAO_VARIANT != CACAO_DEPTHS_HALF)
+#if PREP_SHARED_DIRECTIONS
     /* The unit direction between two neighbouring entries is normalised once, for both normals
      * that use it (40 normalisations instead of 64); the other normal takes its negation, which is
      * exactly the direction the other way (a - b = -(b - a), and normalize(-v) = -normalize(v)):
      * the same output. The centres go row by row, so that only the directions of two rows are
      * live (a GPU keeps them in registers: fewer of them, more waves). The CPU form has computed
-     * every entry before; LOWEST's two slices (0 and 3) share no neighbour and take the loop
-     * below. */
+     * every entry before. Never HALF (PREP_SHARED_DIRECTIONS). */
     [[unroll]] for (int q = 0; q < 4; ++q) z[q] = vec4(0.0);
     vec3 up[5]; /* up[i]: from entry (i, cj - 1) down to (i, cj) */
     [[unroll]] for (int i = 1; i < 5; ++i) up[i] = normalize(pos[1][i] - pos[0][i]);
@@ -348,9 +352,6 @@ void main()
             int layer = k / PREP_SLICE_STEP;
             ivec2 t = quad_texel(u, q);
             z[q][k] = zc[cj][ci];
-#if CACAO_VARIANT == CACAO_DEPTHS_HALF
-            if (!in_rect(full_res_pixel(t, k), src_size)) z[q][k] = z0;
-#endif
             vec3 pc = pos[cj][ci];
             vec4 e = depth_edges(pc.z, pos[cj][ci - 1].z, pos[cj][ci + 1].z, pos[cj - 1][ci].z, pos[cj + 1][ci].z);
             vec3 n = normal_from_neighbours(-right[ci - 1], right[ci], -up[ci], down[ci], e);
