@@ -84,8 +84,7 @@ vec4 depth_edges(float c, float l, float r, float t, float b)
  * reconstructed from depth"); camera-facing (negative z) in cacao's view space. The four weighted
  * products a.x (l x u) + a.y (u x r) + a.z (r x b) + a.w (b x l) are summed as two, l x (a.x u -
  * a.w b) + r x (a.z b - a.y u) (b x l = -(l x b), u x r = -(r x u)): the same sum in fewer
- * operations (navi21: 2381 -> 2209 instructions for the fused prepare's 16 normals), rounded
- * differently (docs/speed-notes.md, "The normals' two cross products"). */
+ * operations, rounded differently (docs/speed-notes.md, "The normals' two cross products"). */
 vec3 normal_from_neighbours(vec3 l, vec3 r, vec3 u, vec3 b, vec4 e)
 {
     vec4 a = vec4(e.x * e.z, e.z * e.y, e.y * e.w, e.w * e.x);
